@@ -1,0 +1,192 @@
+//! Random periodic self-affine surfaces (method.md section 5, the paper's Eq. 13).
+//!
+//! Each Fourier coefficient gets the amplitude `sqrt(C(q))` (exactly, or times a Rayleigh
+//! variate) and a uniformly random phase; the coefficients of `kx = 0` and of the Nyquist
+//! column are mirrored so that the surface is real, and `C(0) = 0` makes its mean zero.
+//!
+//! Reproducibility: the random numbers of the column `kx` come from stream `kx` of a ChaCha8
+//! generator seeded with the `seed`, one draw per coefficient in `ky` order, so a seed fixes the
+//! surface bit for bit on every platform and for every number of threads.
+
+use crate::error::{Result, SurfError};
+use crate::fft2::Fft2;
+use crate::grid::Grid;
+use crate::psd::Psd;
+use crate::stats::SpectralMoments;
+use ndarray::{Array2, Axis};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use rustfft::num_complex::Complex64;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// How the random coefficients' magnitudes are drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Amplitudes {
+    /// `|h_q| = sqrt(C(q))` exactly: every realisation has the target spectrum, only phases vary.
+    #[default]
+    Exact,
+    /// `|h_q| = sqrt(C(q)) * r`, `r` Rayleigh distributed with `<r^2> = 1`: a Gaussian random field.
+    Rayleigh,
+}
+
+/// What sets the surface's scale.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Normalization {
+    /// Root-mean-square height Rq [m].
+    RmsHeight(f64),
+    /// Root-mean-square gradient `sqrt(<|grad h|^2>)` [-], computed spectrally.
+    RmsGradient(f64),
+    /// Peak-to-valley height `max - min` [m].
+    PeakToValley(f64),
+    /// The plateau `C0` of the spectrum [m^4] (see [`crate::psd`] for the convention).
+    Prefactor(f64),
+}
+
+/// Everything that defines a generated surface.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SurfaceSpec {
+    pub grid: Grid,
+    pub psd: Psd,
+    pub normalization: Normalization,
+    pub amplitudes: Amplitudes,
+    /// Seed of the random phases (and amplitudes).
+    pub seed: u64,
+}
+
+/// A generated surface with what was learnt while making it.
+#[derive(Clone, Debug)]
+pub struct Generated {
+    /// Heights [m], shape `(ny, nx)`, zero mean.
+    pub heights: Array2<f64>,
+    /// Spectral moments of the final surface (exact, from its own spectrum).
+    pub moments: SpectralMoments,
+    /// The plateau `C0` of the realised spectrum [m^4].
+    pub prefactor: f64,
+    /// Legal but suspicious parameter choices (see [`Psd::validate`]).
+    pub warnings: Vec<String>,
+}
+
+/// A uniform variate in `[0, 1)` from the top 53 bits of a `u64`: portable and exact.
+fn unit(bits: u64) -> f64 {
+    (bits >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+/// Generates the surface described by `spec`.
+///
+/// ```
+/// use surfgen::{generate, Amplitudes, Grid, Normalization, Psd, SurfaceSpec};
+/// let spec = SurfaceSpec {
+///     grid: Grid::square(64, 1e-4)?,
+///     psd: Psd::self_affine(0.8, 2e-5, 5e-6),
+///     normalization: Normalization::RmsHeight(1e-6),
+///     amplitudes: Amplitudes::Exact,
+///     seed: 7,
+/// };
+/// let surface = generate(&spec)?;
+/// let rq = (surface.heights.mapv(|h| h * h).mean().unwrap()).sqrt();
+/// assert!((rq / 1e-6 - 1.0).abs() < 1e-12);
+/// # Ok::<(), surfgen::SurfError>(())
+/// ```
+pub fn generate(spec: &SurfaceSpec) -> Result<Generated> {
+    let grid = spec.grid;
+    let warnings = spec.psd.validate(&grid)?;
+    let target = match spec.normalization {
+        Normalization::RmsHeight(v) => ("rms_height", v),
+        Normalization::RmsGradient(v) => ("rms_gradient", v),
+        Normalization::PeakToValley(v) => ("peak_to_valley", v),
+        Normalization::Prefactor(v) => ("prefactor", v),
+    };
+    if !(target.1.is_finite() && target.1 > 0.0) {
+        return Err(SurfError::invalid(target.0, target.1, "must be finite and > 0"));
+    }
+    let fft = Fft2::new(grid.nx, grid.ny);
+    let mut spectrum = Array2::<Complex64>::zeros(fft.spectrum_shape());
+    fill_spectrum(&mut spectrum, spec);
+    let unscaled = SpectralMoments::from_spectrum(spectrum.view(), &grid);
+    if unscaled.m0 == 0.0 {
+        return Err(SurfError::invalid(
+            "cutoff_wavelength",
+            spec.psd.cutoff_wavelength,
+            "no wavevector of the grid falls inside the spectrum's band",
+        ));
+    }
+    // Coefficients are drawn with unit plateau; `factor` scales them (and so the heights).
+    let n = grid.len() as f64;
+    let plateau_scale = n * 2.0 * PI / grid.area().sqrt(); // |H_k| per sqrt(C) [1/m]
+    let factor = match spec.normalization {
+        Normalization::RmsHeight(rq) => rq / unscaled.rms_height(),
+        Normalization::RmsGradient(g) => g / unscaled.rms_gradient(),
+        Normalization::Prefactor(c0) => c0.sqrt() * plateau_scale,
+        Normalization::PeakToValley(_) => 1.0,
+    };
+    let mut heights = Array2::<f64>::zeros(grid.shape());
+    fft.inverse(&mut spectrum, heights.view_mut(), factor / n);
+    let mut factor = factor;
+    if let Normalization::PeakToValley(pv) = spec.normalization {
+        let (lo, hi) = heights
+            .par_iter()
+            .fold(
+                || (f64::INFINITY, f64::NEG_INFINITY),
+                |(lo, hi), &h| (lo.min(h), hi.max(h)),
+            )
+            .reduce(
+                || (f64::INFINITY, f64::NEG_INFINITY),
+                |a, b| (a.0.min(b.0), a.1.max(b.1)),
+            );
+        let s = pv / (hi - lo);
+        heights.par_mapv_inplace(|h| h * s);
+        factor *= s;
+    }
+    Ok(Generated {
+        heights,
+        moments: unscaled.scaled(factor),
+        prefactor: (factor / plateau_scale).powi(2),
+        warnings,
+    })
+}
+
+/// Writes the unit-plateau random coefficients into the transposed half spectrum.
+fn fill_spectrum(spectrum: &mut Array2<Complex64>, spec: &SurfaceSpec) {
+    let grid = spec.grid;
+    let (nx, ny) = (grid.nx, grid.ny);
+    let base = ChaCha8Rng::seed_from_u64(spec.seed);
+    spectrum
+        .axis_iter_mut(Axis(0))
+        .into_par_iter()
+        .enumerate()
+        .for_each(|(kx, mut column)| {
+            let mut rng = base.clone();
+            rng.set_stream(kx as u64);
+            let qx = Grid::wavevector(kx, nx, grid.length_x);
+            for (ky, c) in column.iter_mut().enumerate() {
+                let phase = 2.0 * PI * unit(rand::Rng::next_u64(&mut rng));
+                let rayleigh = match spec.amplitudes {
+                    Amplitudes::Exact => 1.0,
+                    Amplitudes::Rayleigh => (-(1.0 - unit(rand::Rng::next_u64(&mut rng))).ln()).sqrt(),
+                };
+                let shape = spec.psd.shape(qx, Grid::wavevector(ky, ny, grid.length_y));
+                *c = if shape > 0.0 {
+                    Complex64::from_polar(shape.sqrt() * rayleigh, phase)
+                } else {
+                    Complex64::default()
+                };
+            }
+            // Columns that are their own mirror image (kx = 0 and, for even nx, the Nyquist
+            // column) must satisfy H(-ky) = conj(H(ky)) for the surface to be real.
+            if kx == 0 || (nx.is_multiple_of(2) && kx == nx / 2) {
+                let col = column.as_slice_mut().expect("standard layout");
+                for ky in ny / 2 + 1..ny {
+                    col[ky] = col[ny - ky].conj();
+                }
+                col[0] = Complex64::new(col[0].norm() * col[0].re.signum(), 0.0);
+                if ny.is_multiple_of(2) {
+                    let c = col[ny / 2];
+                    col[ny / 2] = Complex64::new(c.norm() * c.re.signum(), 0.0);
+                }
+            }
+        });
+}

@@ -1,0 +1,197 @@
+//! Reading and writing surfaces with their grid spacing.
+//!
+//! | extension | format | spacing from |
+//! |---|---|---|
+//! | `.npy` | NumPy f64 array `(ny, nx)` + JSON sidecar `<stem>.json` ([`Metadata`]) | the sidecar, else [`ReadOptions`] |
+//! | `.txt`, `.dat`, `.asc`, `.csv` | plain-text matrix, one row of heights per line | a `# length_x=.. length_y=..` comment written by us, else [`ReadOptions`] |
+//! | `.xyz`, `.xyh` | `x y h` triples, one per line, rows separated by blank lines (the contact-mechanics challenge's format) | the coordinates |
+//! | `.gsf` | Gwyddion Simple Field (heights as f32) | the header |
+//!
+//! Heights and lengths are in metres; [`ReadOptions::unit`] converts files written in other
+//! units. Readers check everything (shape, finiteness, ragged rows) and return an error naming
+//! the file and line rather than a partial surface.
+
+mod gsf;
+mod npy;
+mod text;
+
+use crate::error::{Result, SurfError};
+use crate::generate::SurfaceSpec;
+use crate::grid::{Grid, check_finite};
+use crate::stats::Statistics;
+use ndarray::Array2;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// A height map on its grid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Surface {
+    /// Heights [m], shape `(ny, nx)`.
+    pub heights: Array2<f64>,
+    pub grid: Grid,
+    /// Whether the surface repeats itself across the box edges (generated surfaces do).
+    pub periodic: bool,
+}
+
+impl Surface {
+    /// A surface, checked: shape matching the grid, finite heights.
+    pub fn new(heights: Array2<f64>, grid: Grid, periodic: bool) -> Result<Self> {
+        grid.check(heights.view())?;
+        Ok(Surface {
+            heights,
+            grid,
+            periodic,
+        })
+    }
+}
+
+/// Options for files that do not carry their spacing, or carry it in other units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReadOptions {
+    /// Lateral size along x [m] for formats without spacing (bare `.npy`, plain matrix).
+    pub length_x: Option<f64>,
+    /// Lateral size along y [m]; defaults to `length_x * ny / nx` (square cells).
+    pub length_y: Option<f64>,
+    /// Metres per file unit, applied to heights and to coordinates read from the file
+    /// (e.g. `1e-4` for the contact-mechanics challenge's files, in units of 0.1 mm).
+    pub unit: f64,
+    /// Whether a file without metadata is periodic.
+    pub periodic: bool,
+}
+
+impl Default for ReadOptions {
+    fn default() -> Self {
+        ReadOptions {
+            length_x: None,
+            length_y: None,
+            unit: 1.0,
+            periodic: true,
+        }
+    }
+}
+
+impl ReadOptions {
+    /// The grid of an `(ny, nx)` array read from `path`, from the lengths given here.
+    fn grid_for(&self, path: &Path, ny: usize, nx: usize) -> Result<Grid> {
+        let lx = self.length_x.ok_or_else(|| {
+            SurfError::parse(
+                path,
+                None,
+                "the file does not say its lateral size: give it (e.g. --length in metres)",
+            )
+        })?;
+        let ly = self.length_y.unwrap_or(lx * ny as f64 / nx as f64);
+        Grid::new(nx, ny, lx, ly)
+    }
+}
+
+/// The JSON sidecar of a `.npy` surface: its grid, how it was made and its statistics.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Metadata {
+    /// Always `"roughcontact-surface"`.
+    pub format: String,
+    /// Version of the crate that wrote it.
+    pub version: String,
+    /// Units of every length in this file and in the array: always `"m"`.
+    pub units: String,
+    pub grid: Grid,
+    pub periodic: bool,
+    /// The generator's parameters, for generated surfaces.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spec: Option<SurfaceSpec>,
+    /// The realised PSD plateau C0 [m^4], for generated surfaces.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub prefactor: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub statistics: Option<Statistics>,
+}
+
+impl Metadata {
+    /// Metadata of `surface` with nothing else known.
+    pub fn of(surface: &Surface) -> Self {
+        Metadata {
+            format: "roughcontact-surface".into(),
+            version: env!("CARGO_PKG_VERSION").into(),
+            units: "m".into(),
+            grid: surface.grid,
+            periodic: surface.periodic,
+            spec: None,
+            prefactor: None,
+            statistics: None,
+        }
+    }
+}
+
+/// The file formats, chosen by extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Npy,
+    Matrix,
+    Xyh,
+    Gsf,
+}
+
+impl Format {
+    /// The format of `path`, from its extension.
+    pub fn of(path: &Path) -> Result<Format> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase())
+            .unwrap_or_default();
+        match ext.as_str() {
+            "npy" => Ok(Format::Npy),
+            "txt" | "dat" | "asc" | "csv" => Ok(Format::Matrix),
+            "xyz" | "xyh" => Ok(Format::Xyh),
+            "gsf" => Ok(Format::Gsf),
+            _ => Err(SurfError::parse(
+                path,
+                None,
+                format!(
+                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf)"
+                ),
+            )),
+        }
+    }
+}
+
+/// The sidecar path of a `.npy` file: same stem, `.json`.
+pub fn sidecar_path(path: &Path) -> PathBuf {
+    path.with_extension("json")
+}
+
+/// Reads a surface in any known format (see the module docs).
+pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
+    if !(options.unit.is_finite() && options.unit > 0.0) {
+        return Err(SurfError::invalid(
+            "unit",
+            options.unit,
+            "metres per file unit must be > 0",
+        ));
+    }
+    let surface = match Format::of(path)? {
+        Format::Npy => npy::read(path, options)?,
+        Format::Matrix => text::read_matrix(path, options)?,
+        Format::Xyh => text::read_xyh(path, options)?,
+        Format::Gsf => gsf::read(path, options)?,
+    };
+    check_finite(surface.heights.view())?;
+    Ok(surface)
+}
+
+/// Writes `surface` in the format its extension names. For `.npy`, `metadata` (or, when `None`,
+/// [`Metadata::of`] the surface) goes to the JSON sidecar; other formats keep grid and
+/// periodicity only. `.gsf` stores heights as f32.
+pub fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Result<()> {
+    match Format::of(path)? {
+        Format::Npy => npy::write(surface, path, metadata),
+        Format::Matrix => text::write_matrix(surface, path),
+        Format::Xyh => text::write_xyh(surface, path),
+        Format::Gsf => gsf::write(surface, path),
+    }
+}
+
+/// Reads the JSON sidecar of a `.npy` file, if there is one.
+pub fn read_metadata(npy_path: &Path) -> Result<Option<Metadata>> {
+    npy::read_sidecar(npy_path)
+}
