@@ -12,7 +12,7 @@ use crate::error::{Result, SurfError};
 use crate::fft2::Fft2;
 use crate::grid::Grid;
 use crate::psd::Psd;
-use crate::stats::SpectralMoments;
+use crate::stats::Analysis;
 use ndarray::{Array2, Axis};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -62,8 +62,9 @@ pub struct SurfaceSpec {
 pub struct Generated {
     /// Heights [m], shape `(ny, nx)`, zero mean.
     pub heights: Array2<f64>,
-    /// Spectral moments of the final surface (exact, from its own spectrum).
-    pub moments: SpectralMoments,
+    /// Spectral moments and radial PSD (10 bins per decade) of the final surface, exact,
+    /// from its own spectrum.
+    pub analysis: Analysis,
     /// The plateau `C0` of the realised spectrum [m^4].
     pub prefactor: f64,
     /// Legal but suspicious parameter choices (see [`Psd::validate`]).
@@ -104,10 +105,9 @@ pub fn generate(spec: &SurfaceSpec) -> Result<Generated> {
         return Err(SurfError::invalid(target.0, target.1, "must be finite and > 0"));
     }
     let fft = Fft2::new(grid.nx, grid.ny);
-    let mut spectrum = Array2::<Complex64>::zeros(fft.spectrum_shape());
-    fill_spectrum(&mut spectrum, spec);
-    let unscaled = SpectralMoments::from_spectrum(spectrum.view(), &grid);
-    if unscaled.m0 == 0.0 {
+    let mut spectrum = fill_spectrum(fft.spectrum_shape(), spec);
+    let unscaled = Analysis::from_spectrum(spectrum.view(), &grid, 10);
+    if unscaled.moments.m0 == 0.0 {
         return Err(SurfError::invalid(
             "cutoff_wavelength",
             spec.psd.cutoff_wavelength,
@@ -118,8 +118,8 @@ pub fn generate(spec: &SurfaceSpec) -> Result<Generated> {
     let n = grid.len() as f64;
     let plateau_scale = n * 2.0 * PI / grid.area().sqrt(); // |H_k| per sqrt(C) [1/m]
     let factor = match spec.normalization {
-        Normalization::RmsHeight(rq) => rq / unscaled.rms_height(),
-        Normalization::RmsGradient(g) => g / unscaled.rms_gradient(),
+        Normalization::RmsHeight(rq) => rq / unscaled.moments.rms_height(),
+        Normalization::RmsGradient(g) => g / unscaled.moments.rms_gradient(),
         Normalization::Prefactor(c0) => c0.sqrt() * plateau_scale,
         Normalization::PeakToValley(_) => 1.0,
     };
@@ -143,17 +143,23 @@ pub fn generate(spec: &SurfaceSpec) -> Result<Generated> {
     }
     Ok(Generated {
         heights,
-        moments: unscaled.scaled(factor),
+        analysis: unscaled.scaled(factor),
         prefactor: (factor / plateau_scale).powi(2),
         warnings,
     })
 }
 
-/// Writes the unit-plateau random coefficients into the transposed half spectrum.
-fn fill_spectrum(spectrum: &mut Array2<Complex64>, spec: &SurfaceSpec) {
+/// The unit-plateau random coefficients as a transposed half spectrum of `shape`.
+fn fill_spectrum(shape: (usize, usize), spec: &SurfaceSpec) -> Array2<Complex64> {
+    // Every coefficient is written below, so the (large) array is not zeroed first.
+    let mut spectrum = Array2::<Complex64>::uninit(shape);
     let grid = spec.grid;
     let (nx, ny) = (grid.nx, grid.ny);
     let base = ChaCha8Rng::seed_from_u64(spec.seed);
+    let shape_at = spec.psd.shape_fn();
+    let qy: Vec<f64> = (0..ny)
+        .map(|ky| Grid::wavevector(ky, ny, grid.length_y))
+        .collect();
     spectrum
         .axis_iter_mut(Axis(0))
         .into_par_iter()
@@ -163,12 +169,13 @@ fn fill_spectrum(spectrum: &mut Array2<Complex64>, spec: &SurfaceSpec) {
             rng.set_stream(kx as u64);
             let qx = Grid::wavevector(kx, nx, grid.length_x);
             for (ky, c) in column.iter_mut().enumerate() {
+                let c = c.write(Complex64::default());
                 let phase = 2.0 * PI * unit(rand::Rng::next_u64(&mut rng));
                 let rayleigh = match spec.amplitudes {
                     Amplitudes::Exact => 1.0,
                     Amplitudes::Rayleigh => (-(1.0 - unit(rand::Rng::next_u64(&mut rng))).ln()).sqrt(),
                 };
-                let shape = spec.psd.shape(qx, Grid::wavevector(ky, ny, grid.length_y));
+                let shape = shape_at(qx, qy[ky]);
                 *c = if shape > 0.0 {
                     Complex64::from_polar(shape.sqrt() * rayleigh, phase)
                 } else {
@@ -179,6 +186,9 @@ fn fill_spectrum(spectrum: &mut Array2<Complex64>, spec: &SurfaceSpec) {
             // column) must satisfy H(-ky) = conj(H(ky)) for the surface to be real.
             if kx == 0 || (nx.is_multiple_of(2) && kx == nx / 2) {
                 let col = column.as_slice_mut().expect("standard layout");
+                // SAFETY: every element of the column was written in the loop above.
+                let col =
+                    unsafe { &mut *(col as *mut [std::mem::MaybeUninit<Complex64>] as *mut [Complex64]) };
                 for ky in ny / 2 + 1..ny {
                     col[ky] = col[ny - ky].conj();
                 }
@@ -189,4 +199,6 @@ fn fill_spectrum(spectrum: &mut Array2<Complex64>, spec: &SurfaceSpec) {
                 }
             }
         });
+    // SAFETY: each column was fully written by the loop above.
+    unsafe { spectrum.assume_init() }
 }

@@ -82,12 +82,18 @@ impl Psd {
 
     /// `C(q)/C0` at the wavevector `(qx, qy)` [rad/m].
     pub fn shape(&self, qx: f64, qy: f64) -> f64 {
+        self.shape_fn()(qx, qy)
+    }
+
+    /// [`Psd::shape`] with the rotation worked out once, for evaluation on a whole grid.
+    pub fn shape_fn(&self) -> impl Fn(f64, f64) -> f64 + Sync + '_ {
         let Anisotropy { ratio, angle } = self.anisotropy;
         let (s, c) = angle.sin_cos();
-        let qa = qx * c + qy * s;
-        let qb = -qx * s + qy * c;
-        let q = ((ratio * qa).powi(2) + qb * qb).sqrt();
-        self.shape_radial(q)
+        move |qx, qy| {
+            let qa = qx * c + qy * s;
+            let qb = -qx * s + qy * c;
+            self.shape_radial(((ratio * qa).powi(2) + qb * qb).sqrt())
+        }
     }
 
     /// `C(q)/C0` at the (effective) wavevector magnitude `q` [rad/m].

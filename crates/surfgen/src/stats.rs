@@ -10,7 +10,7 @@
 
 use crate::fft2::Fft2;
 use crate::grid::Grid;
-use ndarray::{ArrayView1, ArrayView2, Axis};
+use ndarray::{ArrayView2, Axis};
 use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
@@ -43,6 +43,9 @@ impl SpectralMoments {
     /// Moments of the field whose DFT is `spectrum` (transposed half spectrum, see [`crate::fft2`]).
     pub fn from_spectrum(spectrum: ArrayView2<Complex64>, grid: &Grid) -> Self {
         let (nx, ny) = (grid.nx, grid.ny);
+        let qy2: Vec<f64> = (0..ny)
+            .map(|ky| Grid::wavevector(ky, ny, grid.length_y).powi(2))
+            .collect();
         let rows: Vec<[f64; 4]> = spectrum
             .axis_iter(Axis(0))
             .into_par_iter()
@@ -60,8 +63,7 @@ impl SpectralMoments {
                     if kx == 0 && ky == 0 {
                         continue;
                     }
-                    let qy = Grid::wavevector(ky, ny, grid.length_y);
-                    let q2 = qx * qx + qy * qy;
+                    let q2 = qx * qx + qy2[ky];
                     let p = weight * c.norm_sqr();
                     s[0] += p;
                     s[1] += p * q2;
@@ -154,7 +156,13 @@ impl RadialPsd {
         let qy_max = PI / grid.dy();
         let q_max = (qx_max * qx_max + qy_max * qy_max).sqrt();
         let nbins = ((q_max / q_min).log10() * bins_per_decade as f64).floor() as usize + 1;
-        let bin_of = |q: f64| ((q / q_min).log10() * bins_per_decade as f64 + 1e-9).floor() as usize;
+        // Squared upper edges of the bins, so that binning needs no logarithm.
+        let edges2: Vec<f64> = (1..nbins)
+            .map(|b| (q_min * 10f64.powf(b as f64 / bins_per_decade as f64) * (1.0 - 1e-9)).powi(2))
+            .collect();
+        let qy2: Vec<f64> = (0..ny)
+            .map(|ky| Grid::wavevector(ky, ny, grid.length_y).powi(2))
+            .collect();
         let norm = grid.area() / ((2.0 * PI).powi(2) * (grid.len() as f64).powi(2));
         let per_column: Vec<Vec<[f64; 7]>> = spectrum
             .axis_iter(Axis(0))
@@ -163,24 +171,35 @@ impl RadialPsd {
             .map(|(kx, column)| {
                 let mut acc = vec![[0.0; 7]; nbins];
                 let self_mirror = kx == 0 || (nx.is_multiple_of(2) && kx == nx / 2);
-                let qx = Grid::wavevector(kx, nx, grid.length_x);
-                for (ky, c) in column.iter().enumerate() {
-                    // Skip the mirror halves of self-mirrored columns and the zero mode.
-                    if (self_mirror && ky > ny / 2) || (kx == 0 && ky == 0) {
-                        continue;
+                let qx2 = Grid::wavevector(kx, nx, grid.length_x).powi(2);
+                let mut add = |b: &mut usize, ky: usize| {
+                    let q2 = qx2 + qy2[ky];
+                    // |q| grows along each walk, so the bin index only moves up.
+                    while *b < edges2.len() && edges2[*b] <= q2 {
+                        *b += 1;
                     }
-                    let qy = Grid::wavevector(ky, ny, grid.length_y);
-                    let q = (qx * qx + qy * qy).sqrt();
-                    let b = bin_of(q).min(nbins - 1);
-                    let p = norm * c.norm_sqr();
-                    acc[b][0] += 1.0;
-                    acc[b][1] += q;
-                    acc[b][2] += p;
-                    acc[b][3] += p * p;
+                    let p = norm * column[ky].norm_sqr();
+                    let a = &mut acc[*b];
+                    a[0] += 1.0;
+                    a[1] += q2.sqrt();
+                    a[2] += p;
+                    a[3] += p * p;
                     if p > 0.0 {
-                        acc[b][4] += 1.0;
-                        acc[b][5] += q.ln();
-                        acc[b][6] += p.ln();
+                        a[4] += 1.0;
+                        a[5] += 0.5 * q2.ln();
+                        a[6] += p.ln();
+                    }
+                };
+                // Walk ky = 0, 1, .., ny/2 and then ky = -1, -2, ..; the zero mode and the
+                // mirror halves of self-mirrored columns are left out.
+                let mut b = 0;
+                for ky in usize::from(kx == 0)..=ny / 2 {
+                    add(&mut b, ky);
+                }
+                if !self_mirror {
+                    let mut b = 0;
+                    for ky in (ny / 2 + 1..ny).rev() {
+                        add(&mut b, ky);
                     }
                 }
                 acc
@@ -233,6 +252,7 @@ impl RadialPsd {
         let slope = sxy / sxx;
         Some(HurstFit {
             hurst: -slope / 2.0 - 1.0,
+            ln_prefactor: my - slope * mx,
             q_min,
             q_max,
             bins: pts.len(),
@@ -259,11 +279,20 @@ impl RadialPsd {
 pub struct HurstFit {
     /// Fitted Hurst exponent H.
     pub hurst: f64,
+    /// The fitted line is `ln C = ln_prefactor - 2 (1 + H) ln q` (C in m^4, q in rad/m).
+    pub ln_prefactor: f64,
     /// Fit range [rad/m].
     pub q_min: f64,
     pub q_max: f64,
     /// Number of bins in the fit.
     pub bins: usize,
+}
+
+impl HurstFit {
+    /// The fitted PSD at `q` [rad/m], in m^4.
+    pub fn psd_at(&self, q: f64) -> f64 {
+        (self.ln_prefactor - 2.0 * (1.0 + self.hurst) * q.ln()).exp()
+    }
 }
 
 /// Height distribution: mean [m], RMS height Rq [m], extremes [m], skewness and kurtosis [-].
@@ -329,39 +358,41 @@ impl HeightStats {
 fn finite_difference_moments(h: ArrayView2<f64>, grid: &Grid, periodic: bool) -> [f64; 3] {
     let (ny, nx) = h.dim();
     let (dx, dy) = (grid.dx(), grid.dy());
-    let row = |y: usize| -> ArrayView1<f64> { h.row(y) };
+    let (idx2, idy2) = (1.0 / (dx * dx), 1.0 / (dy * dy));
     let rows: Vec<[f64; 6]> = (0..ny)
         .into_par_iter()
         .map(|y| {
-            // Sums and counts: slope, laplacian, h_xx.
+            // Sums and counts of: slope^2, laplacian^2, h_xx^2.
             let mut s = [0.0; 6];
-            let c = row(y);
+            let c = h.row(y);
             let (up, down) = if periodic {
-                (Some(row((y + 1) % ny)), Some(row((y + ny - 1) % ny)))
+                (Some(h.row((y + 1) % ny)), Some(h.row((y + ny - 1) % ny)))
             } else {
-                ((y + 1 < ny).then(|| row(y + 1)), (y > 0).then(|| row(y - 1)))
+                ((y + 1 < ny).then(|| h.row(y + 1)), (y > 0).then(|| h.row(y - 1)))
             };
-            for x in 0..nx {
-                let (xp, xm) = if periodic {
-                    (Some((x + 1) % nx), Some((x + nx - 1) % nx))
-                } else {
-                    ((x + 1 < nx).then_some(x + 1), x.checked_sub(1))
-                };
-                if let (Some(xp), Some(u)) = (xp, up) {
+            let xs = if periodic { 0..nx } else { 1..nx - 1 };
+            for x in xs {
+                // Neighbours along x, wrapping on periodic surfaces.
+                let xp = if x + 1 == nx { 0 } else { x + 1 };
+                let xm = if x == 0 { nx - 1 } else { x - 1 };
+                let hxx = (c[xp] - 2.0 * c[x] + c[xm]) * idx2;
+                s[4] += hxx * hxx;
+                s[5] += 1.0;
+                if let (Some(u), Some(d)) = (up, down) {
+                    let lap = hxx + (u[x] - 2.0 * c[x] + d[x]) * idy2;
+                    s[2] += lap * lap;
+                    s[3] += 1.0;
+                }
+            }
+            // Forward differences: the last column (and row) has no forward neighbour unless periodic.
+            if let Some(u) = up {
+                let xs = if periodic { nx } else { nx - 1 };
+                for x in 0..xs {
+                    let xp = if x + 1 == nx { 0 } else { x + 1 };
                     let gx = (c[xp] - c[x]) / dx;
                     let gy = (u[x] - c[x]) / dy;
                     s[0] += gx * gx + gy * gy;
                     s[1] += 1.0;
-                }
-                if let (Some(xp), Some(xm)) = (xp, xm) {
-                    let hxx = (c[xp] - 2.0 * c[x] + c[xm]) / (dx * dx);
-                    s[4] += hxx * hxx;
-                    s[5] += 1.0;
-                    if let (Some(u), Some(d)) = (up, down) {
-                        let lap = hxx + (u[x] - 2.0 * c[x] + d[x]) / (dy * dy);
-                        s[2] += lap * lap;
-                        s[3] += 1.0;
-                    }
                 }
             }
             s
@@ -388,11 +419,15 @@ pub struct Statistics {
     pub curvature_fd: Curvatures,
     /// Inverse RMS mean curvature `1 / rms_curvature` [m], the local radius of the asperities.
     pub local_radius: f64,
-    /// Hurst exponent fitted to the radial PSD over the default or given range.
-    pub hurst_fit: Option<HurstFit>,
+    /// Hurst exponent fitted to the radial PSD ([`RadialPsd::fit_hurst`]); `None` when the
+    /// spectrum has too few bins in the fit range.
+    pub hurst_fit: Option<f64>,
+    /// The wavevector range of that fit [rad/m].
+    pub hurst_fit_range: Option<[f64; 2]>,
 }
 
-/// The spectral view of a surface: its DFT, computed once, and what follows from it.
+/// The spectral view of a surface: what follows from its DFT, computed once.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Analysis {
     pub grid: Grid,
     pub moments: SpectralMoments,
@@ -403,10 +438,35 @@ impl Analysis {
     /// Transforms `heights` once and derives the spectral moments and the radial PSD.
     pub fn new(heights: ArrayView2<f64>, grid: &Grid, bins_per_decade: usize) -> Self {
         let spectrum = Fft2::new(grid.nx, grid.ny).forward(heights);
+        Self::from_spectrum(spectrum.view(), grid, bins_per_decade)
+    }
+
+    /// The same from a transposed half spectrum (see [`crate::fft2`]).
+    pub fn from_spectrum(spectrum: ArrayView2<Complex64>, grid: &Grid, bins_per_decade: usize) -> Self {
+        let (moments, radial_psd) = rayon::join(
+            || SpectralMoments::from_spectrum(spectrum, grid),
+            || RadialPsd::from_spectrum(spectrum, grid, bins_per_decade),
+        );
         Analysis {
             grid: *grid,
-            moments: SpectralMoments::from_spectrum(spectrum.view(), grid),
-            radial_psd: RadialPsd::from_spectrum(spectrum.view(), grid, bins_per_decade),
+            moments,
+            radial_psd,
+        }
+    }
+
+    /// The analysis of the same surface with all heights multiplied by `factor`.
+    pub fn scaled(&self, factor: f64) -> Self {
+        let f2 = factor * factor;
+        let r = &self.radial_psd;
+        Analysis {
+            grid: self.grid,
+            moments: self.moments.scaled(factor),
+            radial_psd: RadialPsd {
+                psd: r.psd.iter().map(|c| c * f2).collect(),
+                std_err: r.std_err.iter().map(|c| c * f2).collect(),
+                mean_ln_psd: r.mean_ln_psd.iter().map(|c| c + f2.ln()).collect(),
+                ..r.clone()
+            },
         }
     }
 }
@@ -434,6 +494,7 @@ pub fn statistics_with(
     let [g2, lap2, xx2] = finite_difference_moments(heights, &analysis.grid, periodic);
     let curvature = Curvatures::new(m.m4, m.m4_xx);
     let range = fit_range.or_else(|| analysis.radial_psd.default_fit_range());
+    let fit = range.and_then(|(lo, hi)| analysis.radial_psd.fit_hurst(lo, hi));
     Statistics {
         heights: HeightStats::new(heights),
         rms_gradient: m.rms_gradient(),
@@ -442,7 +503,8 @@ pub fn statistics_with(
         curvature,
         curvature_fd: Curvatures::new(lap2, xx2),
         local_radius: 1.0 / curvature.mean,
-        hurst_fit: range.and_then(|(lo, hi)| analysis.radial_psd.fit_hurst(lo, hi)),
+        hurst_fit: fit.map(|f| f.hurst),
+        hurst_fit_range: fit.map(|f| [f.q_min, f.q_max]),
     }
 }
 

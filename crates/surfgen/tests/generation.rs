@@ -129,7 +129,27 @@ fn requested_scale_is_met_to_1e_12() {
         "gradient {}",
         st.rms_gradient
     );
-    assert!((g.moments.rms_gradient() - 1.0).abs() < 1e-12);
+    assert!((g.analysis.moments.rms_gradient() - 1.0).abs() < 1e-12);
+    // The analysis that comes with the surface is that of its heights.
+    let measured = surfgen::Analysis::new(g.heights.view(), &s.grid, 10);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-10 * a.abs().max(b.abs());
+    let (m, e) = (measured.moments, g.analysis.moments);
+    assert!(close(m.m0, e.m0) && close(m.m2, e.m2) && close(m.m4, e.m4) && close(m.m4_xx, e.m4_xx));
+    let (m, e) = (&measured.radial_psd, &g.analysis.radial_psd);
+    assert_eq!(m.count, e.count);
+    assert!(
+        m.psd
+            .iter()
+            .zip(&e.psd)
+            .all(|(a, b)| close(*a, *b) || a.max(*b) < 1e-20 * e.psd[0])
+    );
+    // Log-means compare where no bin straddles the cut-off (past it, round-off is not zero).
+    let inside = (0..m.q.len()).filter(|&i| m.q[i] < 0.7 * s.psd.q_cutoff());
+    assert!(
+        inside
+            .into_iter()
+            .all(|i| (m.mean_ln_psd[i] - e.mean_ln_psd[i]).abs() < 1e-8)
+    );
 
     let s = spec(
         128,
@@ -226,13 +246,13 @@ fn hurst_fit_recovers_h() {
             let st = statistics(h.view(), &s.grid, true, None);
             let fit = st.hurst_fit.expect("a fit");
             assert!(
-                (fit.hurst - hurst).abs() < tolerance,
+                (fit - hurst).abs() < tolerance,
                 "H = {hurst}, {amplitudes:?}: fitted {fit:?}"
             );
             // The explicit range [2 q_r, q_s / 2] works as well.
             let range = (2.0 * s.psd.q_rolloff(), 0.5 * s.psd.q_cutoff());
             let st = statistics(h.view(), &s.grid, true, Some(range));
-            assert!((st.hurst_fit.unwrap().hurst - hurst).abs() < tolerance);
+            assert!((st.hurst_fit.unwrap() - hurst).abs() < tolerance);
         }
     }
 }

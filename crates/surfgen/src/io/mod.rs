@@ -195,3 +195,11 @@ pub fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Res
 pub fn read_metadata(npy_path: &Path) -> Result<Option<Metadata>> {
     npy::read_sidecar(npy_path)
 }
+
+/// Writes `metadata` as the JSON sidecar of the surface file `path` (`<stem>.json`), whatever
+/// the surface's format.
+pub fn write_metadata(path: &Path, metadata: &Metadata) -> Result<()> {
+    let side = sidecar_path(path);
+    let json = serde_json::to_string_pretty(metadata).expect("metadata serialises");
+    std::fs::write(&side, json + "\n").map_err(|e| SurfError::io(&side, e))
+}

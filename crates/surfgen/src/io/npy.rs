@@ -3,7 +3,7 @@
 use super::{Metadata, ReadOptions, Surface, sidecar_path};
 use crate::error::{Result, SurfError};
 use ndarray::Array2;
-use ndarray_npy::{ReadNpyExt, WriteNpyExt};
+use ndarray_npy::ReadNpyExt;
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Write};
 use std::path::Path;
@@ -48,14 +48,35 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
     Surface::new(heights, grid, periodic)
 }
 
+/// Writes an `.npy` (format 1.0) holding `heights` as little-endian f64 in C order. Written by
+/// hand because the generic writer goes value by value and takes 3 times as long at 4096^2.
+fn write_npy(heights: &Array2<f64>, w: &mut impl Write) -> std::io::Result<()> {
+    let (ny, nx) = heights.dim();
+    let mut header = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({ny}, {nx}), }}");
+    // Magic (6) + version (2) + length (2) + header + '\n' must be a multiple of 64.
+    let pad = 64 - (10 + header.len() + 1) % 64;
+    header.extend(std::iter::repeat_n(' ', pad % 64));
+    header.push('\n');
+    w.write_all(b"\x93NUMPY\x01\x00")?;
+    w.write_all(&(header.len() as u16).to_le_bytes())?;
+    w.write_all(header.as_bytes())?;
+    let standard = heights.as_standard_layout();
+    let values = standard.as_slice().expect("standard layout");
+    let mut buf = Vec::with_capacity(1 << 16);
+    for chunk in values.chunks(1 << 13) {
+        buf.clear();
+        chunk.iter().for_each(|v| buf.extend_from_slice(&v.to_le_bytes()));
+        w.write_all(&buf)?;
+    }
+    Ok(())
+}
+
 pub(super) fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Result<()> {
     let file = File::create(path).map_err(|e| SurfError::io(path, e))?;
     let mut w = BufWriter::with_capacity(1 << 20, file);
-    surface
-        .heights
-        .write_npy(&mut w)
-        .map_err(|e| SurfError::io(path, std::io::Error::other(e)))?;
-    w.flush().map_err(|e| SurfError::io(path, e))?;
+    write_npy(&surface.heights, &mut w)
+        .and_then(|_| w.flush())
+        .map_err(|e| SurfError::io(path, e))?;
     let own;
     let meta = match metadata {
         Some(m) => m,
@@ -64,7 +85,5 @@ pub(super) fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>)
             &own
         }
     };
-    let side = sidecar_path(path);
-    let json = serde_json::to_string_pretty(meta).expect("metadata serialises");
-    std::fs::write(&side, json + "\n").map_err(|e| SurfError::io(&side, e))
+    super::write_metadata(path, meta)
 }

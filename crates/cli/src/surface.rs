@@ -1,0 +1,377 @@
+//! `generate`, `stats` and `psd`: making and measuring surfaces.
+
+use crate::plot::{self, Series};
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use plotters::style::RGBColor;
+use serde::Serialize;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use surfgen::io::{self, ReadOptions};
+use surfgen::{
+    Amplitudes, Analysis, Anisotropy, Grid, Metadata, Normalization, Psd, Statistics, Surface, SurfaceSpec,
+};
+
+#[derive(Args, Debug)]
+pub struct GenerateArgs {
+    /// Grid points per side (square grid); overridden by --nx/--ny.
+    #[arg(long, default_value_t = 1024)]
+    n: usize,
+    /// Grid points along x.
+    #[arg(long)]
+    nx: Option<usize>,
+    /// Grid points along y.
+    #[arg(long)]
+    ny: Option<usize>,
+    /// Side of the square periodic box [m]; overridden by --length-x/--length-y.
+    #[arg(long, default_value_t = 1e-4)]
+    length: f64,
+    /// Box size along x [m].
+    #[arg(long)]
+    length_x: Option<f64>,
+    /// Box size along y [m].
+    #[arg(long)]
+    length_y: Option<f64>,
+    /// Hurst exponent H in (0, 1) (fractal dimension 3 - H).
+    #[arg(long, default_value_t = 0.8)]
+    hurst: f64,
+    /// Roll-off wavelength lambda_r [m]: the spectrum is flat at longer wavelengths.
+    #[arg(long, default_value_t = 2e-5)]
+    rolloff: f64,
+    /// Short-wavelength cut-off lambda_s [m] (default: 4 grid spacings, the shortest that
+    /// finite differences resolve to a few per cent).
+    #[arg(long)]
+    cutoff: Option<f64>,
+    /// Long-wavelength cut-off lambda_L [m]: no roughness at longer wavelengths.
+    #[arg(long)]
+    long_cutoff: Option<f64>,
+    /// Scale to this RMS height Rq [m].
+    #[arg(long, group = "scale")]
+    rms_height: Option<f64>,
+    /// Scale to this RMS gradient sqrt(<|grad h|^2>) [-] (the default, 1, when no scale is given).
+    #[arg(long, group = "scale")]
+    rms_gradient: Option<f64>,
+    /// Scale to this peak-to-valley height [m].
+    #[arg(long, group = "scale")]
+    peak_to_valley: Option<f64>,
+    /// Scale to this PSD plateau C0 [m^4] (Persson's convention: <h^2> = integral d^2q C(q)).
+    #[arg(long, group = "scale")]
+    prefactor: Option<f64>,
+    /// Random (Rayleigh) amplitudes, a Gaussian random field; default: exact amplitudes, random phases.
+    #[arg(long)]
+    rayleigh: bool,
+    /// Anisotropy: correlation lengths along --angle are this many times those across it (1 = isotropic).
+    #[arg(long, default_value_t = 1.0)]
+    anisotropy: f64,
+    /// Direction of the longer correlation, from the x axis [degrees].
+    #[arg(long, default_value_t = 0.0)]
+    angle: f64,
+    /// Random seed: the same seed gives the same surface, bit for bit.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Output surface file: .npy (with .json sidecar), .txt, .xyz or .gsf.
+    #[arg(short, long, default_value = "surface.npy")]
+    output: PathBuf,
+    /// Do not draw the PNG height map.
+    #[arg(long)]
+    no_png: bool,
+    /// Print the statistics as JSON instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Where a surface comes from, for commands that read one.
+#[derive(Args, Debug)]
+pub struct SurfaceFile {
+    /// Surface file: .npy (+ .json sidecar), .txt/.dat/.asc/.csv, .xyz/.xyh or .gsf.
+    file: PathBuf,
+    /// Box size along x [m], for files that do not carry it (bare .npy, plain matrix).
+    #[arg(long)]
+    length: Option<f64>,
+    /// Box size along y [m] (default: square cells).
+    #[arg(long)]
+    length_y: Option<f64>,
+    /// Metres per file unit, for lengths and heights (e.g. 1e-4 for files in units of 0.1 mm).
+    #[arg(long, default_value_t = 1.0)]
+    unit: f64,
+    /// Treat a file without metadata as non-periodic (finite differences then skip the edges).
+    #[arg(long)]
+    not_periodic: bool,
+}
+
+impl SurfaceFile {
+    fn read(&self) -> Result<Surface> {
+        let options = ReadOptions {
+            length_x: self.length,
+            length_y: self.length_y,
+            unit: self.unit,
+            periodic: !self.not_periodic,
+        };
+        io::read(&self.file, &options).with_context(|| format!("reading {}", self.file.display()))
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct StatsArgs {
+    #[command(flatten)]
+    surface: SurfaceFile,
+    /// Print JSON (snake_case keys, SI units) instead of a table.
+    #[arg(long)]
+    json: bool,
+    /// Hurst fit range: smallest and largest wavevector [rad/m] (default: past the roll-off to
+    /// before the cut-off, found from the spectrum).
+    #[arg(long, num_args = 2, value_names = ["Q_MIN", "Q_MAX"])]
+    fit_range: Option<Vec<f64>>,
+    /// Also write the bearing-area (material ratio) curve as CSV: height [m], ratio [-].
+    #[arg(long, value_name = "FILE")]
+    bearing: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct PsdArgs {
+    #[command(flatten)]
+    surface: SurfaceFile,
+    /// Output CSV (default: <file stem>_psd.csv); the plot goes beside it as .png.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Logarithmic bins per decade of wavevector.
+    #[arg(long, default_value_t = 10)]
+    bins_per_decade: usize,
+    /// Do not draw the log-log plot.
+    #[arg(long)]
+    no_png: bool,
+}
+
+/// The statistics report: grid and statistics side by side, SI units.
+#[derive(Serialize)]
+struct Report<'a> {
+    nx: usize,
+    ny: usize,
+    length_x: f64,
+    length_y: f64,
+    periodic: bool,
+    #[serde(flatten)]
+    statistics: &'a Statistics,
+}
+
+fn print_report(surface: &Surface, statistics: &Statistics, json: bool) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    if json {
+        let report = Report {
+            nx: surface.grid.nx,
+            ny: surface.grid.ny,
+            length_x: surface.grid.length_x,
+            length_y: surface.grid.length_y,
+            periodic: surface.periodic,
+            statistics,
+        };
+        writeln!(out, "{}", serde_json::to_string_pretty(&report)?)?;
+        return Ok(());
+    }
+    let g = surface.grid;
+    let s = statistics;
+    let h = &s.heights;
+    let rows: Vec<(&str, String, &str)> = vec![
+        ("grid", format!("{} x {}", g.nx, g.ny), "points"),
+        ("box", format!("{:.6e} x {:.6e}", g.length_x, g.length_y), "m"),
+        ("spacing", format!("{:.6e} x {:.6e}", g.dx(), g.dy()), "m"),
+        ("periodic", surface.periodic.to_string(), ""),
+        ("mean height", format!("{:.6e}", h.mean), "m"),
+        ("RMS height Rq", format!("{:.6e}", h.rms_height), "m"),
+        ("min / max", format!("{:.6e} / {:.6e}", h.min, h.max), "m"),
+        ("peak-to-valley", format!("{:.6e}", h.peak_to_valley), "m"),
+        ("skewness", format!("{:.4}", h.skewness), "-"),
+        ("kurtosis", format!("{:.4}", h.kurtosis), "- (3 for Gaussian)"),
+        ("RMS gradient (spectral)", format!("{:.6}", s.rms_gradient), "-"),
+        (
+            "RMS gradient (finite diff.)",
+            format!("{:.6}", s.rms_gradient_fd),
+            "-",
+        ),
+        ("RMS mean curvature", format!("{:.6e}", s.curvature.mean), "1/m"),
+        ("RMS Laplacian", format!("{:.6e}", s.curvature.laplacian), "1/m"),
+        ("RMS d2h/dx2", format!("{:.6e}", s.curvature.profile_x), "1/m"),
+        (
+            "  same, finite diff.",
+            format!(
+                "{:.6e} / {:.6e} / {:.6e}",
+                s.curvature_fd.mean, s.curvature_fd.laplacian, s.curvature_fd.profile_x
+            ),
+            "1/m",
+        ),
+        ("local radius 1/curvature", format!("{:.6e}", s.local_radius), "m"),
+        (
+            "Hurst exponent (fit)",
+            match (s.hurst_fit, s.hurst_fit_range) {
+                (Some(hf), Some([a, b])) => format!("{hf:.4} over q = {a:.3e} .. {b:.3e} rad/m"),
+                _ => "n/a (too few spectral bins)".into(),
+            },
+            "-",
+        ),
+    ];
+    for (name, value, unit) in rows {
+        writeln!(out, "{name:<28} {value}  {unit}")?;
+    }
+    Ok(())
+}
+
+fn draw_height_map(path: &Path, surface: &Surface, title: &str) -> Result<()> {
+    let pv = surface.heights.iter().fold(0.0f64, |a, &h| a.max(h.abs()));
+    plot::field_map(
+        path,
+        surface.heights.view(),
+        (surface.grid.length_x, surface.grid.length_y),
+        title,
+        "height",
+        plot::length_unit(pv),
+    )
+}
+
+pub fn generate(a: GenerateArgs) -> Result<()> {
+    let (nx, ny) = (a.nx.unwrap_or(a.n), a.ny.unwrap_or(a.n));
+    let grid = Grid::new(
+        nx,
+        ny,
+        a.length_x.unwrap_or(a.length),
+        a.length_y.unwrap_or(a.length),
+    )?;
+    let cutoff = a.cutoff.unwrap_or(4.0 * grid.dx().max(grid.dy()));
+    let normalization = match (a.rms_height, a.rms_gradient, a.peak_to_valley, a.prefactor) {
+        (Some(v), ..) => Normalization::RmsHeight(v),
+        (_, Some(v), ..) => Normalization::RmsGradient(v),
+        (_, _, Some(v), _) => Normalization::PeakToValley(v),
+        (.., Some(v)) => Normalization::Prefactor(v),
+        _ => Normalization::RmsGradient(1.0),
+    };
+    let spec = SurfaceSpec {
+        grid,
+        psd: Psd {
+            hurst: a.hurst,
+            rolloff_wavelength: a.rolloff,
+            cutoff_wavelength: cutoff,
+            long_cutoff_wavelength: a.long_cutoff,
+            anisotropy: Anisotropy {
+                ratio: a.anisotropy,
+                angle: a.angle.to_radians(),
+            },
+        },
+        normalization,
+        amplitudes: if a.rayleigh {
+            Amplitudes::Rayleigh
+        } else {
+            Amplitudes::Exact
+        },
+        seed: a.seed,
+    };
+    let generated = surfgen::generate(&spec)?;
+    for w in &generated.warnings {
+        eprintln!("warning: {w}");
+    }
+    let surface = Surface::new(generated.heights, grid, true)?;
+    let statistics = surfgen::statistics(surface.heights.view(), &grid, true, None);
+    let metadata = Metadata {
+        spec: Some(spec),
+        prefactor: Some(generated.prefactor),
+        statistics: Some(statistics.clone()),
+        ..Metadata::of(&surface)
+    };
+    io::write(&surface, &a.output, Some(&metadata))
+        .with_context(|| format!("writing {}", a.output.display()))?;
+    io::write_metadata(&a.output, &metadata)?;
+    if !a.no_png {
+        let png = a.output.with_extension("png");
+        let title = format!("H = {}, seed {}, {} x {}", a.hurst, a.seed, nx, ny);
+        draw_height_map(&png, &surface, &title)?;
+    }
+    print_report(&surface, &statistics, a.json)?;
+    if !a.json {
+        eprintln!(
+            "wrote {} (+ .json sidecar{})",
+            a.output.display(),
+            if a.no_png { "" } else { ", .png map" }
+        );
+    }
+    Ok(())
+}
+
+pub fn stats(a: StatsArgs) -> Result<()> {
+    let surface = a.surface.read()?;
+    let fit_range = match a.fit_range.as_deref() {
+        Some([lo, hi]) if *lo > 0.0 && hi > lo => Some((*lo, *hi)),
+        Some(r) => bail!("--fit-range needs 0 < Q_MIN < Q_MAX [rad/m], got {r:?}"),
+        None => None,
+    };
+    let statistics = surfgen::statistics(surface.heights.view(), &surface.grid, surface.periodic, fit_range);
+    if let Some(path) = &a.bearing {
+        let mut csv = String::from("height_m,material_ratio\n");
+        for (z, r) in surfgen::bearing_area_curve(surface.heights.view(), 201) {
+            csv += &format!("{z:e},{r:e}\n");
+        }
+        std::fs::write(path, csv).with_context(|| format!("writing {}", path.display()))?;
+    }
+    print_report(&surface, &statistics, a.json)
+}
+
+pub fn psd(a: PsdArgs) -> Result<()> {
+    if a.bins_per_decade == 0 {
+        bail!("--bins-per-decade must be at least 1");
+    }
+    let surface = a.surface.read()?;
+    let analysis = Analysis::new(surface.heights.view(), &surface.grid, a.bins_per_decade);
+    let r = &analysis.radial_psd;
+    let output = a.output.unwrap_or_else(|| {
+        let stem = a
+            .surface
+            .file
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("surface");
+        a.surface.file.with_file_name(format!("{stem}_psd.csv"))
+    });
+    let mut csv = String::from("q_rad_per_m,psd_m4,std_err_m4,count\n");
+    for i in 0..r.q.len() {
+        csv += &format!("{:e},{:e},{:e},{}\n", r.q[i], r.psd[i], r.std_err[i], r.count[i]);
+    }
+    std::fs::write(&output, csv).with_context(|| format!("writing {}", output.display()))?;
+    let fit = r.default_fit_range().and_then(|(lo, hi)| r.fit_hurst(lo, hi));
+    if !a.no_png {
+        // Bins past a cut-off hold only round-off (~1e-30 of the peak): leave them out of the plot.
+        let peak = r.psd.iter().cloned().fold(0.0, f64::max);
+        let mut series = vec![Series {
+            label: "radial average",
+            points: r
+                .q
+                .iter()
+                .copied()
+                .zip(r.psd.iter().copied())
+                .filter(|(_, c)| *c > 1e-20 * peak)
+                .collect(),
+            markers: true,
+            color: RGBColor(31, 119, 180),
+        }];
+        let label;
+        if let Some(f) = fit {
+            label = format!("fit, H = {:.3}", f.hurst);
+            series.push(Series {
+                label: &label,
+                points: vec![(f.q_min, f.psd_at(f.q_min)), (f.q_max, f.psd_at(f.q_max))],
+                markers: false,
+                color: RGBColor(214, 39, 40),
+            });
+        }
+        let png = output.with_extension("png");
+        plot::loglog(&png, "Radially averaged PSD", "q (rad/m)", "C(q) (m^4)", &series)?;
+    }
+    match fit {
+        Some(f) => println!(
+            "wrote {} ({} bins); fitted Hurst exponent {:.4} over q = {:.3e} .. {:.3e} rad/m",
+            output.display(),
+            r.q.len(),
+            f.hurst,
+            f.q_min,
+            f.q_max
+        ),
+        None => println!("wrote {} ({} bins)", output.display(), r.q.len()),
+    }
+    Ok(())
+}
