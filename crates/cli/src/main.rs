@@ -24,6 +24,7 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Generate a periodic self-affine rough surface from its power spectrum (Eq. 13).
+    #[command(allow_negative_numbers = true)]
     Generate(surface::GenerateArgs),
     /// Print a surface's statistics (heights, slopes, curvatures, Hurst exponent).
     Stats(surface::StatsArgs),

@@ -268,21 +268,29 @@ pub fn generate(a: GenerateArgs) -> Result<()> {
         eprintln!("warning: {w}");
     }
     let surface = Surface::new(generated.heights, grid, true)?;
-    let statistics = surfgen::statistics(surface.heights.view(), &grid, true, None);
-    let metadata = Metadata {
+    // The heights go to disk while the statistics and the picture are computed.
+    let mut metadata = Metadata {
         spec: Some(spec),
         prefactor: Some(generated.prefactor),
-        statistics: Some(statistics.clone()),
         ..Metadata::of(&surface)
     };
-    io::write(&surface, &a.output, Some(&metadata))
-        .with_context(|| format!("writing {}", a.output.display()))?;
+    let (written, statistics) = rayon::join(
+        || io::write(&surface, &a.output, None).with_context(|| format!("writing {}", a.output.display())),
+        || -> Result<Statistics> {
+            let statistics =
+                surfgen::stats::statistics_with(surface.heights.view(), &generated.analysis, true, None);
+            if !a.no_png {
+                let png = a.output.with_extension("png");
+                let title = format!("H = {}, seed {}, {} x {}", a.hurst, a.seed, nx, ny);
+                draw_height_map(&png, &surface, &title)?;
+            }
+            Ok(statistics)
+        },
+    );
+    written?;
+    let statistics = statistics?;
+    metadata.statistics = Some(statistics.clone());
     io::write_metadata(&a.output, &metadata)?;
-    if !a.no_png {
-        let png = a.output.with_extension("png");
-        let title = format!("H = {}, seed {}, {} x {}", a.hurst, a.seed, nx, ny);
-        draw_height_map(&png, &surface, &title)?;
-    }
     print_report(&surface, &statistics, a.json)?;
     if !a.json {
         eprintln!(

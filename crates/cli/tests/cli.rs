@@ -1,0 +1,205 @@
+//! The binary end to end: files written, numbers reported, bad input refused.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn roughcontact(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_roughcontact"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("roughcontact-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn help_texts_name_their_units() {
+    for cmd in ["generate", "stats", "psd"] {
+        let o = roughcontact(&[cmd, "--help"]);
+        assert!(o.status.success());
+        insta::assert_snapshot!(format!("help_{cmd}"), stdout(&o));
+    }
+    let o = roughcontact(&["--help"]);
+    insta::assert_snapshot!("help", stdout(&o));
+}
+
+#[test]
+fn generate_writes_surface_sidecar_and_picture_and_stats_agree() {
+    let d = dir("gen");
+    let out = d.join("s.npy");
+    let o = roughcontact(&[
+        "generate",
+        "--n",
+        "256",
+        "--length",
+        "1e-4",
+        "--hurst",
+        "0.8",
+        "--rolloff",
+        "2.5e-5",
+        "--cutoff",
+        "1.6e-6",
+        "--rms-height",
+        "1e-6",
+        "--seed",
+        "3",
+        "-o",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert!((report["rms_height"].as_f64().unwrap() / 1e-6 - 1.0).abs() < 1e-12);
+    for f in ["s.npy", "s.json", "s.png"] {
+        assert!(d.join(f).metadata().unwrap().len() > 100, "{f}");
+    }
+    let sidecar: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("s.json")).unwrap()).unwrap();
+    assert_eq!(sidecar["grid"]["nx"], 256);
+    assert_eq!(sidecar["spec"]["seed"], 3);
+
+    // `stats` re-reads the file and finds the same numbers.
+    let o = roughcontact(&["stats", out.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let again: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    for key in [
+        "rms_height",
+        "rms_gradient",
+        "rms_curvature",
+        "hurst_fit",
+        "skewness",
+        "kurtosis",
+    ] {
+        let (a, b) = (report[key].as_f64().unwrap(), again[key].as_f64().unwrap());
+        assert!((a - b).abs() <= 1e-9 * a.abs(), "{key}: {a} vs {b}");
+    }
+    assert!((again["hurst_fit"].as_f64().unwrap() - 0.8).abs() < 0.05);
+
+    // The table names its units.
+    let o = roughcontact(&["stats", out.to_str().unwrap()]);
+    let table = stdout(&o);
+    assert!(
+        table.contains("RMS height Rq") && table.contains("1/m"),
+        "{table}"
+    );
+
+    // `psd` writes CSV and a plot.
+    let o = roughcontact(&["psd", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(d.join("s_psd.csv")).unwrap();
+    assert!(csv.starts_with("q_rad_per_m,psd_m4,std_err_m4,count\n"));
+    assert!(csv.lines().count() > 10);
+    assert!(d.join("s_psd.png").exists());
+}
+
+#[test]
+fn the_same_seed_gives_the_same_file() {
+    let d = dir("seed");
+    let run = |name: &str, threads: &str| {
+        let p = d.join(name);
+        let o = roughcontact(&[
+            "--threads",
+            threads,
+            "generate",
+            "--n",
+            "64",
+            "--no-png",
+            "-o",
+            p.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read(p).unwrap()
+    };
+    assert_eq!(run("a.npy", "1"), run("b.npy", "2"));
+}
+
+#[test]
+fn bare_files_need_their_size_and_text_formats_read_back() {
+    let d = dir("formats");
+    let xyz = d.join("s.xyz");
+    let o = roughcontact(&["generate", "--n", "32", "--no-png", "-o", xyz.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = roughcontact(&["stats", xyz.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert!((v["length_x"].as_f64().unwrap() / 1e-4 - 1.0).abs() < 1e-12);
+
+    let txt = d.join("bare.txt");
+    std::fs::write(&txt, "0 1 2\n1 2 3\n2 3 4\n").unwrap();
+    let o = roughcontact(&["stats", txt.to_str().unwrap()]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--length"), "{}", stderr(&o));
+    let o = roughcontact(&["stats", txt.to_str().unwrap(), "--length", "3e-6"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+#[test]
+fn bad_input_is_refused_clearly() {
+    let d = dir("bad");
+    let out = d.join("x.npy");
+    let out = out.to_str().unwrap();
+    let cases: [(&[&str], &str); 5] = [
+        (
+            &["generate", "--n", "64", "--hurst", "1.3", "-o", out],
+            "Hurst exponent",
+        ),
+        (
+            &["generate", "--n", "64", "--cutoff", "1e-7", "-o", out],
+            "two grid spacings",
+        ),
+        (
+            &["generate", "--n", "64", "--rms-height", "-1", "-o", out],
+            "rms_height",
+        ),
+        (&["generate", "--n", "64", "--length", "0", "-o", out], "length_x"),
+        (
+            &[
+                "generate",
+                "--n",
+                "64",
+                "--rms-height",
+                "1e-6",
+                "--rms-gradient",
+                "1",
+                "-o",
+                out,
+            ],
+            "cannot be used with",
+        ),
+    ];
+    for (args, needle) in cases {
+        let o = roughcontact(args);
+        assert!(!o.status.success(), "{args:?} should fail");
+        assert!(stderr(&o).contains(needle), "{args:?}: {}", stderr(&o));
+    }
+    let nan = d.join("nan.txt");
+    std::fs::write(&nan, "0 1\nnan 2\n").unwrap();
+    let o = roughcontact(&["stats", nan.to_str().unwrap(), "--length", "1e-6"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("line 2"), "{}", stderr(&o));
+    // A roll-off longer than the box is legal but warned about.
+    let o = roughcontact(&[
+        "generate",
+        "--n",
+        "64",
+        "--rolloff",
+        "2e-4",
+        "--no-png",
+        "-o",
+        out,
+    ]);
+    assert!(o.status.success());
+    assert!(stderr(&o).contains("warning: roll-off"), "{}", stderr(&o));
+}
