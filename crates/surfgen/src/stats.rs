@@ -552,3 +552,46 @@ pub fn bearing_area_curve(heights: ArrayView2<f64>, levels: usize) -> Vec<(f64, 
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ndarray::{Array2, array};
+
+    #[test]
+    fn height_moments_of_a_known_sample() {
+        // Values -1, -1, -1, 3: mean 0, variance 3, third moment 6, fourth moment 21.
+        let h = array![[-1.0, -1.0], [-1.0, 3.0]];
+        let s = HeightStats::new(h.view());
+        assert_eq!(s.mean, 0.0);
+        assert!((s.rms_height - 3f64.sqrt()).abs() < 1e-15);
+        assert!((s.skewness - 6.0 / 3f64.powf(1.5)).abs() < 1e-14);
+        assert!((s.kurtosis - 21.0 / 9.0).abs() < 1e-14);
+        assert_eq!((s.min, s.max, s.peak_to_valley), (-1.0, 3.0, 4.0));
+    }
+
+    #[test]
+    fn bearing_area_counts_points_at_or_above_each_level() {
+        // Heights 0..99: at level z, the points with h >= z number 100 - ceil(z).
+        let h = Array2::from_shape_fn((10, 10), |(y, x)| (10 * y + x) as f64);
+        let curve = bearing_area_curve(h.view(), 34);
+        assert_eq!(curve[0], (99.0, 0.01));
+        assert_eq!(*curve.last().unwrap(), (0.0, 1.0));
+        for (z, r) in curve {
+            let above = h.iter().filter(|&&v| v >= z).count() as f64 / 100.0;
+            assert_eq!(r, above, "level {z}");
+        }
+    }
+
+    #[test]
+    fn non_periodic_finite_differences_skip_the_edges() {
+        // A plane h = 2x + 3y has slope^2 = 13 and no curvature, but only without wrap-around.
+        let g = Grid::new(16, 8, 16.0, 8.0).unwrap();
+        let h = Array2::from_shape_fn((8, 16), |(y, x)| 2.0 * x as f64 + 3.0 * y as f64);
+        let [g2, lap2, xx2] = finite_difference_moments(h.view(), &g, false);
+        assert!((g2 - 13.0).abs() < 1e-12);
+        assert!(lap2.abs() < 1e-20 && xx2.abs() < 1e-20);
+        let [g2, ..] = finite_difference_moments(h.view(), &g, true);
+        assert!(g2 > 13.0, "wrapping a plane adds a cliff");
+    }
+}
