@@ -1,0 +1,184 @@
+//! The adhesive laws: Lennard-Jones at the node (`point`), averaged along x (`line`) and over
+//! the tilted cell (`surface`, the paper's Eq. 11), and the exponential and Dugdale laws.
+
+use crate::error::{Result, positive};
+use crate::field;
+use crate::lj::LennardJones;
+use crate::{AdhesionLaw, Cells};
+use ndarray::{ArrayView2, ArrayViewMut2};
+
+/// The naive law: `p_i = p(z1)`, the Lennard-Jones pressure at the cell's node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointLaw(pub LennardJones);
+
+/// The line-integral law (Medina & Dini 2014): the mean of the Lennard-Jones pressure over the
+/// separations between the cell's node and its +x neighbour,
+/// `p_i = (Phi(z2) - Phi(z1)) / (z2 - z1)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LineLaw(pub LennardJones);
+
+/// The surface-integral law (the paper's Eq. 11): the line law times the area factor of the
+/// tilted cell, `p_i = S (Phi(z2) - Phi(z1)) / (z2 - z1)` with
+/// `S = sqrt(1 + ((z2 - z1)/a_x)^2 + ((z3 - z1)/a_y)^2)`; node 3 is the +y neighbour.
+/// On a flat gap field `S = 1` and it equals [`PointLaw`] exactly.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceLaw(pub LennardJones);
+
+impl AdhesionLaw for PointLaw {
+    fn pressure_field(&self, gap: ArrayView2<f64>, _cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()> {
+        let lj = self.0;
+        field::nodal(gap, out, |g| lj.pressure(lj.separation(g)))
+    }
+    fn stiffness_bound(&self) -> f64 {
+        self.0.stiffness_bound()
+    }
+    fn work_of_adhesion(&self) -> f64 {
+        self.0.work_of_adhesion()
+    }
+    fn name(&self) -> &'static str {
+        "point"
+    }
+}
+
+impl AdhesionLaw for LineLaw {
+    fn pressure_field(&self, gap: ArrayView2<f64>, cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()> {
+        let lj = self.0;
+        field::neighbours(gap, cells, out, |g1, g2, _| {
+            lj.mean_pressure(lj.separation(g1), lj.separation(g2))
+        })
+    }
+    fn stiffness_bound(&self) -> f64 {
+        self.0.stiffness_bound()
+    }
+    fn work_of_adhesion(&self) -> f64 {
+        self.0.work_of_adhesion()
+    }
+    fn name(&self) -> &'static str {
+        "line"
+    }
+}
+
+impl AdhesionLaw for SurfaceLaw {
+    fn pressure_field(&self, gap: ArrayView2<f64>, cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()> {
+        let lj = self.0;
+        let (ix, iy) = (1.0 / cells.dx, 1.0 / cells.dy);
+        field::neighbours(gap, cells, out, |g1, g2, g3| {
+            let (z1, z2, z3) = (lj.separation(g1), lj.separation(g2), lj.separation(g3));
+            let (sx, sy) = ((z2 - z1) * ix, (z3 - z1) * iy);
+            (1.0 + sx * sx + sy * sy).sqrt() * lj.mean_pressure(z1, z2)
+        })
+    }
+    /// The bound of the mean pressure; the area factor `S` multiplies it where the gap is steep.
+    fn stiffness_bound(&self) -> f64 {
+        self.0.stiffness_bound()
+    }
+    fn work_of_adhesion(&self) -> f64 {
+        self.0.work_of_adhesion()
+    }
+    fn name(&self) -> &'static str {
+        "surface"
+    }
+}
+
+/// The exponential law of the contact-mechanics challenge, with a hard wall:
+/// `sigma(g) = -(w0 / rho) exp(-g / rho)` [Pa] for `g >= 0` (negative gaps count as contact),
+/// at the node. Its integral over `g >= 0` is `-w0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExponentialLaw {
+    w0: f64,
+    rho: f64,
+}
+
+impl ExponentialLaw {
+    /// Work of adhesion `w0` [J/m^2] and range `rho` [m], both > 0.
+    pub fn new(w0: f64, rho: f64) -> Result<Self> {
+        Ok(ExponentialLaw {
+            w0: positive("work_of_adhesion", w0)?,
+            rho: positive("range", rho)?,
+        })
+    }
+
+    /// `sigma(g)` [Pa].
+    pub fn pressure(&self, gap: f64) -> f64 {
+        let g = if gap < 0.0 { 0.0 } else { gap }; // NaN stays NaN
+        -(self.w0 / self.rho) * (-g / self.rho).exp()
+    }
+}
+
+impl AdhesionLaw for ExponentialLaw {
+    fn pressure_field(&self, gap: ArrayView2<f64>, _cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()> {
+        field::nodal(gap, out, |g| self.pressure(g))
+    }
+    /// `w0 / rho^2`, at contact.
+    fn stiffness_bound(&self) -> f64 {
+        self.w0 / (self.rho * self.rho)
+    }
+    fn work_of_adhesion(&self) -> f64 {
+        self.w0
+    }
+    fn name(&self) -> &'static str {
+        "exponential"
+    }
+}
+
+/// The Dugdale (Maugis) law: a constant pull `sigma0 = w0 / h0` for `0 <= g < h0` and none
+/// beyond, at the node. With `h0 = 0.974 z0` and `sigma0` the Lennard-Jones peak it is the
+/// Dugdale model equivalent to the Lennard-Jones law (method.md section 8.3).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DugdaleLaw {
+    w0: f64,
+    range: f64,
+}
+
+impl DugdaleLaw {
+    /// Work of adhesion `w0` [J/m^2] and range `h0` [m], both > 0.
+    pub fn new(w0: f64, range: f64) -> Result<Self> {
+        Ok(DugdaleLaw {
+            w0: positive("work_of_adhesion", w0)?,
+            range: positive("range", range)?,
+        })
+    }
+
+    /// The Dugdale law with the same work of adhesion and peak stress as `lj`.
+    pub fn equivalent_to(lj: &LennardJones) -> Self {
+        let w0 = lj.work_of_adhesion();
+        DugdaleLaw {
+            w0,
+            range: w0 / -lj.min_pressure(),
+        }
+    }
+
+    /// Range h0 [m].
+    pub fn range(&self) -> f64 {
+        self.range
+    }
+
+    /// `sigma(g)` [Pa].
+    pub fn pressure(&self, gap: f64) -> f64 {
+        if gap < self.range {
+            -self.w0 / self.range
+        } else {
+            0.0
+        }
+    }
+}
+
+impl AdhesionLaw for DugdaleLaw {
+    fn pressure_field(&self, gap: ArrayView2<f64>, _cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()> {
+        field::nodal(gap, out, |g| {
+            // NaN must stay NaN so that it is reported.
+            if g.is_nan() { g } else { self.pressure(g) }
+        })
+    }
+    /// Infinite: the law jumps from `-sigma0` to 0 at `g = h0`; solvers must not rely on a
+    /// stiffness to relax it.
+    fn stiffness_bound(&self) -> f64 {
+        f64::INFINITY
+    }
+    fn work_of_adhesion(&self) -> f64 {
+        self.w0
+    }
+    fn name(&self) -> &'static str {
+        "dugdale"
+    }
+}

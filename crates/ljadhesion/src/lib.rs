@@ -1,0 +1,73 @@
+//! # ljadhesion: adhesive pressure on a boundary-element grid
+//!
+//! Maps a field of gaps `g >= 0` [m] to a field of adhesive pressures `p <= 0` [Pa] (negative
+//! = attractive; the solver crate's conventions). The laws (method.md sections 2 and 3, the
+//! paper's Eqs. 5-12):
+//!
+//! | law | cell pressure |
+//! |---|---|
+//! | [`PointLaw`] | `p(z1)`, Lennard-Jones at the node |
+//! | [`LineLaw`] | mean of `p` over `[z1, z2]` (node and +x neighbour; Medina & Dini 2014) |
+//! | [`SurfaceLaw`] | that mean times the area factor `S` of the tilted cell (Eq. 11) |
+//! | [`ExponentialLaw`] | `-(w0/rho) exp(-g/rho)`, the contact-mechanics challenge's law |
+//! | [`DugdaleLaw`] | `-w0/h0` for `g < h0` (Maugis-Dugdale) |
+//!
+//! with `z = g + z0` (Eq. 12), so that contact (`g = 0`) carries no adhesive pressure beyond
+//! the Lennard-Jones equilibrium and only the attractive tail is used. Negative gaps are
+//! treated as contact. Every cell depends only on known gaps, so fields are computed in
+//! parallel; results do not depend on the number of threads at all.
+//!
+//! ```
+//! use ljadhesion::{AdhesionLaw, Cells, LennardJones, PointLaw, SurfaceLaw};
+//! use ndarray::Array2;
+//! let lj = LennardJones::new(0.05, 2.071e-9)?;            // w0 [J/m^2], z0 [m]
+//! let gap = Array2::from_elem((8, 8), 1e-9);              // flat, 1 nm
+//! let cells = Cells { dx: 1e-8, dy: 1e-8, periodic: true };
+//! let (mut a, mut b) = (Array2::zeros((8, 8)), Array2::zeros((8, 8)));
+//! SurfaceLaw(lj).pressure_field(gap.view(), &cells, a.view_mut())?;
+//! PointLaw(lj).pressure_field(gap.view(), &cells, b.view_mut())?;
+//! assert_eq!(a, b);                                      // flat gaps: S = 1, mean = point value
+//! # Ok::<(), ljadhesion::AdhesionError>(())
+//! ```
+
+pub mod error;
+mod field;
+pub mod laws;
+pub mod lj;
+
+pub use error::{AdhesionError, Result};
+pub use laws::{DugdaleLaw, ExponentialLaw, LineLaw, PointLaw, SurfaceLaw};
+pub use lj::LennardJones;
+
+use ndarray::{ArrayView2, ArrayViewMut2};
+
+/// The grid cells a gap field lives on: spacings [m] and whether the field wraps around.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cells {
+    /// Spacing along x (columns) [m].
+    pub dx: f64,
+    /// Spacing along y (rows) [m].
+    pub dy: f64,
+    /// Whether neighbours wrap around the edges (periodic domain) or are mirrored (free edges).
+    pub periodic: bool,
+}
+
+/// An adhesive law on a grid: gap field in, adhesive pressure field out.
+pub trait AdhesionLaw: Sync + Send {
+    /// Writes the adhesive pressure [Pa] (<= 0 for the attractive laws) of every cell into
+    /// `out`, given the gaps `gap` [m] (shape `(ny, nx)`, the same as `out`).
+    ///
+    /// # Errors
+    /// [`AdhesionError::ShapeMismatch`] and [`AdhesionError::NonFiniteGap`]; `out` is then
+    /// unspecified.
+    fn pressure_field(&self, gap: ArrayView2<f64>, cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()>;
+
+    /// An upper bound of `|dp/dg|` [Pa/m], for choosing a stable relaxation.
+    fn stiffness_bound(&self) -> f64;
+
+    /// Work of adhesion w0 [J/m^2]: minus the integral of the law over the gap.
+    fn work_of_adhesion(&self) -> f64;
+
+    /// Short name (`point`, `line`, `surface`, `exponential`, `dugdale`).
+    fn name(&self) -> &'static str;
+}
