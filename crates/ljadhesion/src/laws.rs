@@ -43,9 +43,14 @@ impl AdhesionLaw for PointLaw {
 impl AdhesionLaw for LineLaw {
     fn pressure_field(&self, gap: ArrayView2<f64>, cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()> {
         let lj = self.0;
-        field::neighbours(gap, cells, out, |g1, g2, _| {
-            lj.mean_pressure(lj.separation(g1), lj.separation(g2))
-        })
+        let z0 = lj.z0();
+        field::neighbours(
+            gap,
+            cells,
+            out,
+            |g| z0 / lj.separation(g),
+            |_, _, _, v1, v2| lj.mean_pressure_v(v1, v2),
+        )
     }
     fn stiffness_bound(&self) -> f64 {
         self.0.stiffness_bound()
@@ -61,12 +66,19 @@ impl AdhesionLaw for LineLaw {
 impl AdhesionLaw for SurfaceLaw {
     fn pressure_field(&self, gap: ArrayView2<f64>, cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()> {
         let lj = self.0;
+        let z0 = lj.z0();
         let (ix, iy) = (1.0 / cells.dx, 1.0 / cells.dy);
-        field::neighbours(gap, cells, out, |g1, g2, g3| {
-            let (z1, z2, z3) = (lj.separation(g1), lj.separation(g2), lj.separation(g3));
-            let (sx, sy) = ((z2 - z1) * ix, (z3 - z1) * iy);
-            (1.0 + sx * sx + sy * sy).sqrt() * lj.mean_pressure(z1, z2)
-        })
+        field::neighbours(
+            gap,
+            cells,
+            out,
+            |g| z0 / lj.separation(g),
+            |g1, g2, g3, v1, v2| {
+                let (z1, z2, z3) = (lj.separation(g1), lj.separation(g2), lj.separation(g3));
+                let (sx, sy) = ((z2 - z1) * ix, (z3 - z1) * iy);
+                (1.0 + sx * sx + sy * sy).sqrt() * lj.mean_pressure_v(v1, v2)
+            },
+        )
     }
     /// The bound of the mean pressure; the area factor `S` multiplies it where the gap is steep.
     fn stiffness_bound(&self) -> f64 {

@@ -51,9 +51,10 @@ impl LennardJones {
     /// # Ok::<(), ljadhesion::AdhesionError>(())
     /// ```
     pub fn pressure(&self, z: f64) -> f64 {
+        // The cell mean over a zero-width interval, so that a flat gap field gives the point
+        // law to the last bit.
         let v = self.z0 / z;
-        let v3 = v * v * v;
-        8.0 * self.w0 / (3.0 * self.z0) * (v3 * v3 * v3 - v3)
+        self.mean_pressure_v(v, v)
     }
 
     /// `Phi(z)` [J/m^2], the antiderivative of [`LennardJones::pressure`] vanishing at infinity.
@@ -83,11 +84,12 @@ impl LennardJones {
     /// numbers is formed, so the result is accurate to a few ulps of the integrand's scale for
     /// every interval, 0 included (the naive quotient loses every digit as `z2 -> z1`).
     pub fn mean_pressure(&self, z1: f64, z2: f64) -> f64 {
-        if z1 == z2 {
-            // The same number as the point law, to the last bit.
-            return self.pressure(z1);
-        }
-        let (v1, v2) = (self.z0 / z1, self.z0 / z2);
+        self.mean_pressure_v(self.z0 / z1, self.z0 / z2)
+    }
+
+    /// [`LennardJones::mean_pressure`] in terms of `v = z0 / z` at both ends.
+    #[inline]
+    pub fn mean_pressure_v(&self, v1: f64, v2: f64) -> f64 {
         let (a, b) = (v1 * v1, v2 * v2);
         self.w0 / (3.0 * self.z0) * v1 * v2 * (v1 + v2) * ((a + b) * (a * a + b * b) - 4.0)
     }
