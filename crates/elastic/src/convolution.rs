@@ -1,0 +1,278 @@
+//! Two-dimensional real convolution by FFT, fused and allocation-free.
+//!
+//! One application `out = K * in` runs three passes:
+//! 1. real-to-complex FFTs of the input rows (zero-extended to the transform width `mx`),
+//!    scattered into the *transposed half spectrum* (shape `(mx/2 + 1, my)`, row `kx` holding
+//!    every `ky`), so that
+//! 2. each `kx` row can be transformed along y, multiplied by the real kernel spectrum and
+//!    transformed back while it sits in cache, and
+//! 3. gathered back into rows for the complex-to-real FFTs of the output rows.
+//!
+//! This costs one forward and one inverse 2-D FFT and a single field-sized buffer (the
+//! spectrum). Rows past the input's are zero (zero padding for linear convolution); only the
+//! output's rows and columns are transformed back.
+
+use ndarray::{Array2, ArrayView2, ArrayViewMut2, Axis};
+use rayon::prelude::*;
+use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
+use rustfft::num_complex::Complex64;
+use rustfft::{Fft, FftPlanner};
+use std::sync::{Arc, Mutex};
+
+/// Rows moved together between row and transposed layouts.
+const BLOCK: usize = 16;
+
+/// Per-thread scratch: a block of half-spectrum rows, one real row and the FFT scratches.
+struct Local {
+    lines: Vec<Complex64>,
+    real: Vec<f64>,
+    scratch: Vec<Complex64>,
+}
+
+/// Caller-owned buffers for one [`Convolution`]: the spectrum and per-thread scratch.
+pub struct ConvWorkspace {
+    spectrum: Array2<Complex64>,
+    locals: Vec<Mutex<Local>>,
+}
+
+impl ConvWorkspace {
+    /// Bytes held by this workspace.
+    pub fn bytes(&self) -> usize {
+        let local = self.locals.first().map_or(0, |l| {
+            let l = l.lock().expect("scratch lock");
+            l.lines.len() * 16 + l.real.len() * 8 + l.scratch.len() * 16
+        });
+        self.spectrum.len() * 16 + local * self.locals.len()
+    }
+}
+
+/// A planned convolution of `(ny_in, nx_in)` fields with a kernel of real spectrum on an
+/// `(my, mx)` periodic transform grid, keeping the first `(ny_out, nx_out)` values.
+pub struct Convolution {
+    mx: usize,
+    my: usize,
+    input: (usize, usize),
+    output: (usize, usize),
+    /// Real kernel spectrum, transposed half layout `(mx/2 + 1, my)`, already divided by `mx my`.
+    kernel: Array2<f64>,
+    r2c: Arc<dyn RealToComplex<f64>>,
+    c2r: Arc<dyn ComplexToReal<f64>>,
+    col_forward: Arc<dyn Fft<f64>>,
+    col_inverse: Arc<dyn Fft<f64>>,
+}
+
+/// Raw pointer to the spectrum for the scatter pass, whose tasks write disjoint columns.
+#[derive(Clone, Copy)]
+struct SpectrumPtr(*mut Complex64);
+// SAFETY: only used to write disjoint elements from different threads (see `scatter`).
+unsafe impl Send for SpectrumPtr {}
+unsafe impl Sync for SpectrumPtr {}
+
+impl SpectrumPtr {
+    /// # Safety
+    /// `i` must be in bounds, and no other thread may access element `i` meanwhile.
+    unsafe fn write(self, i: usize, value: Complex64) {
+        unsafe { *self.0.add(i) = value };
+    }
+}
+
+impl Convolution {
+    /// Plans the transforms. `kernel` is the unscaled real spectrum of the kernel in transposed
+    /// half layout `(mx/2 + 1, my)`.
+    ///
+    /// # Panics
+    /// If shapes are inconsistent (input or output larger than the transform grid).
+    pub fn new(
+        mx: usize,
+        my: usize,
+        kernel: Array2<f64>,
+        input: (usize, usize),
+        output: (usize, usize),
+    ) -> Self {
+        assert_eq!(kernel.dim(), (mx / 2 + 1, my), "kernel spectrum shape");
+        assert!(input.0 <= my && input.1 <= mx && output.0 <= my && output.1 <= mx);
+        let mut real = RealFftPlanner::<f64>::new();
+        let mut complex = FftPlanner::<f64>::new();
+        let scale = 1.0 / (mx * my) as f64;
+        Convolution {
+            mx,
+            my,
+            input,
+            output,
+            kernel: kernel * scale,
+            r2c: real.plan_fft_forward(mx),
+            c2r: real.plan_fft_inverse(mx),
+            col_forward: complex.plan_fft_forward(my),
+            col_inverse: complex.plan_fft_inverse(my),
+        }
+    }
+
+    fn mkx(&self) -> usize {
+        self.mx / 2 + 1
+    }
+
+    /// A workspace for this convolution (one per concurrent caller).
+    pub fn make_workspace(&self) -> ConvWorkspace {
+        let threads = rayon::current_num_threads().max(1);
+        let scratch_len = self
+            .r2c
+            .get_scratch_len()
+            .max(self.c2r.get_scratch_len())
+            .max(self.col_forward.get_inplace_scratch_len())
+            .max(self.col_inverse.get_inplace_scratch_len());
+        ConvWorkspace {
+            spectrum: Array2::zeros((self.mkx(), self.my)),
+            locals: (0..threads)
+                .map(|_| {
+                    Mutex::new(Local {
+                        lines: vec![Complex64::default(); BLOCK * self.mkx()],
+                        real: vec![0.0; self.mx],
+                        scratch: vec![Complex64::default(); scratch_len],
+                    })
+                })
+                .collect(),
+        }
+    }
+
+    /// The real kernel spectrum (transposed half layout), divided by `mx my`.
+    pub fn kernel(&self) -> ArrayView2<'_, f64> {
+        self.kernel.view()
+    }
+
+    /// `out = K * input`.
+    ///
+    /// # Panics
+    /// If the shapes differ from the plan's, or `ws` was made by another convolution.
+    pub fn apply(&self, input: ArrayView2<f64>, mut out: ArrayViewMut2<f64>, ws: &mut ConvWorkspace) {
+        assert_eq!(input.dim(), self.input, "input shape");
+        assert_eq!(out.dim(), self.output, "output shape");
+        assert_eq!(ws.spectrum.dim(), (self.mkx(), self.my), "workspace shape");
+        let locals = &ws.locals;
+        let local = || {
+            let i = rayon::current_thread_index().unwrap_or(0) % locals.len();
+            locals[i].lock().expect("scratch lock")
+        };
+        self.scatter(input, &mut ws.spectrum, &local);
+        self.columns(&mut ws.spectrum, self.input.0, true, &local);
+        self.gather(ws.spectrum.view(), out.view_mut(), &local);
+    }
+
+    /// The real part of the unscaled DFT of a full `(my, mx)` field, in transposed half layout:
+    /// the spectrum of an even kernel, which is real.
+    ///
+    /// # Panics
+    /// If `field` is not `(my, mx)`.
+    pub fn real_spectrum(&self, field: ArrayView2<f64>, ws: &mut ConvWorkspace) -> Array2<f64> {
+        assert_eq!(field.dim(), (self.my, self.mx), "field shape");
+        let locals = &ws.locals;
+        let local = || {
+            let i = rayon::current_thread_index().unwrap_or(0) % locals.len();
+            locals[i].lock().expect("scratch lock")
+        };
+        self.scatter(field, &mut ws.spectrum, &local);
+        self.columns(&mut ws.spectrum, self.my, false, &local);
+        ws.spectrum.mapv(|c| c.re)
+    }
+
+    /// Pass 1: row FFTs of the input into the transposed spectrum.
+    fn scatter<'a>(
+        &self,
+        input: ArrayView2<f64>,
+        spectrum: &mut Array2<Complex64>,
+        local: &(impl Fn() -> std::sync::MutexGuard<'a, Local> + Sync),
+    ) {
+        let (ny, nx) = input.dim();
+        let (mkx, my) = (self.mkx(), self.my);
+        let ptr = SpectrumPtr(spectrum.as_mut_ptr());
+        (0..ny.div_ceil(BLOCK)).into_par_iter().for_each(|block| {
+            let mut guard = local();
+            let Local { lines, real, scratch } = &mut *guard;
+            let y0 = block * BLOCK;
+            let rows = BLOCK.min(ny - y0);
+            for r in 0..rows {
+                let row = input.row(y0 + r);
+                real[..nx].iter_mut().zip(row.iter()).for_each(|(d, s)| *d = *s);
+                real[nx..].iter_mut().for_each(|d| *d = 0.0);
+                let line = &mut lines[r * mkx..(r + 1) * mkx];
+                self.r2c
+                    .process_with_scratch(real, line, scratch)
+                    .expect("sizes match the plan");
+            }
+            for kx in 0..mkx {
+                for r in 0..rows {
+                    // SAFETY: element (kx, y0 + r) of the (mkx, my) spectrum; blocks cover
+                    // disjoint y ranges, so no two tasks write the same element, and nothing
+                    // reads the spectrum during this pass.
+                    unsafe { ptr.write(kx * my + y0 + r, lines[r * mkx + kx]) };
+                }
+            }
+        });
+    }
+
+    /// Pass 2: along y, forward, times the kernel and inverse (unless `forward_only`), one `kx`
+    /// row at a time; rows from `ny_in` on are zeroed first.
+    fn columns<'a>(
+        &self,
+        spectrum: &mut Array2<Complex64>,
+        ny_in: usize,
+        convolve: bool,
+        local: &(impl Fn() -> std::sync::MutexGuard<'a, Local> + Sync),
+    ) {
+        spectrum
+            .axis_chunks_iter_mut(Axis(0), 4)
+            .into_par_iter()
+            .zip(self.kernel.axis_chunks_iter(Axis(0), 4).into_par_iter())
+            .for_each(|(mut rows, kernel)| {
+                let mut guard = local();
+                let scratch = &mut guard.scratch;
+                for (mut row, k) in rows.outer_iter_mut().zip(kernel.outer_iter()) {
+                    let row = row.as_slice_mut().expect("standard layout");
+                    row[ny_in..].iter_mut().for_each(|c| *c = Complex64::default());
+                    self.col_forward.process_with_scratch(row, scratch);
+                    if convolve {
+                        row.iter_mut().zip(k.iter()).for_each(|(c, k)| *c *= *k);
+                        self.col_inverse.process_with_scratch(row, scratch);
+                    }
+                }
+            });
+    }
+
+    /// Pass 3: gather rows back and transform them to real output rows.
+    fn gather<'a>(
+        &self,
+        spectrum: ArrayView2<Complex64>,
+        mut out: ArrayViewMut2<f64>,
+        local: &(impl Fn() -> std::sync::MutexGuard<'a, Local> + Sync),
+    ) {
+        let nx_out = self.output.1;
+        let mkx = self.mkx();
+        let nyquist = self.mx.is_multiple_of(2);
+        out.axis_chunks_iter_mut(Axis(0), BLOCK)
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(block, mut rows)| {
+                let mut guard = local();
+                let Local { lines, real, scratch } = &mut *guard;
+                let y0 = block * BLOCK;
+                let n = rows.nrows();
+                for kx in 0..mkx {
+                    let col = &spectrum.row(kx);
+                    let col = &col.as_slice().expect("standard layout")[y0..y0 + n];
+                    for (r, c) in col.iter().enumerate() {
+                        lines[r * mkx + kx] = *c;
+                    }
+                }
+                for (r, mut o) in rows.outer_iter_mut().enumerate() {
+                    let line = &mut lines[r * mkx..(r + 1) * mkx];
+                    line[0].im = 0.0;
+                    if nyquist {
+                        line[mkx - 1].im = 0.0;
+                    }
+                    self.c2r
+                        .process_with_scratch(line, real, scratch)
+                        .expect("sizes match the plan and imaginary parts were cleared");
+                    o.iter_mut().zip(&real[..nx_out]).for_each(|(d, s)| *d = *s);
+                }
+            });
+    }
+}

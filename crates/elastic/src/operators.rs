@@ -1,0 +1,148 @@
+//! The two half-space operators: periodic (spectral) and free (Love + DC-FFT).
+
+use crate::convolution::{ConvWorkspace, Convolution};
+use crate::error::{ElasticError, Result};
+use crate::love::rectangle_displacement;
+use crate::material::check_modulus;
+use crate::{Compliance, Domain};
+use ndarray::{Array2, ArrayView2, ArrayViewMut2};
+use rayon::prelude::*;
+use std::f64::consts::PI;
+
+/// Buffers owned by the caller of [`Compliance::apply`]: one per concurrent caller.
+pub struct Workspace(ConvWorkspace);
+
+impl Workspace {
+    /// Bytes held (the spectrum plus per-thread scratch).
+    pub fn bytes(&self) -> usize {
+        self.0.bytes()
+    }
+}
+
+fn check(what: &'static str, expected: (usize, usize), got: (usize, usize)) -> Result<()> {
+    if expected == got {
+        Ok(())
+    } else {
+        Err(ElasticError::ShapeMismatch { what, expected, got })
+    }
+}
+
+/// Wavevector [rad/m] of DFT index `k` on an axis of `n` points spanning `l` metres.
+fn wavevector(k: usize, n: usize, l: f64) -> f64 {
+    let signed = if k <= n / 2 { k as f64 } else { k as f64 - n as f64 };
+    2.0 * PI * signed / l
+}
+
+/// The periodic half-space: `u(q) = 2 p(q) / (E* |q|)` for `q != 0`; the mean displacement is
+/// zero (`q = 0` carries the load, which a periodic half-space cannot displace by a finite
+/// amount), so `u` is the displacement relative to its mean.
+pub struct Periodic {
+    domain: Domain,
+    e_star: f64,
+    conv: Convolution,
+}
+
+impl Periodic {
+    /// The operator on `domain` (its `periodic` flag must be set) for composite modulus
+    /// `e_star` [Pa]. Plans are made once here.
+    pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
+        let e_star = check_modulus(e_star)?;
+        domain.validate()?;
+        let Domain { nx, ny, dx, dy, .. } = domain;
+        let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
+        let kernel = Array2::from_shape_fn((nx / 2 + 1, ny), |(kx, ky)| {
+            let (qx, qy) = (wavevector(kx, nx, lx), wavevector(ky, ny, ly));
+            let q = qx.hypot(qy);
+            if q == 0.0 { 0.0 } else { 2.0 / (e_star * q) }
+        });
+        Ok(Periodic {
+            domain: Domain {
+                periodic: true,
+                ..domain
+            },
+            e_star,
+            conv: Convolution::new(nx, ny, kernel, (ny, nx), (ny, nx)),
+        })
+    }
+}
+
+/// The free (non-periodic) half-space: exact influence coefficients of uniform pressure on
+/// each rectangular cell (Love 1929), applied as a linear convolution by FFT on a zero-padded
+/// `2nx` by `2ny` grid (DC-FFT). The displacement is the true one (zero at infinity).
+pub struct Free {
+    domain: Domain,
+    e_star: f64,
+    conv: Convolution,
+}
+
+impl Free {
+    /// The operator on `domain` for composite modulus `e_star` [Pa]. Computes the influence
+    /// coefficients and their spectrum once (the most expensive step: about a second at 4096^2).
+    pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
+        let e_star = check_modulus(e_star)?;
+        domain.validate()?;
+        let Domain { nx, ny, dx, dy, .. } = domain;
+        let (mx, my) = (2 * nx, 2 * ny);
+        // Influence of cell (0, 0) on the cell at offset (i, j): even in both, so compute a
+        // quadrant and wrap. Offset n (the padding's Nyquist) never reaches a kept output; it
+        // takes the value at +n so that the kernel stays even and its spectrum real.
+        let quadrant = Array2::from_shape_fn((ny + 1, nx + 1), |(j, i)| (j, i));
+        let quadrant: Vec<f64> = quadrant
+            .as_slice()
+            .expect("standard layout")
+            .par_iter()
+            .map(|&(j, i)| {
+                rectangle_displacement(i as f64 * dx, j as f64 * dy, 0.5 * dx, 0.5 * dy, 1.0, e_star)
+            })
+            .collect();
+        let fold = |k: usize, n: usize| if k <= n { k } else { 2 * n - k };
+        let wrapped =
+            Array2::from_shape_fn((my, mx), |(j, i)| quadrant[fold(j, ny) * (nx + 1) + fold(i, nx)]);
+        drop(quadrant);
+        let probe = Convolution::new(mx, my, Array2::zeros((mx / 2 + 1, my)), (my, mx), (ny, nx));
+        let kernel = probe.real_spectrum(wrapped.view(), &mut probe.make_workspace());
+        drop(probe);
+        Ok(Free {
+            domain: Domain {
+                periodic: false,
+                ..domain
+            },
+            e_star,
+            conv: Convolution::new(mx, my, kernel, (ny, nx), (ny, nx)),
+        })
+    }
+}
+
+macro_rules! impl_compliance {
+    ($t:ty) => {
+        impl Compliance for $t {
+            fn domain(&self) -> &Domain {
+                &self.domain
+            }
+            fn e_star(&self) -> f64 {
+                self.e_star
+            }
+            fn make_workspace(&self) -> Workspace {
+                Workspace(self.conv.make_workspace())
+            }
+            fn apply(
+                &self,
+                pressure: ArrayView2<f64>,
+                displacement: ArrayViewMut2<f64>,
+                ws: &mut Workspace,
+            ) -> Result<()> {
+                let shape = self.domain.shape();
+                check("pressure", shape, pressure.dim())?;
+                check("displacement", shape, displacement.dim())?;
+                self.conv.apply(pressure, displacement, &mut ws.0);
+                Ok(())
+            }
+            fn fourier_compliance(&self) -> ArrayView2<'_, f64> {
+                self.conv.kernel()
+            }
+        }
+    };
+}
+
+impl_compliance!(Periodic);
+impl_compliance!(Free);
