@@ -219,9 +219,9 @@ impl Convolution {
         local: &(impl Fn() -> std::sync::MutexGuard<'a, Local> + Sync),
     ) {
         spectrum
-            .axis_chunks_iter_mut(Axis(0), 4)
+            .axis_chunks_iter_mut(Axis(0), BLOCK)
             .into_par_iter()
-            .zip(self.kernel.axis_chunks_iter(Axis(0), 4).into_par_iter())
+            .zip(self.kernel.axis_chunks_iter(Axis(0), BLOCK).into_par_iter())
             .for_each(|(mut rows, kernel)| {
                 let mut guard = local();
                 let scratch = &mut guard.scratch;

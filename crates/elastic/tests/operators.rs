@@ -221,6 +221,19 @@ fn results_do_not_depend_on_the_number_of_threads() {
 }
 
 #[test]
+fn a_periodic_workspace_is_about_one_field() {
+    let n = 256;
+    let op = Periodic::new(domain(n, n, 1e-6, true), E).unwrap();
+    let field = n * n * 8;
+    let bytes = op.make_workspace().bytes();
+    assert!(
+        bytes <= 3 * field,
+        "{bytes} bytes of workspace for a {field}-byte field"
+    );
+    assert!(bytes <= field * 11 / 10 + rayon::current_num_threads() * (16 * (n / 2 + 1) * 16 + 3 * n * 16));
+}
+
+#[test]
 fn a_workspace_is_reused_without_changing_results() {
     let dom = domain(33, 17, 1e-6, false);
     let op = Free::new(dom, E).unwrap();
