@@ -39,3 +39,42 @@ pub fn rectangle_displacement(x: f64, y: f64, a: f64, b: f64, p: f64, e_star: f6
     p / (PI * e_star)
         * (corner(x + a, y + b) - corner(x + a, y - b) - corner(x - a, y + b) + corner(x - a, y - b))
 }
+
+/// Distance, in half-sides of the rectangle, beyond which [`cell_influence`] uses the
+/// multipole expansion: there its truncation error (~(a/r)^6) and the rounding error of the
+/// closed form (which subtracts terms ~ r ln r to get ~ a b / r) are both about 2e-12
+/// (measured against quadrature; the closed form's error keeps growing with distance).
+const FAR: f64 = 64.0;
+
+/// Displacement [m] at `(x, y)` [m] under unit pressure (1 Pa) on the rectangle of half-sides
+/// `a`, `b` [m] centred at the origin: [`rectangle_displacement`] near the rectangle, and its
+/// multipole expansion far from it, which is faster and more accurate there:
+/// `u = 4ab/(pi E*) [1/r + (a^2 d_xx + b^2 d_yy)(1/r)/6
+///      + (a^4/5 d_xxxx + 6 a^2 b^2/9 d_xxyy + b^4/5 d_yyyy)(1/r)/24 + O((a/r)^6 / r)]`.
+pub fn cell_influence(x: f64, y: f64, a: f64, b: f64, e_star: f64) -> f64 {
+    if x * x + y * y < (FAR * a.max(b)).powi(2) {
+        rectangle_displacement(x, y, a, b, 1.0, e_star)
+    } else {
+        rectangle_multipole(x, y, a, b, e_star)
+    }
+}
+
+/// The multipole expansion of [`cell_influence`] (unit pressure), valid far from the
+/// rectangle (relative error ~ (max(a, b)/r)^6).
+pub fn rectangle_multipole(x: f64, y: f64, a: f64, b: f64, e_star: f64) -> f64 {
+    let r2 = x * x + y * y;
+    let r = r2.sqrt();
+    let inv_r = 1.0 / r;
+    let (x2, y2) = (x * x, y * y);
+    let inv_r5 = inv_r / (r2 * r2);
+    let inv_r9 = inv_r5 / (r2 * r2);
+    let dxx = (2.0 * x2 - y2) * inv_r5;
+    let dyy = (2.0 * y2 - x2) * inv_r5;
+    let dxxxx = 3.0 * (8.0 * x2 * x2 - 24.0 * x2 * y2 + 3.0 * y2 * y2) * inv_r9;
+    let dxxyy = -3.0 * (4.0 * x2 * x2 - 27.0 * x2 * y2 + 4.0 * y2 * y2) * inv_r9;
+    let dyyyy = 3.0 * (3.0 * x2 * x2 - 24.0 * x2 * y2 + 8.0 * y2 * y2) * inv_r9;
+    let (a2, b2) = (a * a, b * b);
+    let second = (a2 * dxx + b2 * dyy) / 6.0;
+    let fourth = (a2 * a2 / 5.0 * dxxxx + 6.0 * a2 * b2 / 9.0 * dxxyy + b2 * b2 / 5.0 * dyyyy) / 24.0;
+    4.0 * a * b / (PI * e_star) * (inv_r + second + fourth)
+}

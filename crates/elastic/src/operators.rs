@@ -2,7 +2,7 @@
 
 use crate::convolution::{ConvWorkspace, Convolution};
 use crate::error::{ElasticError, Result};
-use crate::love::rectangle_displacement;
+use crate::love::cell_influence;
 use crate::material::check_modulus;
 use crate::{Compliance, Domain};
 use ndarray::{Array2, ArrayView2, ArrayViewMut2};
@@ -86,22 +86,21 @@ impl Free {
         // Influence of cell (0, 0) on the cell at offset (i, j): even in both, so compute a
         // quadrant and wrap. Offset n (the padding's Nyquist) never reaches a kept output; it
         // takes the value at +n so that the kernel stays even and its spectrum real.
-        let quadrant = Array2::from_shape_fn((ny + 1, nx + 1), |(j, i)| (j, i));
-        let quadrant: Vec<f64> = quadrant
-            .as_slice()
-            .expect("standard layout")
-            .par_iter()
-            .map(|&(j, i)| {
-                rectangle_displacement(i as f64 * dx, j as f64 * dy, 0.5 * dx, 0.5 * dy, 1.0, e_star)
+        let quadrant: Vec<f64> = (0..(ny + 1) * (nx + 1))
+            .into_par_iter()
+            .map(|k| {
+                let (j, i) = (k / (nx + 1), k % (nx + 1));
+                cell_influence(i as f64 * dx, j as f64 * dy, 0.5 * dx, 0.5 * dy, e_star)
             })
             .collect();
         let fold = |k: usize, n: usize| if k <= n { k } else { 2 * n - k };
-        let wrapped =
-            Array2::from_shape_fn((my, mx), |(j, i)| quadrant[fold(j, ny) * (nx + 1) + fold(i, nx)]);
-        drop(quadrant);
-        let probe = Convolution::new(mx, my, Array2::zeros((mx / 2 + 1, my)), (my, mx), (ny, nx));
-        let kernel = probe.real_spectrum(wrapped.view(), &mut probe.make_workspace());
-        drop(probe);
+        let wrapped_row = |j: usize, out: &mut [f64]| {
+            let q = &quadrant[fold(j, ny) * (nx + 1)..][..nx + 1];
+            out.iter_mut().enumerate().for_each(|(i, o)| *o = q[fold(i, nx)]);
+        };
+        let probe = Convolution::new(mx, my, Array2::zeros((mx / 2 + 1, my)), (ny, nx), (ny, nx));
+        let kernel = probe.real_spectrum(wrapped_row, &mut probe.make_workspace());
+        drop((probe, quadrant));
         Ok(Free {
             domain: Domain {
                 periodic: false,

@@ -65,6 +65,67 @@ fn love_closed_form_checks() {
     assert!(rectangle_displacement(3.0, 1.0, 1.0, 1.0, 1.0, 1.0).is_finite());
 }
 
+/// The cell integral of `1/(pi E* |r - s|)` by 8-point Gauss-Legendre on 4 x 4 panels: no
+/// cancellation, so a reference at any distance of at least a few cells.
+fn influence_by_quadrature(x: f64, y: f64, a: f64, b: f64) -> f64 {
+    const GL: [(f64, f64); 8] = [
+        (-0.9602898564975363, 0.1012285362903763),
+        (-0.7966664774136267, 0.2223810344533745),
+        (-0.525532409916329, 0.3137066458778873),
+        (-0.1834346424956498, 0.362683783378362),
+        (0.1834346424956498, 0.362683783378362),
+        (0.525532409916329, 0.3137066458778873),
+        (0.7966664774136267, 0.2223810344533745),
+        (0.9602898564975363, 0.1012285362903763),
+    ];
+    let panels = 4;
+    let (hx, hy) = (a / panels as f64, b / panels as f64);
+    let mut sum = 0.0;
+    for pi in 0..panels {
+        for pj in 0..panels {
+            let (cx, cy) = (-a + (2 * pi + 1) as f64 * hx, -b + (2 * pj + 1) as f64 * hy);
+            for (u, wu) in GL {
+                for (v, wv) in GL {
+                    sum += wu * wv * hx * hy / (x - cx - hx * u).hypot(y - cy - hy * v);
+                }
+            }
+        }
+    }
+    sum / (PI * E)
+}
+
+#[test]
+fn the_far_field_expansion_joins_the_closed_form() {
+    use elastic::love::cell_influence;
+    let (a, b) = (0.5e-6, 0.65e-6);
+    // Closed form near the cell, expansion beyond 64 half-sides (~40 cells here): both hold
+    // to a few 1e-12 on either side of the switch and far beyond it, where the closed form
+    // alone would lose digits to cancellation.
+    for (i, j) in [
+        (4.0, 1.0),
+        (20.0, 7.0),
+        (38.0, 5.0),
+        (41.0, 3.0),
+        (30.0, 60.0),
+        (300.0, 100.0),
+        (2000.0, 4000.0),
+    ] {
+        let (x, y) = (i * 2.0 * a, j * 2.0 * b);
+        let reference = influence_by_quadrature(x, y, a, b);
+        let got = cell_influence(x, y, a, b, E);
+        assert!(
+            ((got - reference) / reference).abs() < 5e-12,
+            "({i},{j}): {got:e} vs {reference:e}"
+        );
+    }
+    let far = rectangle_displacement(4000e-6, 8000e-6, a, b, 1.0, E);
+    let reference = influence_by_quadrature(4000e-6, 8000e-6, a, b);
+    assert!(
+        ((far - reference) / reference).abs() > 1e-11,
+        "the closed form alone degrades far away"
+    );
+}
+
 #[test]
 fn a_uniformly_loaded_patch_matches_love_everywhere() {
     let (nx, ny, d) = (40, 36, 1e-6);
