@@ -1,0 +1,293 @@
+//! Constrained conjugate gradients for normal contact (Polonsky & Keer, Wear 231, 1999).
+//!
+//! Minimises the complementary energy `(1/2) <p, K p> + <p, g0 - delta>` over `p >= 0`: the
+//! gap `g = g0 - delta + K p` vanishes where `p > 0` and is positive where `p = 0`. Under load
+//! control the total force is imposed after every step and `delta` is the Lagrange multiplier
+//! (the mean gap over the contact set); under displacement control `delta` is given. Each
+//! iteration applies the elastic operator twice (to the pressure and to the search direction).
+
+use crate::error::{Result, SolverError, invalid};
+use crate::options::{ContactOptions, Control};
+use crate::report::{ContactReport, Termination, count_clusters};
+use crate::state::ContactState;
+use elastic::Compliance;
+use ndarray::{Array2, ArrayView2, Axis, Zip};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// `sum f(a, b, c)` over all cells, summed row by row in a fixed order so that the result does
+/// not depend on the number of threads.
+fn sum3(
+    a: ArrayView2<f64>,
+    b: ArrayView2<f64>,
+    c: ArrayView2<f64>,
+    f: impl Fn(f64, f64, f64) -> f64 + Sync,
+) -> f64 {
+    let rows: Vec<f64> = a
+        .axis_iter(Axis(0))
+        .into_par_iter()
+        .zip(b.axis_iter(Axis(0)))
+        .zip(c.axis_iter(Axis(0)))
+        .map(|((ra, rb), rc)| {
+            ra.iter()
+                .zip(rb.iter())
+                .zip(rc.iter())
+                .map(|((x, y), z)| f(*x, *y, *z))
+                .sum::<f64>()
+        })
+        .collect();
+    rows.iter().sum()
+}
+
+/// Solves the normal contact of the half-space `op` with the initial gap `g0` [m] (minimum 0,
+/// see [`crate::geometry`]) under `control`. `warm` (a previous state on the same grid) seeds
+/// the pressure; otherwise the solve starts cold. Returns the new state and its report; a solve
+/// that reaches the iteration limit returns its last iterate with
+/// [`Termination::MaxIterations`].
+///
+/// # Errors
+/// Non-finite or negative-minimum `g0`, a field of the wrong shape, a negative load or
+/// approach, a tolerance below what f64 arithmetic can reach.
+pub fn solve(
+    op: &dyn Compliance,
+    g0: ArrayView2<f64>,
+    control: Control,
+    options: &ContactOptions,
+    warm: Option<&ContactState>,
+) -> Result<(ContactState, ContactReport)> {
+    let started = Instant::now();
+    let domain = *op.domain();
+    let shape = domain.shape();
+    if g0.dim() != shape {
+        return Err(SolverError::ShapeMismatch {
+            what: "initial gap",
+            expected: shape,
+            got: g0.dim(),
+        });
+    }
+    if let Some(((row, col), &value)) = g0.indexed_iter().find(|(_, v)| !v.is_finite()) {
+        return Err(SolverError::NonFinite {
+            what: "initial gap",
+            row,
+            col,
+            value,
+        });
+    }
+    if !(options.tolerance >= 1e-13 && options.tolerance.is_finite()) {
+        return Err(invalid(
+            "tolerance",
+            options.tolerance,
+            "must be at least 1e-13: f64 arithmetic cannot resolve the residual further",
+        ));
+    }
+    let cell = domain.cell_area();
+    let n = (domain.nx * domain.ny) as f64;
+    let target_load = match control {
+        Control::MeanPressure(p) => Some(("mean_pressure", p, p * n * cell)),
+        Control::Force(w) => Some(("load", w, w)),
+        Control::Approach(_) => None,
+    };
+    if let Some((name, v, _)) = target_load
+        && !(v.is_finite() && v >= 0.0)
+    {
+        return Err(invalid(name, v, "a compressive load must be finite and >= 0"));
+    }
+    if let Control::Approach(d) = control
+        && !(d.is_finite() && d >= 0.0)
+    {
+        return Err(invalid(
+            "approach",
+            d,
+            "must be finite and >= 0 m (positive pushes the bodies together)",
+        ));
+    }
+    let g0_mean = g0.mean().unwrap_or(0.0);
+    let h_ref = (g0.iter().map(|v| (v - g0_mean).powi(2)).sum::<f64>() / n)
+        .sqrt()
+        .max(f64::MIN_POSITIVE);
+
+    let mut p = Array2::<f64>::zeros(shape);
+    let mut approach = match control {
+        Control::Approach(d) => d,
+        _ => warm.map_or(0.0, |w| w.approach),
+    };
+    match (warm, target_load, control) {
+        (Some(w), _, _) if w.pressure.dim() == shape && w.pressure.iter().any(|&v| v > 0.0) => {
+            p.assign(&w.pressure)
+        }
+        (_, Some((.., w)), _) => p.fill(w / (n * cell)),
+        (_, None, Control::Approach(d)) => {
+            // Overlap times a cell's stiffness: any positive guess on the overlap will do.
+            let k = op.e_star() / domain.dx.min(domain.dy);
+            Zip::from(&mut p)
+                .and(&g0)
+                .par_for_each(|p, &g| *p = (d - g).max(0.0) * k);
+        }
+        _ => unreachable!("either a load or an approach is prescribed"),
+    }
+    if let Some((.., w)) = target_load
+        && w > 0.0
+    {
+        let total = p.sum() * cell;
+        p *= w / total;
+    }
+
+    let mut u = Array2::<f64>::zeros(shape);
+    let mut gap = Array2::<f64>::zeros(shape);
+    let mut t = Array2::<f64>::zeros(shape);
+    let mut r = Array2::<f64>::zeros(shape);
+    let mut ws = op.make_workspace();
+    let mut history = Vec::new();
+    let mut calls = 0;
+    let mut g_norm_old = 1.0;
+    let mut conjugate = false;
+    let mut change = f64::INFINITY;
+    let mut termination = Termination::MaxIterations;
+    let mut iterations = 0;
+
+    let nothing = p.iter().all(|&v| v == 0.0);
+    if nothing {
+        termination = Termination::NoContact;
+    }
+    while !nothing {
+        op.apply(p.view(), u.view_mut(), &mut ws)?;
+        calls += 1;
+        // Gap before the approach, then the approach: given, or the mean over the contact set.
+        Zip::from(&mut gap)
+            .and(&g0)
+            .and(&u)
+            .par_for_each(|g, &g0, &u| *g = g0 + u);
+        let in_contact = sum3(p.view(), p.view(), p.view(), |p, _, _| (p > 0.0) as u8 as f64);
+        if target_load.is_some() {
+            approach = sum3(
+                p.view(),
+                gap.view(),
+                gap.view(),
+                |p, g, _| if p > 0.0 { g } else { 0.0 },
+            ) / in_contact;
+        }
+        gap -= approach;
+        let (g2_contact, g2_out) = (
+            sum3(p.view(), gap.view(), gap.view(), |p, g, _| {
+                if p > 0.0 { g * g } else { 0.0 }
+            }),
+            sum3(p.view(), gap.view(), gap.view(), |p, g, _| {
+                if p > 0.0 { 0.0 } else { g.min(0.0).powi(2) }
+            }),
+        );
+        let gap_residual = ((g2_contact + g2_out) / in_contact.max(1.0)).sqrt() / h_ref;
+        let residual = gap_residual.max(change);
+        history.push(residual);
+        if residual < options.tolerance {
+            termination = Termination::Converged;
+            break;
+        }
+        if iterations == options.max_iterations {
+            break;
+        }
+        iterations += 1;
+        // Conjugate direction on the contact set.
+        let beta = if conjugate { g2_contact / g_norm_old } else { 0.0 };
+        g_norm_old = g2_contact;
+        Zip::from(&mut t)
+            .and(&p)
+            .and(&gap)
+            .par_for_each(|t, &p, &g| *t = if p > 0.0 { g + beta * *t } else { 0.0 });
+        op.apply(t.view(), r.view_mut(), &mut ws)?;
+        calls += 1;
+        if target_load.is_some() {
+            let r_mean = sum3(
+                p.view(),
+                r.view(),
+                r.view(),
+                |p, r, _| if p > 0.0 { r } else { 0.0 },
+            ) / in_contact;
+            r -= r_mean;
+        }
+        let gt = sum3(
+            p.view(),
+            gap.view(),
+            t.view(),
+            |p, g, t| if p > 0.0 { g * t } else { 0.0 },
+        );
+        let rt = sum3(
+            p.view(),
+            r.view(),
+            t.view(),
+            |p, r, t| if p > 0.0 { r * t } else { 0.0 },
+        );
+        let tau = if rt > 0.0 { gt / rt } else { 0.0 };
+        // Step, projection onto p >= 0, and release of interpenetrating free cells.
+        let rows: Vec<(f64, bool)> = p
+            .axis_iter_mut(Axis(0))
+            .into_par_iter()
+            .zip(gap.axis_iter(Axis(0)))
+            .zip(t.axis_iter(Axis(0)))
+            .map(|((mut pr, gr), tr)| {
+                let (mut delta, mut overlap) = (0.0, false);
+                for ((p, &g), &t) in pr.iter_mut().zip(gr.iter()).zip(tr.iter()) {
+                    let old = *p;
+                    let mut new = if old > 0.0 { (old - tau * t).max(0.0) } else { 0.0 };
+                    if old == 0.0 && g < 0.0 {
+                        new = -tau * g;
+                        overlap = true;
+                    }
+                    *p = new;
+                    delta += (new - old).abs();
+                }
+                (delta, overlap)
+            })
+            .collect();
+        conjugate = !rows.iter().any(|r| r.1);
+        let moved: f64 = rows.iter().map(|r| r.0).sum();
+        if let Some((.., w)) = target_load {
+            let total = p.sum() * cell;
+            if total > 0.0 {
+                p *= w / total;
+            }
+        }
+        let p_sum = p.sum();
+        change = if p_sum > 0.0 { moved / p_sum } else { 0.0 };
+        if p_sum == 0.0 {
+            termination = Termination::NoContact;
+            u.fill(0.0);
+            Zip::from(&mut gap)
+                .and(&g0)
+                .par_for_each(|g, &g0| *g = g0 - approach);
+            break;
+        }
+    }
+    if nothing {
+        Zip::from(&mut gap)
+            .and(&g0)
+            .par_for_each(|g, &g0| *g = g0 - approach);
+    }
+    // Report the gap as the solution defines it: zero in contact, non-negative elsewhere.
+    Zip::from(&mut gap)
+        .and(&p)
+        .par_for_each(|g, &p| *g = if p > 0.0 { 0.0 } else { g.max(0.0) });
+    let load = p.sum() * cell;
+    let contact = p.iter().filter(|&&v| v > 0.0).count() as f64 / n;
+    let report = ContactReport {
+        load,
+        mean_pressure: load / (n * cell),
+        approach,
+        contact_area_fraction: contact,
+        clusters: count_clusters(p.view(), domain.periodic),
+        max_pressure: p.iter().cloned().fold(0.0, f64::max),
+        elastic_energy: op.energy(p.view(), u.view()),
+        iterations,
+        residual: history.last().copied().unwrap_or(0.0),
+        residual_history: history,
+        termination,
+        operator_calls: calls,
+        wall_time_s: started.elapsed().as_secs_f64(),
+    };
+    let state = ContactState {
+        pressure: p,
+        gap,
+        displacement: u,
+        approach,
+    };
+    Ok((state, report))
+}

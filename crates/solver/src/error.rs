@@ -1,0 +1,41 @@
+//! The one error type of `solver`.
+
+/// Bad input to a contact problem, or a breakdown of the numerics.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SolverError {
+    /// A parameter is outside its range.
+    #[error("invalid {name} = {value}: {reason}")]
+    InvalidParameter {
+        name: &'static str,
+        value: f64,
+        reason: String,
+    },
+    /// A field does not match the operator's grid.
+    #[error("{what} has shape {got:?}, the grid is {expected:?}")]
+    ShapeMismatch {
+        what: &'static str,
+        expected: (usize, usize),
+        got: (usize, usize),
+    },
+    /// A height or gap is NaN or infinite.
+    #[error("non-finite {what} {value} at row {row}, column {col}")]
+    NonFinite {
+        what: &'static str,
+        row: usize,
+        col: usize,
+        value: f64,
+    },
+    /// The elastic operator refused its input.
+    #[error(transparent)]
+    Elastic(#[from] elastic::ElasticError),
+}
+
+pub type Result<T> = std::result::Result<T, SolverError>;
+
+pub(crate) fn invalid(name: &'static str, value: f64, reason: impl Into<String>) -> SolverError {
+    SolverError::InvalidParameter {
+        name,
+        value,
+        reason: reason.into(),
+    }
+}

@@ -1,0 +1,31 @@
+//! What is prescribed and how hard to try.
+
+/// The control of a normal contact problem.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Control {
+    /// Mean pressure over the whole grid [Pa] (load control).
+    MeanPressure(f64),
+    /// Total normal force [N] (load control).
+    Force(f64),
+    /// Approach `delta` [m] from first touch, positive pushing the bodies together
+    /// (displacement control).
+    Approach(f64),
+}
+
+/// Solver settings, independent of the problem.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactOptions {
+    /// Convergence tolerance on the scale-free residual (see [`crate::ContactReport::residual`]).
+    pub tolerance: f64,
+    /// Iteration limit; reaching it ends the solve with [`crate::Termination::MaxIterations`].
+    pub max_iterations: usize,
+}
+
+impl Default for ContactOptions {
+    fn default() -> Self {
+        ContactOptions {
+            tolerance: 1e-8,
+            max_iterations: 10_000,
+        }
+    }
+}

@@ -1,0 +1,28 @@
+//! The fields of a contact solution, resumable for continuation.
+
+use ndarray::Array2;
+
+/// The state of a normal contact: all fields have the grid's shape `(ny, nx)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactState {
+    /// Contact pressure [Pa], `>= 0` (compressive).
+    pub pressure: Array2<f64>,
+    /// Gap [m], `>= 0`; zero where in contact.
+    pub gap: Array2<f64>,
+    /// Normal surface displacement of the half-space [m] (positive away from the counterface).
+    pub displacement: Array2<f64>,
+    /// Approach [m] from first touch (positive = pushed together).
+    pub approach: f64,
+}
+
+impl ContactState {
+    /// A state with no load, for a cold start.
+    pub fn unloaded(shape: (usize, usize)) -> Self {
+        ContactState {
+            pressure: Array2::zeros(shape),
+            gap: Array2::zeros(shape),
+            displacement: Array2::zeros(shape),
+            approach: 0.0,
+        }
+    }
+}
