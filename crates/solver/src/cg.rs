@@ -149,7 +149,10 @@ pub fn solve(
     if nothing {
         termination = Termination::NoContact;
     }
-    while !nothing {
+    loop {
+        if nothing {
+            break;
+        }
         op.apply(p.view(), u.view_mut(), &mut ws)?;
         calls += 1;
         // Gap before the approach, then the approach: given, or the mean over the contact set.
