@@ -1,6 +1,7 @@
 //! `roughcontact`: the command-line tool. The only place that uses clap and anyhow.
 
 mod plot;
+mod solve;
 mod surface;
 
 use clap::{Parser, Subcommand};
@@ -30,6 +31,9 @@ enum Command {
     Stats(surface::StatsArgs),
     /// Write a surface's radially averaged power spectrum as CSV and a log-log plot.
     Psd(surface::PsdArgs),
+    /// Solve one non-adhesive normal contact (rough flat, sphere or rough sphere).
+    #[command(allow_negative_numbers = true)]
+    Solve(solve::SolveArgs),
 }
 
 fn main() -> ExitCode {
@@ -44,6 +48,7 @@ fn main() -> ExitCode {
         Command::Generate(args) => surface::generate(args),
         Command::Stats(args) => surface::stats(args),
         Command::Psd(args) => surface::psd(args),
+        Command::Solve(args) => solve::solve(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

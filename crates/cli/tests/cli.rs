@@ -26,7 +26,7 @@ fn stderr(o: &Output) -> String {
 
 #[test]
 fn help_texts_name_their_units() {
-    for cmd in ["generate", "stats", "psd"] {
+    for cmd in ["generate", "stats", "psd", "solve"] {
         let o = roughcontact(&[cmd, "--help"]);
         assert!(o.status.success());
         insta::assert_snapshot!(format!("help_{cmd}"), stdout(&o));
@@ -202,4 +202,129 @@ fn bad_input_is_refused_clearly() {
     ]);
     assert!(o.status.success());
     assert!(stderr(&o).contains("warning: roll-off"), "{}", stderr(&o));
+}
+
+#[test]
+fn solve_writes_fields_and_summary_and_refuses_bad_cases() {
+    let d = dir("solve");
+    let surf = d.join("s.npy");
+    let o = roughcontact(&["generate", "--n", "64", "--no-png", "-o", surf.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = d.join("run");
+    let o = roughcontact(&[
+        "solve",
+        "--surface",
+        surf.to_str().unwrap(),
+        "--modulus",
+        "25e6",
+        "--mean-pressure",
+        "5e5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["converged"], true);
+    assert!((summary["mean_pressure"].as_f64().unwrap() / 5e5 - 1.0).abs() < 1e-12);
+    assert!(summary["surface_hash"].as_str().unwrap().starts_with("fnv1a64:"));
+    for key in [
+        "load",
+        "approach",
+        "contact_area_fraction",
+        "iterations",
+        "residual",
+        "wall_time_s",
+    ] {
+        assert!(summary[key].is_number(), "{key}");
+    }
+    for f in ["pressure.npy", "gap.npy", "displacement.npy", "pressure.png"] {
+        assert!(out.join(f).exists(), "{f}");
+    }
+    // A case file and a flag that overrides it.
+    let toml = d.join("case.toml");
+    std::fs::write(
+        &toml,
+        format!(
+            "surface = {:?}\nmodulus = 25e6\nmean_pressure = 1e5\n",
+            surf.to_str().unwrap()
+        ),
+    )
+    .unwrap();
+    let o = roughcontact(&[
+        "solve",
+        "--config",
+        toml.to_str().unwrap(),
+        "--mean-pressure",
+        "2e5",
+        "--print-config",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("mean_pressure = 200000.0"), "{}", stdout(&o));
+    // Bad cases fail before any work, naming the problem.
+    let cases: [(&[&str], &str); 4] = [
+        (
+            &[
+                "solve",
+                "--surface",
+                surf.to_str().unwrap(),
+                "--mean-pressure",
+                "1e5",
+            ],
+            "--modulus",
+        ),
+        (
+            &["solve", "--surface", surf.to_str().unwrap(), "--modulus", "1e6"],
+            "exactly one",
+        ),
+        (
+            &[
+                "solve",
+                "--surface",
+                surf.to_str().unwrap(),
+                "--modulus",
+                "1e6",
+                "--load",
+                "-1",
+            ],
+            "load",
+        ),
+        (
+            &[
+                "solve",
+                "--surface",
+                surf.to_str().unwrap(),
+                "--modulus",
+                "1e6",
+                "--mean-pressure",
+                "1e5",
+                "--n",
+                "32",
+            ],
+            "does not match",
+        ),
+    ];
+    for (args, needle) in cases {
+        let o = roughcontact(args);
+        assert!(!o.status.success(), "{args:?}");
+        assert!(stderr(&o).contains(needle), "{args:?}: {}", stderr(&o));
+    }
+    // A solve cut short says so and exits non-zero unless told to keep going.
+    let short = [
+        "solve",
+        "--surface",
+        surf.to_str().unwrap(),
+        "--modulus",
+        "25e6",
+        "--mean-pressure",
+        "5e5",
+        "--max-iterations",
+        "2",
+        "--out",
+    ];
+    let o = roughcontact(&[&short[..], &[d.join("short").to_str().unwrap()]].concat());
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("did not converge"), "{}", stderr(&o));
+    let o = roughcontact(&[&short[..], &[d.join("short").to_str().unwrap(), "--keep-going"]].concat());
+    assert!(o.status.success());
 }

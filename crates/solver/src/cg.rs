@@ -55,6 +55,18 @@ pub fn solve(
     options: &ContactOptions,
     warm: Option<&ContactState>,
 ) -> Result<(ContactState, ContactReport)> {
+    solve_observed(op, g0, control, options, warm, &mut |_, _| {})
+}
+
+/// [`solve`], calling `observer(iteration, residual)` after every iteration (for progress).
+pub fn solve_observed(
+    op: &dyn Compliance,
+    g0: ArrayView2<f64>,
+    control: Control,
+    options: &ContactOptions,
+    warm: Option<&ContactState>,
+    observer: &mut dyn FnMut(usize, f64),
+) -> Result<(ContactState, ContactReport)> {
     let started = Instant::now();
     let domain = *op.domain();
     let shape = domain.shape();
@@ -181,6 +193,7 @@ pub fn solve(
         let gap_residual = ((g2_contact + g2_out) / in_contact.max(1.0)).sqrt() / h_ref;
         let residual = gap_residual.max(change);
         history.push(residual);
+        observer(iterations, residual);
         if residual < options.tolerance {
             termination = Termination::Converged;
             break;

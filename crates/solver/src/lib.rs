@@ -19,7 +19,7 @@ pub mod options;
 pub mod report;
 pub mod state;
 
-pub use cg::solve;
+pub use cg::{solve, solve_observed};
 pub use error::{Result, SolverError};
 pub use options::{ContactOptions, Control};
 pub use report::{ContactReport, Termination};

@@ -13,6 +13,8 @@
 
 mod gsf;
 mod npy;
+
+pub use npy::write_array as write_npy;
 mod text;
 
 use crate::error::{Result, SurfError};

@@ -71,12 +71,17 @@ fn write_npy(heights: &Array2<f64>, w: &mut impl Write) -> std::io::Result<()> {
     Ok(())
 }
 
-pub(super) fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Result<()> {
+/// Writes any 2-D f64 field to `path` as `.npy`, without sidecar.
+pub fn write_array(field: &Array2<f64>, path: &Path) -> Result<()> {
     let file = File::create(path).map_err(|e| SurfError::io(path, e))?;
     let mut w = BufWriter::with_capacity(1 << 20, file);
-    write_npy(&surface.heights, &mut w)
+    write_npy(field, &mut w)
         .and_then(|_| w.flush())
-        .map_err(|e| SurfError::io(path, e))?;
+        .map_err(|e| SurfError::io(path, e))
+}
+
+pub(super) fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Result<()> {
+    write_array(&surface.heights, path)?;
     let own;
     let meta = match metadata {
         Some(m) => m,
