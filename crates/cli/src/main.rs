@@ -1,5 +1,6 @@
 //! `roughcontact`: the command-line tool. The only place that uses clap and anyhow.
 
+mod bench;
 mod plot;
 mod solve;
 mod surface;
@@ -34,6 +35,8 @@ enum Command {
     /// Solve one non-adhesive normal contact (rough flat, sphere or rough sphere).
     #[command(allow_negative_numbers = true)]
     Solve(solve::SolveArgs),
+    /// Time the non-adhesive solver on one self-affine problem at several grid sizes.
+    Bench(bench::BenchArgs),
 }
 
 fn main() -> ExitCode {
@@ -49,6 +52,7 @@ fn main() -> ExitCode {
         Command::Stats(args) => surface::stats(args),
         Command::Psd(args) => surface::psd(args),
         Command::Solve(args) => solve::solve(args),
+        Command::Bench(args) => bench::bench(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -144,6 +144,9 @@ pub fn solve_observed(
         p *= w / total;
     }
 
+    let g0 = g0.as_standard_layout();
+    let g0s = g0.as_slice().expect("standard layout");
+    let nx = domain.nx;
     let mut u = Array2::<f64>::zeros(shape);
     let mut gap = Array2::<f64>::zeros(shape);
     let mut t = Array2::<f64>::zeros(shape);
@@ -156,6 +159,13 @@ pub fn solve_observed(
     let mut change = f64::INFINITY;
     let mut termination = Termination::MaxIterations;
     let mut iterations = 0;
+    // `u = K p` is either fresh from the operator or updated in step as `u - tau K t`
+    // (exact when no cell was clipped or released); `pending` is a load rescale of both p and
+    // u not yet applied. A fresh product is taken every 32 iterations and before accepting
+    // convergence, so round-off cannot accumulate.
+    let mut fresh_needed = true;
+    let mut since_fresh = 0;
+    let mut pending = 1.0;
 
     let nothing = p.iter().all(|&v| v == 0.0);
     if nothing {
@@ -165,33 +175,71 @@ pub fn solve_observed(
         if nothing {
             break;
         }
-        op.apply(p.view(), u.view_mut(), &mut ws)?;
-        calls += 1;
-        // Gap before the approach, then the approach: given, or the mean over the contact set.
-        Zip::from(&mut gap)
-            .and(&g0)
-            .and(&u)
-            .par_for_each(|g, &g0, &u| *g = g0 + u);
-        let in_contact = sum3(p.view(), p.view(), p.view(), |p, _, _| (p > 0.0) as u8 as f64);
-        if target_load.is_some() {
-            approach = sum3(
-                p.view(),
-                gap.view(),
-                gap.view(),
-                |p, g, _| if p > 0.0 { g } else { 0.0 },
-            ) / in_contact;
+        let fresh = fresh_needed || since_fresh >= 32;
+        if fresh {
+            if pending != 1.0 {
+                p *= pending;
+                pending = 1.0;
+            }
+            op.apply(p.view(), u.view_mut(), &mut ws)?;
+            calls += 1;
+            since_fresh = 0;
+            fresh_needed = false;
         }
-        gap -= approach;
-        let (g2_contact, g2_out) = (
-            sum3(p.view(), gap.view(), gap.view(), |p, g, _| {
-                if p > 0.0 { g * g } else { 0.0 }
-            }),
-            sum3(p.view(), gap.view(), gap.view(), |p, g, _| {
-                if p > 0.0 { 0.0 } else { g.min(0.0).powi(2) }
-            }),
-        );
+        // Pass A: pending rescale, gap before the approach, contact count and gap sum.
+        let s = std::mem::replace(&mut pending, 1.0);
+        let sums: Vec<[f64; 2]> = p
+            .as_slice_mut()
+            .expect("standard layout")
+            .par_chunks_mut(nx)
+            .zip(u.as_slice_mut().expect("standard layout").par_chunks_mut(nx))
+            .zip(gap.as_slice_mut().expect("standard layout").par_chunks_mut(nx))
+            .zip(g0s.par_chunks(nx))
+            .map(|(((p, u), g), g0)| {
+                let mut acc = [0.0; 2];
+                for i in 0..p.len() {
+                    p[i] *= s;
+                    u[i] *= s;
+                    g[i] = g0[i] + u[i];
+                    if p[i] > 0.0 {
+                        acc[0] += 1.0;
+                        acc[1] += g[i];
+                    }
+                }
+                acc
+            })
+            .collect();
+        let [in_contact, gap_sum] = sums.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]]);
+        if target_load.is_some() {
+            approach = gap_sum / in_contact;
+        }
+        // Pass B: the approach, and the residuals in and out of contact.
+        let sums: Vec<[f64; 2]> = gap
+            .as_slice_mut()
+            .expect("standard layout")
+            .par_chunks_mut(nx)
+            .zip(p.as_slice().expect("standard layout").par_chunks(nx))
+            .map(|(g, p)| {
+                let mut acc = [0.0; 2];
+                for (g, p) in g.iter_mut().zip(p) {
+                    *g -= approach;
+                    if *p > 0.0 {
+                        acc[0] += *g * *g;
+                    } else {
+                        acc[1] += g.min(0.0).powi(2);
+                    }
+                }
+                acc
+            })
+            .collect();
+        let [g2_contact, g2_out] = sums.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]]);
         let gap_residual = ((g2_contact + g2_out) / in_contact.max(1.0)).sqrt() / h_ref;
         let residual = gap_residual.max(change);
+        if residual < options.tolerance && !fresh {
+            // Confirm on a fresh product before accepting.
+            fresh_needed = true;
+            continue;
+        }
         history.push(residual);
         observer(iterations, residual);
         if residual < options.tolerance {
@@ -202,7 +250,8 @@ pub fn solve_observed(
             break;
         }
         iterations += 1;
-        // Conjugate direction on the contact set.
+        since_fresh += 1;
+        // Pass C: conjugate direction on the contact set.
         let beta = if conjugate { g2_contact / g_norm_old } else { 0.0 };
         g_norm_old = g2_contact;
         Zip::from(&mut t)
@@ -211,58 +260,66 @@ pub fn solve_observed(
             .par_for_each(|t, &p, &g| *t = if p > 0.0 { g + beta * *t } else { 0.0 });
         op.apply(t.view(), r.view_mut(), &mut ws)?;
         calls += 1;
-        if target_load.is_some() {
-            let r_mean = sum3(
+        // Passes D and E: step length; under load control the mean of K t over the contact set
+        // is taken out (it moves the approach, not the gap).
+        let r_mean = if target_load.is_some() {
+            sum3(
                 p.view(),
                 r.view(),
                 r.view(),
                 |p, r, _| if p > 0.0 { r } else { 0.0 },
-            ) / in_contact;
-            r -= r_mean;
-        }
+            ) / in_contact
+        } else {
+            0.0
+        };
         let gt = sum3(
             p.view(),
             gap.view(),
             t.view(),
             |p, g, t| if p > 0.0 { g * t } else { 0.0 },
         );
-        let rt = sum3(
-            p.view(),
-            r.view(),
-            t.view(),
-            |p, r, t| if p > 0.0 { r * t } else { 0.0 },
-        );
+        let rt = sum3(p.view(), r.view(), t.view(), |p, r, t| {
+            if p > 0.0 { (r - r_mean) * t } else { 0.0 }
+        });
         let tau = if rt > 0.0 { gt / rt } else { 0.0 };
-        // Step, projection onto p >= 0, and release of interpenetrating free cells.
-        let rows: Vec<(f64, bool)> = p
-            .axis_iter_mut(Axis(0))
-            .into_par_iter()
-            .zip(gap.axis_iter(Axis(0)))
-            .zip(t.axis_iter(Axis(0)))
-            .map(|((mut pr, gr), tr)| {
-                let (mut delta, mut overlap) = (0.0, false);
-                for ((p, &g), &t) in pr.iter_mut().zip(gr.iter()).zip(tr.iter()) {
-                    let old = *p;
-                    let mut new = if old > 0.0 { (old - tau * t).max(0.0) } else { 0.0 };
-                    if old == 0.0 && g < 0.0 {
-                        new = -tau * g;
-                        overlap = true;
+        // Pass F: step, projection onto p >= 0, release of interpenetrating free cells, and the
+        // matching update of u while it stays exact.
+        let rows: Vec<(f64, f64, bool, bool)> = p
+            .as_slice_mut()
+            .expect("standard layout")
+            .par_chunks_mut(nx)
+            .zip(u.as_slice_mut().expect("standard layout").par_chunks_mut(nx))
+            .zip(gap.as_slice().expect("standard layout").par_chunks(nx))
+            .zip(t.as_slice().expect("standard layout").par_chunks(nx))
+            .zip(r.as_slice().expect("standard layout").par_chunks(nx))
+            .map(|((((p, u), g), t), r)| {
+                let (mut moved, mut total, mut clipped, mut released) = (0.0, 0.0, false, false);
+                for i in 0..p.len() {
+                    let old = p[i];
+                    let mut new = old - tau * t[i];
+                    if old > 0.0 && new < 0.0 {
+                        new = 0.0;
+                        clipped = true;
                     }
-                    *p = new;
-                    delta += (new - old).abs();
+                    if old == 0.0 {
+                        new = if g[i] < 0.0 { -tau * g[i] } else { 0.0 };
+                        released |= new > 0.0;
+                    }
+                    p[i] = new;
+                    u[i] -= tau * r[i];
+                    moved += (new - old).abs();
+                    total += new;
                 }
-                (delta, overlap)
+                (moved, total, clipped, released)
             })
             .collect();
-        conjugate = !rows.iter().any(|r| r.1);
+        let released = rows.iter().any(|r| r.3);
+        // Releasing cells restarts the conjugate directions (Polonsky & Keer); any change of
+        // the active set makes the updated u inexact.
+        conjugate = !released;
+        fresh_needed |= released || rows.iter().any(|r| r.2);
         let moved: f64 = rows.iter().map(|r| r.0).sum();
-        if let Some((.., w)) = target_load {
-            let total = p.sum() * cell;
-            if total > 0.0 {
-                p *= w / total;
-            }
-        }
-        let p_sum = p.sum();
+        let p_sum: f64 = rows.iter().map(|r| r.1).sum();
         change = if p_sum > 0.0 { moved / p_sum } else { 0.0 };
         if p_sum == 0.0 {
             termination = Termination::NoContact;
@@ -271,6 +328,9 @@ pub fn solve_observed(
                 .and(&g0)
                 .par_for_each(|g, &g0| *g = g0 - approach);
             break;
+        }
+        if let Some((.., w)) = target_load {
+            pending = w / (p_sum * cell);
         }
     }
     if nothing {

@@ -1,0 +1,133 @@
+//! `bench`: the same self-affine contact problem at increasing sizes.
+
+use anyhow::Result;
+use clap::Args;
+use elastic::{Domain, Periodic};
+use serde_json::json;
+use solver::geometry::flat_on_rough;
+use solver::{ContactOptions, Control};
+use std::path::PathBuf;
+use std::time::Instant;
+use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec};
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Grid sizes (points per side), solved in this order.
+    #[arg(long, value_delimiter = ',', default_value = "256,512,1024,2048,4096")]
+    sizes: Vec<usize>,
+    /// Mean pressure in units of E* [-].
+    #[arg(long, default_value_t = 0.04)]
+    pressure: f64,
+    /// Convergence tolerance of the timed solve.
+    #[arg(long, default_value_t = 1e-8)]
+    tolerance: f64,
+    /// Also solve to 1e-12 and report how far the timed solve is from it (contact cells that
+    /// differ, relative difference of the mean gap).
+    #[arg(long)]
+    check: bool,
+    /// Write the table as JSON to this file too.
+    #[arg(long, value_name = "FILE")]
+    json: Option<PathBuf>,
+}
+
+/// Peak resident memory of this process so far [bytes] (Linux), `None` elsewhere.
+fn peak_rss() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+pub fn bench(a: BenchArgs) -> Result<()> {
+    println!(
+        "Self-affine surface, H = 0.8, RMS gradient 1, short cut-off 8 cells, no roll-off; E* = 1, p = {} E*, tolerance {:e}, {} threads",
+        a.pressure,
+        a.tolerance,
+        rayon::current_num_threads()
+    );
+    println!(
+        "{:>6} {:>7} {:>10} {:>10} {:>12} {:>10}{}",
+        "n",
+        "iters",
+        "op calls",
+        "time [s]",
+        "peak [MB]",
+        "area",
+        if a.check {
+            "  contact diff  mean-gap rel. diff"
+        } else {
+            ""
+        }
+    );
+    let mut rows = Vec::new();
+    for &n in &a.sizes {
+        let grid = Grid::square(n, 1.0)?;
+        let spec = SurfaceSpec {
+            grid,
+            psd: Psd::self_affine(0.8, 1.0, 8.0 / n as f64),
+            normalization: Normalization::RmsGradient(1.0),
+            amplitudes: Amplitudes::Exact,
+            seed: 2026,
+        };
+        let h = surfgen::generate(&spec)?.heights;
+        let g0 = flat_on_rough(h.view())?;
+        drop(h);
+        let dom = Domain {
+            nx: n,
+            ny: n,
+            dx: 1.0 / n as f64,
+            dy: 1.0 / n as f64,
+            periodic: true,
+        };
+        let op = Periodic::new(dom, 1.0)?;
+        let opts = ContactOptions {
+            tolerance: a.tolerance,
+            ..Default::default()
+        };
+        let t = Instant::now();
+        let (state, rep) = solver::solve(&op, g0.view(), Control::MeanPressure(a.pressure), &opts, None)?;
+        let time = t.elapsed().as_secs_f64();
+        let peak = peak_rss().map(|b| b as f64 / 1e6);
+        let mut row = json!({
+            "n": n, "iterations": rep.iterations, "operator_calls": rep.operator_calls, "wall_time_s": time,
+            "peak_rss_mb": peak, "contact_area_fraction": rep.contact_area_fraction, "converged": rep.converged(),
+        });
+        let mut extra = String::new();
+        if a.check {
+            let tight = ContactOptions {
+                tolerance: 1e-12,
+                ..Default::default()
+            };
+            let (reference, _) = solver::solve(
+                &op,
+                g0.view(),
+                Control::MeanPressure(a.pressure),
+                &tight,
+                Some(&state),
+            )?;
+            let differ = state
+                .pressure
+                .iter()
+                .zip(reference.pressure.iter())
+                .filter(|(x, y)| (**x > 0.0) != (**y > 0.0))
+                .count();
+            let mean_gap = |s: &solver::ContactState| s.gap.mean().unwrap_or(0.0);
+            let gap_diff = (mean_gap(&state) / mean_gap(&reference) - 1.0).abs();
+            extra = format!("  {differ:>12}  {gap_diff:>18.2e}");
+            row["contact_cells_differing"] = json!(differ);
+            row["mean_gap_relative_difference"] = json!(gap_diff);
+        }
+        println!(
+            "{n:>6} {:>7} {:>10} {time:>10.3} {:>12} {:>10.5}{extra}",
+            rep.iterations,
+            rep.operator_calls,
+            peak.map_or("n/a".into(), |p| format!("{p:.0}")),
+            rep.contact_area_fraction
+        );
+        rows.push(row);
+    }
+    if let Some(path) = a.json {
+        std::fs::write(&path, serde_json::to_string_pretty(&rows)? + "\n")?;
+    }
+    Ok(())
+}
