@@ -1,0 +1,26 @@
+//! # theory: reference models for adhesive and rough contact
+//!
+//! Plain numbers in, numbers out; no dependency on the rest of the workspace. SI units unless
+//! a function says it works in the dimensionless units of its model. Sign conventions: load
+//! `P > 0` compressive, approach `delta > 0` pushing the bodies together (method.md
+//! sections 6 and 8).
+
+pub mod hertz;
+pub mod jkr_dmt;
+pub mod maugis;
+pub mod rough;
+
+/// Tabor parameter `mu = (R w0^2 / (E*^2 z0^3))^(1/3)` of a sphere of radius `r` [m] with
+/// work of adhesion `w0` [J/m^2] and range `z0` [m] on a half-space of modulus `e_star` [Pa].
+pub fn tabor_parameter(r: f64, w0: f64, e_star: f64, z0: f64) -> f64 {
+    (r * w0 * w0 / (e_star * e_star * z0.powi(3))).cbrt()
+}
+
+/// Maugis' parameter equivalent to a Lennard-Jones law of Tabor parameter `mu`: the Dugdale
+/// law with the same work of adhesion and peak stress gives `lambda = 1.157 mu`
+/// (method.md section 8.3).
+pub fn maugis_parameter_of_tabor(mu: f64) -> f64 {
+    // lambda = 2 sigma0 (R / (pi w0 K^2))^(1/3), sigma0 = 16 w0 / (9 sqrt 3 z0), K = 4 E*/3.
+    let sigma0_factor = 16.0 / (9.0 * 3f64.sqrt());
+    2.0 * sigma0_factor * (9.0 / (16.0 * std::f64::consts::PI)).cbrt() * mu
+}

@@ -1,0 +1,66 @@
+//! Contact-area and stickiness formulas for rough surfaces (method.md sections 6 and 8).
+
+use std::f64::consts::PI;
+
+/// Persson's relative contact area `erf(sqrt(2) p / (E* g_bar))` for the reduced pressure
+/// `reduced = p / (E* g_bar)`; its small-load slope is `sqrt(8/pi)`.
+pub fn persson_area(reduced: f64) -> f64 {
+    erf(2f64.sqrt() * reduced)
+}
+
+/// Müser's relative contact area (the paper's Eq. 14 with its bracket corrected) of a
+/// nominally flat surface at reduced pressure `reduced = p / (E* g_bar)`:
+/// `a_r = (1 - 1/(2x^2)) erf(x) + exp(-x^2)/(sqrt(pi) x)`, `x = k (3 sqrt(pi)/4) reduced`.
+/// At small load `a_r -> k reduced`; at large load `a_r -> 1`.
+pub fn muser_area(reduced: f64, k: f64) -> f64 {
+    let x = k * 0.75 * PI.sqrt() * reduced;
+    if x < 1e-4 {
+        // Series: (4/(3 sqrt pi)) x (1 - x^2/10 + ...), avoiding the cancellation of the closed form.
+        return 4.0 / (3.0 * PI.sqrt()) * x * (1.0 - x * x / 10.0);
+    }
+    (1.0 - 1.0 / (2.0 * x * x)) * erf(x) + (-x * x).exp() / (PI.sqrt() * x)
+}
+
+/// Modified Johnson parameter (Li, Pohrt & Popov 2019; the paper's Eq. 15):
+/// `alpha* = (4 w0 q1^(0.8H - 1) / (pi E* h^2 q0^(0.8H)))^2`, with the RMS roughness `h` [m],
+/// smallest and largest wavevectors `q0`, `q1` [rad/m] and Hurst exponent `hurst`.
+pub fn johnson_parameter(w0: f64, e_star: f64, h: f64, q0: f64, q1: f64, hurst: f64) -> f64 {
+    (4.0 * w0 * q1.powf(0.8 * hurst - 1.0) / (PI * e_star * h * h * q0.powf(0.8 * hurst))).powi(2)
+}
+
+/// Ciavarella's (2019) plotting variable `Rq^2 E* / (lambda_L w0)` (the paper's Eq. 16).
+pub fn ciavarella_variable(rq: f64, e_star: f64, lambda_l: f64, w0: f64) -> f64 {
+    rq * rq * e_star / (lambda_l * w0)
+}
+
+/// Ciavarella's criterion: sticky when `Rq < sqrt(beta lambda_L w0 / E*)`, `beta = 0.6`.
+pub fn ciavarella_sticky(rq: f64, e_star: f64, lambda_l: f64, w0: f64) -> bool {
+    ciavarella_variable(rq, e_star, lambda_l, w0) < 0.6
+}
+
+/// The error function, to about 1e-15 (series below 2.5, continued fraction above).
+pub fn erf(x: f64) -> f64 {
+    if x < 0.0 {
+        return -erf(-x);
+    }
+    if x < 2.5 {
+        // erf x = 2/sqrt(pi) exp(-x^2) sum_n 2^n x^(2n+1) / (1 3 5 ... (2n+1))
+        let mut term = x;
+        let mut sum = x;
+        let x2 = x * x;
+        let mut n = 0.0;
+        while term.abs() > 1e-17 * sum.abs() {
+            n += 1.0;
+            term *= 2.0 * x2 / (2.0 * n + 1.0);
+            sum += term;
+        }
+        2.0 / PI.sqrt() * (-x2).exp() * sum
+    } else {
+        // erfc x = exp(-x^2)/sqrt(pi) * 1/(x + 1/2/(x + 1/(x + 3/2/(x + ...)))), Lentz-free form.
+        let mut f = 0.0;
+        for k in (1..60).rev() {
+            f = (k as f64 / 2.0) / (x + f);
+        }
+        1.0 - (-x * x).exp() / (PI.sqrt() * (x + f))
+    }
+}

@@ -1,0 +1,103 @@
+//! Reference models against their limits and each other.
+
+use theory::jkr_dmt::*;
+use theory::maugis::MaugisDugdale;
+use theory::rough::*;
+use theory::*;
+
+#[test]
+fn maugis_dugdale_tends_to_dmt_and_jkr() {
+    let dmt = MaugisDugdale::new(1e-4);
+    assert!(
+        (dmt.pull_off_load_control() + 2.0).abs() < 1e-3,
+        "{}",
+        dmt.pull_off_load_control()
+    );
+    let jkr = MaugisDugdale::new(1e4);
+    assert!(
+        (jkr.pull_off_load_control() + 1.5).abs() < 1e-3,
+        "{}",
+        jkr.pull_off_load_control()
+    );
+    assert!(
+        (jkr.pull_off_displacement_control() + 5.0 / 6.0).abs() < 1e-3,
+        "{}",
+        jkr.pull_off_displacement_control()
+    );
+    // Monotone transition in between.
+    let mut last = -2.0;
+    for l in [0.1, 0.3, 1.0, 3.0, 10.0] {
+        let p = MaugisDugdale::new(l).pull_off_load_control();
+        assert!(p > last && p < -1.5, "lambda {l}: {p}");
+        last = p;
+    }
+}
+
+#[test]
+fn the_limits_are_approached_at_the_expected_rate() {
+    for (l, target) in [(1e-6, -2.0), (1e-7, -2.0), (1e6, -1.5), (1e7, -1.5)] {
+        let p = MaugisDugdale::new(l).pull_off_load_control();
+        println!("lambda {l:e}: pull-off {p:.9}");
+        assert!((p - target).abs() < 1e-6, "lambda {l}: {p}");
+    }
+    let fixed_grips = MaugisDugdale::new(1e7).pull_off_displacement_control();
+    assert!((fixed_grips + 5.0 / 6.0).abs() < 1e-6, "{fixed_grips}");
+    let dmt_grips = MaugisDugdale::new(1e-7).pull_off_displacement_control();
+    println!("DMT limit under fixed grips: {dmt_grips}");
+}
+
+#[test]
+fn hertz_jkr_and_dmt_relations() {
+    let (r, w0, e) = (1e-4, 0.05, 1e9);
+    let a = 1e-6;
+    assert!(
+        (theory::hertz::radius_of_load(theory::hertz::load_of_radius(a, r, e), r, e) / a - 1.0).abs() < 1e-14
+    );
+    let d = theory::hertz::approach_of_radius(a, r);
+    assert!(
+        (theory::hertz::load_of_approach(d, r, e) / theory::hertz::load_of_radius(a, r, e) - 1.0).abs()
+            < 1e-14
+    );
+    // JKR load minimum over a is -1.5 pi R w0.
+    let min = (1..200000)
+        .map(|k| jkr_load(k as f64 * 1e-11, r, w0, e))
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        (min / jkr_pull_off_load_control(r, w0) - 1.0).abs() < 1e-6,
+        "{min}"
+    );
+    assert!((dmt_pull_off(r, w0) / (-2.0 * std::f64::consts::PI * r * w0) - 1.0).abs() < 1e-15);
+    assert!((dmt_load(0.0, r, w0, e) - dmt_pull_off(r, w0)).abs() < 1e-20);
+}
+
+#[test]
+fn tabor_to_maugis_is_1_157() {
+    assert!(
+        (maugis_parameter_of_tabor(1.0) - 1.157).abs() < 1e-3,
+        "{}",
+        maugis_parameter_of_tabor(1.0)
+    );
+    // The paper's Fig. 11 materials: R = 100 um, E* = 50 GPa, z0 = 0.3 nm, w0 = 0.075 J/m^2: mu ~ 2.
+    let mu = tabor_parameter(1e-4, 0.075, 50e9, 0.3e-9);
+    assert!((mu - 2.0).abs() < 0.1, "{mu}");
+}
+
+#[test]
+fn rough_contact_areas() {
+    // Persson's slope sqrt(8/pi), Müser's slope k, both saturating at 1.
+    let eps = 1e-6;
+    assert!((persson_area(eps) / eps - (8.0 / std::f64::consts::PI).sqrt()).abs() < 1e-6);
+    assert!((muser_area(eps, 2.0) / eps - 2.0).abs() < 1e-6);
+    assert!((muser_area(1e-3, 2.0) / 1e-3 - 2.0).abs() < 1e-5);
+    assert!((muser_area(100.0, 2.0) - 1.0).abs() < 1e-4);
+    assert!((persson_area(100.0) - 1.0).abs() < 1e-15);
+    let mut last = 0.0;
+    for k in 1..400 {
+        let a = muser_area(k as f64 * 0.01, 2.0);
+        assert!(a > last && a <= 1.0);
+        last = a;
+    }
+    assert!((erf(0.5) - 0.5204998778130465).abs() < 1e-15);
+    assert!((erf(3.0) - 0.9999779095030014).abs() < 1e-15);
+    assert!(ciavarella_sticky(1e-9, 50e9, 1e-5, 0.1));
+}
