@@ -213,18 +213,21 @@ pub fn solve_observed(
         if target_load.is_some() {
             approach = gap_sum / in_contact;
         }
-        // Pass B: the approach, and the residuals in and out of contact.
-        let sums: Vec<[f64; 2]> = gap
+        // Pass B: the approach, the residuals in and out of contact, and <g, t_old> on the
+        // contact set for the step length.
+        let sums: Vec<[f64; 3]> = gap
             .as_slice_mut()
             .expect("standard layout")
             .par_chunks_mut(nx)
             .zip(p.as_slice().expect("standard layout").par_chunks(nx))
-            .map(|(g, p)| {
-                let mut acc = [0.0; 2];
-                for (g, p) in g.iter_mut().zip(p) {
+            .zip(t.as_slice().expect("standard layout").par_chunks(nx))
+            .map(|((g, p), t)| {
+                let mut acc = [0.0; 3];
+                for ((g, p), t) in g.iter_mut().zip(p).zip(t) {
                     *g -= approach;
                     if *p > 0.0 {
                         acc[0] += *g * *g;
+                        acc[2] += *g * *t;
                     } else {
                         acc[1] += g.min(0.0).powi(2);
                     }
@@ -232,7 +235,9 @@ pub fn solve_observed(
                 acc
             })
             .collect();
-        let [g2_contact, g2_out] = sums.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]]);
+        let [g2_contact, g2_out, g_t_old] = sums
+            .iter()
+            .fold([0.0; 3], |a, b| [a[0] + b[0], a[1] + b[1], a[2] + b[2]]);
         let gap_residual = ((g2_contact + g2_out) / in_contact.max(1.0)).sqrt() / h_ref;
         let residual = gap_residual.max(change);
         if residual < options.tolerance && !fresh {
@@ -251,35 +256,37 @@ pub fn solve_observed(
         }
         iterations += 1;
         since_fresh += 1;
-        // Pass C: conjugate direction on the contact set.
+        // Pass C: conjugate direction on the contact set, and its sum there.
         let beta = if conjugate { g2_contact / g_norm_old } else { 0.0 };
         g_norm_old = g2_contact;
-        Zip::from(&mut t)
-            .and(&p)
-            .and(&gap)
-            .par_for_each(|t, &p, &g| *t = if p > 0.0 { g + beta * *t } else { 0.0 });
-        op.apply(t.view(), r.view_mut(), &mut ws)?;
-        calls += 1;
-        // Passes D and E: step length; under load control the mean of K t over the contact set
-        // is taken out (it moves the approach, not the gap).
-        let r_mean = if target_load.is_some() {
-            sum3(
-                p.view(),
-                r.view(),
-                r.view(),
-                |p, r, _| if p > 0.0 { r } else { 0.0 },
-            ) / in_contact
+        let sums: Vec<f64> = t
+            .as_slice_mut()
+            .expect("standard layout")
+            .par_chunks_mut(nx)
+            .zip(p.as_slice().expect("standard layout").par_chunks(nx))
+            .zip(gap.as_slice().expect("standard layout").par_chunks(nx))
+            .map(|((t, p), g)| {
+                let mut acc = 0.0;
+                for ((t, p), g) in t.iter_mut().zip(p).zip(g) {
+                    *t = if *p > 0.0 { g + beta * *t } else { 0.0 };
+                    acc += *t;
+                }
+                acc
+            })
+            .collect();
+        // Under load control the mean of K t over the contact set only moves the approach:
+        // <K t - mean, t> = <K t, t - mean(t)>, so the mean of t is all that is needed.
+        let t_mean = if target_load.is_some() {
+            sums.iter().sum::<f64>() / in_contact
         } else {
             0.0
         };
-        let gt = sum3(
-            p.view(),
-            gap.view(),
-            t.view(),
-            |p, g, t| if p > 0.0 { g * t } else { 0.0 },
-        );
+        let gt = g2_contact + beta * g_t_old;
+        op.apply(t.view(), r.view_mut(), &mut ws)?;
+        calls += 1;
+        // Pass D: curvature along t.
         let rt = sum3(p.view(), r.view(), t.view(), |p, r, t| {
-            if p > 0.0 { (r - r_mean) * t } else { 0.0 }
+            if p > 0.0 { r * (t - t_mean) } else { 0.0 }
         });
         let tau = if rt > 0.0 { gt / rt } else { 0.0 };
         // Pass F: step, projection onto p >= 0, release of interpenetrating free cells, and the
