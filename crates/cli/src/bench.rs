@@ -21,6 +21,10 @@ pub struct BenchArgs {
     /// Convergence tolerance of the timed solve.
     #[arg(long, default_value_t = 1e-8)]
     tolerance: f64,
+    /// Iteration limit of the timed solve (a limited run still measures memory and the time
+    /// per iteration).
+    #[arg(long, default_value_t = 10_000)]
+    max_iterations: usize,
     /// Also solve to 1e-12 and report how far the timed solve is from it (contact cells that
     /// differ, relative difference of the mean gap).
     #[arg(long)]
@@ -82,7 +86,7 @@ pub fn bench(a: BenchArgs) -> Result<()> {
         let op = Periodic::new(dom, 1.0)?;
         let opts = ContactOptions {
             tolerance: a.tolerance,
-            ..Default::default()
+            max_iterations: a.max_iterations,
         };
         let t = Instant::now();
         let (state, rep) = solver::solve(&op, g0.view(), Control::MeanPressure(a.pressure), &opts, None)?;
