@@ -4,6 +4,7 @@ mod bench;
 mod plot;
 mod solve;
 mod surface;
+mod theory_cmd;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -37,6 +38,9 @@ enum Command {
     Solve(solve::SolveArgs),
     /// Time the non-adhesive solver on one self-affine problem at several grid sizes.
     Bench(bench::BenchArgs),
+    /// Reference curves (Maugis-Dugdale, JKR, DMT) as CSV, or their pull-off forces.
+    #[command(allow_negative_numbers = true)]
+    Theory(theory_cmd::TheoryArgs),
 }
 
 fn main() -> ExitCode {
@@ -53,6 +57,7 @@ fn main() -> ExitCode {
         Command::Psd(args) => surface::psd(args),
         Command::Solve(args) => solve::solve(args),
         Command::Bench(args) => bench::bench(args),
+        Command::Theory(args) => theory_cmd::theory(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -328,3 +328,24 @@ fn solve_writes_fields_and_summary_and_refuses_bad_cases() {
     let o = roughcontact(&[&short[..], &[d.join("short").to_str().unwrap(), "--keep-going"]].concat());
     assert!(o.status.success());
 }
+
+#[test]
+fn theory_curves_and_pull_offs() {
+    let mut text = String::new();
+    for mu in ["0.1", "0.2", "0.3", "1", "2", "3"] {
+        let o = roughcontact(&["theory", "maugis", "--tabor", mu, "--summary"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        text += &format!("mu = {mu}\n{}", stdout(&o));
+    }
+    insta::assert_snapshot!("maugis_pull_offs", text);
+    let o = roughcontact(&["theory", "jkr", "--summary", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert!((v["pull_off_load_control"].as_f64().unwrap() + 1.5).abs() < 1e-6);
+    assert!((v["pull_off_displacement_control"].as_f64().unwrap() + 5.0 / 6.0).abs() < 1e-6);
+    let o = roughcontact(&["theory", "dmt", "--points", "50"]);
+    let csv = stdout(&o);
+    assert!(csv.starts_with("m,contact_radius_A,load_P,approach_D\n"));
+    assert_eq!(csv.lines().count(), 51);
+    let o = roughcontact(&["theory", "maugis", "--lambda", "-1"]);
+    assert!(!o.status.success());
+}

@@ -82,6 +82,31 @@ impl MaugisDugdale {
             .collect()
     }
 
+    /// Points from contact radius `a_max` (in compression) to separation, `count` of them,
+    /// spaced evenly in `ln(m - 1)`: the part of the curve worth plotting.
+    pub fn curve_to_radius(&self, count: usize, a_max: f64) -> Vec<Point> {
+        let (mut lo, hi) = self.m_range();
+        // The contact radius falls as m grows: bisect ln(m - 1) for A = a_max.
+        let (mut a, mut b) = (lo, hi);
+        if self.point_from_excess(a.exp()).radius > a_max {
+            for _ in 0..200 {
+                let c = 0.5 * (a + b);
+                if self.point_from_excess(c.exp()).radius > a_max {
+                    a = c;
+                } else {
+                    b = c;
+                }
+            }
+            lo = b;
+        }
+        (0..count)
+            .map(|k| {
+                let t = k as f64 / (count.max(2) - 1) as f64;
+                self.point_from_excess((lo + t * (hi - lo)).exp())
+            })
+            .collect()
+    }
+
     /// The range of `ln(m - 1)` that covers the curve from deep compression to separation.
     fn m_range(&self) -> (f64, f64) {
         let l = self.lambda;
