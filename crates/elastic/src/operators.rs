@@ -77,7 +77,7 @@ pub struct Free {
 
 impl Free {
     /// The operator on `domain` for composite modulus `e_star` [Pa]. Computes the influence
-    /// coefficients and their spectrum once (the most expensive step: about a second at 4096^2).
+    /// coefficients and their spectrum once (the most expensive step: about 2 s at 4096^2).
     pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
