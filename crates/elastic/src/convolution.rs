@@ -103,22 +103,37 @@ impl Convolution {
         input: (usize, usize),
         output: (usize, usize),
     ) -> Self {
-        assert_eq!(kernel.dim(), (mx / 2 + 1, my), "kernel spectrum shape");
+        let mut conv = Self::without_kernel(mx, my, input, output);
+        conv.set_kernel(kernel);
+        conv
+    }
+
+    /// The plans alone, for computing a kernel's spectrum with [`Convolution::real_spectrum`]
+    /// before [`Convolution::set_kernel`]; [`Convolution::apply`] panics until then.
+    pub fn without_kernel(mx: usize, my: usize, input: (usize, usize), output: (usize, usize)) -> Self {
         assert!(input.0 <= my && input.1 <= mx && output.0 <= my && output.1 <= mx);
         let mut real = RealFftPlanner::<f64>::new();
         let mut complex = FftPlanner::<f64>::new();
-        let scale = 1.0 / (mx * my) as f64;
         Convolution {
             mx,
             my,
             input,
             output,
-            kernel: kernel * scale,
+            kernel: Array2::zeros((0, 0)),
             r2c: real.plan_fft_forward(mx),
             c2r: real.plan_fft_inverse(mx),
             col_forward: complex.plan_fft_forward(my),
             col_inverse: complex.plan_fft_inverse(my),
         }
+    }
+
+    /// Sets the unscaled real kernel spectrum (transposed half layout `(mx/2 + 1, my)`).
+    ///
+    /// # Panics
+    /// If its shape is not `(mx/2 + 1, my)`.
+    pub fn set_kernel(&mut self, kernel: Array2<f64>) {
+        assert_eq!(kernel.dim(), (self.mkx(), self.my), "kernel spectrum shape");
+        self.kernel = kernel * (1.0 / (self.mx * self.my) as f64);
     }
 
     fn mkx(&self) -> usize {
@@ -161,6 +176,7 @@ impl Convolution {
         assert_eq!(input.dim(), self.input, "input shape");
         assert_eq!(out.dim(), self.output, "output shape");
         assert_eq!(ws.spectrum.dim(), (self.mkx(), self.my), "workspace shape");
+        assert_eq!(self.kernel.dim(), (self.mkx(), self.my), "kernel not set");
         let locals = &ws.locals;
         let local = || {
             let i = rayon::current_thread_index().unwrap_or(0) % locals.len();
@@ -240,15 +256,16 @@ impl Convolution {
         spectrum
             .axis_chunks_iter_mut(Axis(0), BLOCK)
             .into_par_iter()
-            .zip(self.kernel.axis_chunks_iter(Axis(0), BLOCK).into_par_iter())
-            .for_each(|(mut rows, kernel)| {
+            .enumerate()
+            .for_each(|(block, mut rows)| {
                 let mut guard = local();
                 let scratch = &mut guard.scratch;
-                for (mut row, k) in rows.outer_iter_mut().zip(kernel.outer_iter()) {
+                for (r, mut row) in rows.outer_iter_mut().enumerate() {
                     let row = row.as_slice_mut().expect("standard layout");
                     row[ny_in..].iter_mut().for_each(|c| *c = Complex64::default());
                     self.col_forward.process_with_scratch(row, scratch);
                     if convolve {
+                        let k = self.kernel.row(block * BLOCK + r);
                         row.iter_mut().zip(k.iter()).for_each(|(c, k)| *c *= *k);
                         self.col_inverse.process_with_scratch(row, scratch);
                     }
