@@ -35,6 +35,12 @@ impl AdhesionLaw for PointLaw {
     fn work_of_adhesion(&self) -> f64 {
         self.0.work_of_adhesion()
     }
+    fn range(&self) -> f64 {
+        self.0.z0()
+    }
+    fn peak_pressure(&self) -> f64 {
+        self.0.min_pressure()
+    }
     fn name(&self) -> &'static str {
         "point"
     }
@@ -57,6 +63,12 @@ impl AdhesionLaw for LineLaw {
     }
     fn work_of_adhesion(&self) -> f64 {
         self.0.work_of_adhesion()
+    }
+    fn range(&self) -> f64 {
+        self.0.z0()
+    }
+    fn peak_pressure(&self) -> f64 {
+        self.0.min_pressure()
     }
     fn name(&self) -> &'static str {
         "line"
@@ -86,6 +98,12 @@ impl AdhesionLaw for SurfaceLaw {
     }
     fn work_of_adhesion(&self) -> f64 {
         self.0.work_of_adhesion()
+    }
+    fn range(&self) -> f64 {
+        self.0.z0()
+    }
+    fn peak_pressure(&self) -> f64 {
+        self.0.min_pressure()
     }
     fn name(&self) -> &'static str {
         "surface"
@@ -128,6 +146,12 @@ impl AdhesionLaw for ExponentialLaw {
     fn work_of_adhesion(&self) -> f64 {
         self.w0
     }
+    fn range(&self) -> f64 {
+        self.rho
+    }
+    fn peak_pressure(&self) -> f64 {
+        -self.w0 / self.rho
+    }
     fn name(&self) -> &'static str {
         "exponential"
     }
@@ -160,11 +184,6 @@ impl DugdaleLaw {
         }
     }
 
-    /// Range h0 [m].
-    pub fn range(&self) -> f64 {
-        self.range
-    }
-
     /// `sigma(g)` [Pa].
     pub fn pressure(&self, gap: f64) -> f64 {
         if gap < self.range {
@@ -189,6 +208,12 @@ impl AdhesionLaw for DugdaleLaw {
     }
     fn work_of_adhesion(&self) -> f64 {
         self.w0
+    }
+    fn range(&self) -> f64 {
+        self.range
+    }
+    fn peak_pressure(&self) -> f64 {
+        -self.w0 / self.range
     }
     fn name(&self) -> &'static str {
         "dugdale"

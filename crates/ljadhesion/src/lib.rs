@@ -68,6 +68,14 @@ pub trait AdhesionLaw: Sync + Send {
     /// Work of adhesion w0 [J/m^2]: minus the integral of the law over the gap.
     fn work_of_adhesion(&self) -> f64;
 
+    /// The law's length scale [m]: `z0` for Lennard-Jones, `rho` for the exponential law, `h0`
+    /// for Dugdale. Gaps are resolved relative to it (solver tolerances, grid checks).
+    fn range(&self) -> f64;
+
+    /// The most attractive pressure the law gives on a flat gap field [Pa] (< 0): the
+    /// Lennard-Jones peak `-16 w0 / (9 sqrt(3) z0)`, `-w0/rho`, `-w0/h0`.
+    fn peak_pressure(&self) -> f64;
+
     /// Short name (`point`, `line`, `surface`, `exponential`, `dugdale`).
     fn name(&self) -> &'static str;
 }

@@ -67,6 +67,57 @@ pub fn solve_observed(
     warm: Option<&ContactState>,
     observer: &mut dyn FnMut(usize, f64),
 ) -> Result<(ContactState, ContactReport)> {
+    let mut state = match warm {
+        Some(w) => w.clone(),
+        None => ContactState::unloaded(op.domain().shape()),
+    };
+    let mut scratch = Scratch::new(op);
+    let report = solve_in(
+        op,
+        g0,
+        control,
+        options,
+        &mut state,
+        warm.is_some(),
+        &mut scratch,
+        observer,
+    )?;
+    Ok((state, report))
+}
+
+/// Buffers of the conjugate-gradient solver, owned by the caller so that repeated solves on
+/// one grid (sweeps, the adhesive inner loop) allocate nothing.
+pub struct Scratch {
+    ws: elastic::Workspace,
+    direction: Array2<f64>,
+    response: Array2<f64>,
+}
+
+impl Scratch {
+    /// Buffers for solves with `op`.
+    pub fn new(op: &dyn Compliance) -> Self {
+        let shape = op.domain().shape();
+        Scratch {
+            ws: op.make_workspace(),
+            direction: Array2::zeros(shape),
+            response: Array2::zeros(shape),
+        }
+    }
+}
+
+/// [`solve_observed`] in place: `state` is the warm start when `warm` is true (its pressure
+/// seeds the solve) and receives the solution; `scratch` must have been made for `op`.
+#[allow(clippy::too_many_arguments)]
+pub fn solve_in(
+    op: &dyn Compliance,
+    g0: ArrayView2<f64>,
+    control: Control,
+    options: &ContactOptions,
+    state: &mut ContactState,
+    warm: bool,
+    scratch: &mut Scratch,
+    observer: &mut dyn FnMut(usize, f64),
+) -> Result<ContactReport> {
     let started = Instant::now();
     let domain = *op.domain();
     let shape = domain.shape();
@@ -98,6 +149,13 @@ pub fn solve_observed(
         Control::MeanPressure(p) => Some(("mean_pressure", p, p * n * cell)),
         Control::Force(w) => Some(("load", w, w)),
         Control::Approach(_) => None,
+        Control::CentralGap(g) => {
+            return Err(invalid(
+                "central_gap",
+                g,
+                "prescribing the central gap needs adhesion (use the adhesive solver)",
+            ));
+        }
     };
     if let Some((name, v, _)) = target_load
         && !(v.is_finite() && v >= 0.0)
@@ -118,20 +176,28 @@ pub fn solve_observed(
         .sqrt()
         .max(f64::MIN_POSITIVE);
 
-    let mut p = Array2::<f64>::zeros(shape);
+    let warm = warm && state.pressure.dim() == shape && state.displacement.dim() == shape;
+    if !warm {
+        *state = ContactState::unloaded(shape);
+    }
+    let ContactState {
+        pressure: p,
+        gap,
+        displacement: u,
+        approach: state_approach,
+    } = state;
     let mut approach = match control {
         Control::Approach(d) => d,
-        _ => warm.map_or(0.0, |w| w.approach),
+        _ if warm => *state_approach,
+        _ => 0.0,
     };
     match (warm, target_load, control) {
-        (Some(w), _, _) if w.pressure.dim() == shape && w.pressure.iter().any(|&v| v > 0.0) => {
-            p.assign(&w.pressure)
-        }
+        (true, _, _) if p.iter().any(|&v| v > 0.0) => {}
         (_, Some((.., w)), _) => p.fill(w / (n * cell)),
         (_, None, Control::Approach(d)) => {
             // Overlap times a cell's stiffness: any positive guess on the overlap will do.
             let k = op.e_star() / domain.dx.min(domain.dy);
-            Zip::from(&mut p)
+            Zip::from(&mut *p)
                 .and(&g0)
                 .par_for_each(|p, &g| *p = (d - g).max(0.0) * k);
         }
@@ -141,17 +207,21 @@ pub fn solve_observed(
         && w > 0.0
     {
         let total = p.sum() * cell;
-        p *= w / total;
+        *p *= w / total;
     }
 
     let g0 = g0.as_standard_layout();
     let g0s = g0.as_slice().expect("standard layout");
     let nx = domain.nx;
-    let mut u = Array2::<f64>::zeros(shape);
-    let mut gap = Array2::<f64>::zeros(shape);
-    let mut t = Array2::<f64>::zeros(shape);
-    let mut r = Array2::<f64>::zeros(shape);
-    let mut ws = op.make_workspace();
+    let Scratch {
+        ws,
+        direction: t,
+        response: r,
+    } = scratch;
+    if t.dim() != shape {
+        *t = Array2::zeros(shape);
+        *r = Array2::zeros(shape);
+    }
     let mut history = Vec::new();
     let mut calls = 0;
     let mut g_norm_old = 1.0;
@@ -178,10 +248,10 @@ pub fn solve_observed(
         let fresh = fresh_needed || since_fresh >= 32;
         if fresh {
             if pending != 1.0 {
-                p *= pending;
+                *p *= pending;
                 pending = 1.0;
             }
-            op.apply(p.view(), u.view_mut(), &mut ws)?;
+            op.apply(p.view(), u.view_mut(), ws)?;
             calls += 1;
             since_fresh = 0;
             fresh_needed = false;
@@ -282,7 +352,7 @@ pub fn solve_observed(
             0.0
         };
         let gt = g2_contact + beta * g_t_old;
-        op.apply(t.view(), r.view_mut(), &mut ws)?;
+        op.apply(t.view(), r.view_mut(), ws)?;
         calls += 1;
         // Pass D: curvature along t.
         let rt = sum3(p.view(), r.view(), t.view(), |p, r, t| {
@@ -331,7 +401,7 @@ pub fn solve_observed(
         if p_sum == 0.0 {
             termination = Termination::NoContact;
             u.fill(0.0);
-            Zip::from(&mut gap)
+            Zip::from(&mut *gap)
                 .and(&g0)
                 .par_for_each(|g, &g0| *g = g0 - approach);
             break;
@@ -341,13 +411,14 @@ pub fn solve_observed(
         }
     }
     if nothing {
-        Zip::from(&mut gap)
+        u.fill(0.0);
+        Zip::from(&mut *gap)
             .and(&g0)
             .par_for_each(|g, &g0| *g = g0 - approach);
     }
     // Report the gap as the solution defines it: zero in contact, non-negative elsewhere.
-    Zip::from(&mut gap)
-        .and(&p)
+    Zip::from(&mut *gap)
+        .and(&*p)
         .par_for_each(|g, &p| *g = if p > 0.0 { 0.0 } else { g.max(0.0) });
     let load = p.sum() * cell;
     let contact = p.iter().filter(|&&v| v > 0.0).count() as f64 / n;
@@ -366,11 +437,6 @@ pub fn solve_observed(
         operator_calls: calls,
         wall_time_s: started.elapsed().as_secs_f64(),
     };
-    let state = ContactState {
-        pressure: p,
-        gap,
-        displacement: u,
-        approach,
-    };
-    Ok((state, report))
+    *state_approach = approach;
+    Ok(report)
 }

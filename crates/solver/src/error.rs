@@ -28,6 +28,9 @@ pub enum SolverError {
     /// The elastic operator refused its input.
     #[error(transparent)]
     Elastic(#[from] elastic::ElasticError),
+    /// The adhesive law refused its input.
+    #[error(transparent)]
+    Adhesion(#[from] ljadhesion::AdhesionError),
 }
 
 pub type Result<T> = std::result::Result<T, SolverError>;

@@ -12,15 +12,21 @@
 //! and [`ContactOptions`]. [`solve`] returns a [`ContactState`] (fields, resumable as a warm
 //! start) and a [`ContactReport`] (scalars, residual history, why it stopped).
 
+pub mod adhesive;
 pub mod cg;
 pub mod error;
 pub mod geometry;
 pub mod options;
 pub mod report;
 pub mod state;
+pub mod sweep;
 
+pub use adhesive::{
+    AdhesiveOptions, AdhesiveReport, AdhesiveState, OuterLoop, Start, solve_adhesive, solve_adhesive_observed,
+};
 pub use cg::{solve, solve_observed};
 pub use error::{Result, SolverError};
 pub use options::{ContactOptions, Control};
 pub use report::{ContactReport, Termination};
 pub use state::ContactState;
+pub use sweep::{Branch, CycleSummary, SweepPoint, approach_cycle, summarize, sweep};

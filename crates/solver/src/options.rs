@@ -10,6 +10,9 @@ pub enum Control {
     /// Approach `delta` [m] from first touch, positive pushing the bodies together
     /// (displacement control).
     Approach(f64),
+    /// Gap at the centre cell `(ny/2, nx/2)` [m], > 0; the approach follows. Adhesive solver
+    /// only: it traces the unstable middle of an S-shaped load-approach curve (Greenwood 1997).
+    CentralGap(f64),
 }
 
 /// Solver settings, independent of the problem.

@@ -11,6 +11,10 @@ pub enum Termination {
     MaxIterations,
     /// Nothing to solve: zero load or no overlap at the prescribed approach.
     NoContact,
+    /// Adhesive load control: the attraction alone exceeds the prescribed (tensile) load, so no
+    /// equilibrium in contact exists (the surfaces have pulled off). The fields are the last
+    /// iterate.
+    PulledOff,
 }
 
 /// Scalars of a contact solution and the history of the solve. SI units.
@@ -50,7 +54,7 @@ pub struct ContactReport {
 impl ContactReport {
     /// Whether the solve met its tolerance (or had nothing to solve).
     pub fn converged(&self) -> bool {
-        self.termination != Termination::MaxIterations
+        matches!(self.termination, Termination::Converged | Termination::NoContact)
     }
 }
 

@@ -1,0 +1,171 @@
+//! Quasi-static sweeps with continuation: a list of controls (approaches, loads or central
+//! gaps) solved in order, each step warm-started from the last, so that loading and unloading
+//! follow their own branches; and what a sweep shows (pull-off, jumps, hysteresis).
+
+use crate::adhesive::{AdhesiveOptions, AdhesiveReport, AdhesiveState, Start, solve_adhesive};
+use crate::error::Result;
+use crate::options::Control;
+use elastic::Compliance;
+use ljadhesion::AdhesionLaw;
+use ndarray::ArrayView2;
+
+/// The direction of a sweep step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Branch {
+    /// Bodies moving together (approach or load increasing, central gap decreasing).
+    Loading,
+    /// Bodies moving apart.
+    Unloading,
+}
+
+impl Branch {
+    /// `loading` or `unloading`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Branch::Loading => "loading",
+            Branch::Unloading => "unloading",
+        }
+    }
+}
+
+/// One solved step of a sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepPoint {
+    /// The control of this step.
+    pub control: Control,
+    /// Its direction.
+    pub branch: Branch,
+    /// The solve's report.
+    pub report: AdhesiveReport,
+}
+
+/// The approaches `from -> to` in `steps` equal steps and back again (`2 steps + 1` values) [m].
+pub fn approach_cycle(from: f64, to: f64, steps: usize) -> Vec<Control> {
+    let steps = steps.max(1);
+    let at = |k: usize| from + (to - from) * k as f64 / steps as f64;
+    (0..=steps)
+        .chain((0..steps).rev())
+        .map(|k| Control::Approach(at(k)))
+        .collect()
+}
+
+fn value(c: Control) -> f64 {
+    match c {
+        Control::Approach(v) | Control::Force(v) | Control::MeanPressure(v) => v,
+        // A smaller central gap brings the bodies together.
+        Control::CentralGap(g) => -g,
+    }
+}
+
+/// The branch of each step of `path`: loading while the control moves the bodies together
+/// (the first step counts as loading), unloading while it moves them apart; a repeated value
+/// keeps the previous branch.
+pub fn branches(path: &[Control]) -> Vec<Branch> {
+    let mut out = Vec::with_capacity(path.len());
+    let mut current = Branch::Loading;
+    for (k, c) in path.iter().enumerate() {
+        if k > 0 {
+            let (a, b) = (value(path[k - 1]), value(*c));
+            if b > a {
+                current = Branch::Loading;
+            } else if b < a {
+                current = Branch::Unloading;
+            }
+        }
+        out.push(current);
+    }
+    out
+}
+
+/// Solves every control of `path` in order (each warm-started from the previous step; the
+/// first from `start`), calling `on_step(index, point, state)` after each one; `on_step`
+/// returns `false` to stop early. Returns the solved points. A step that does not converge is
+/// reported (in its [`AdhesiveReport::termination`]) and the sweep goes on from it.
+///
+/// # Errors
+/// As [`solve_adhesive`].
+pub fn sweep(
+    op: &dyn Compliance,
+    law: &dyn AdhesionLaw,
+    g0: ArrayView2<f64>,
+    path: &[Control],
+    options: &AdhesiveOptions,
+    start: Option<AdhesiveState>,
+    on_step: &mut dyn FnMut(usize, &SweepPoint, &AdhesiveState) -> bool,
+) -> Result<Vec<SweepPoint>> {
+    let branch = branches(path);
+    let mut state = start;
+    let mut points = Vec::with_capacity(path.len());
+    for (k, &control) in path.iter().enumerate() {
+        let from = match &state {
+            Some(s) => Start::Warm(s),
+            None => Start::Loading,
+        };
+        let (next, report) = solve_adhesive(op, law, g0, control, options, from)?;
+        let point = SweepPoint {
+            control,
+            branch: branch[k],
+            report,
+        };
+        let go_on = on_step(k, &point, &next);
+        points.push(point);
+        state = Some(next);
+        if !go_on {
+            break;
+        }
+    }
+    Ok(points)
+}
+
+/// What a load-approach cycle shows. Loads in N, approaches in m.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CycleSummary {
+    /// The most negative load on the unloading branch [N] (the pull-off force under
+    /// displacement control; reported as a negative number), if there is an unloading branch.
+    pub pull_off_force: Option<f64>,
+    /// The approach at which it occurred [m].
+    pub pull_off_approach: Option<f64>,
+    /// The first loading step in contact after a step without [m] (the jump into contact lies
+    /// between it and the step before).
+    pub jump_in_approach: Option<f64>,
+    /// The first unloading step out of contact after a step in contact [m].
+    pub jump_out_approach: Option<f64>,
+    /// Work lost over the cycle: the work `sum W d(delta)` done on the bodies along the path
+    /// (trapezoidal rule) [J], >= 0 for a dissipative cycle; meaningful when the path returns to
+    /// its start.
+    pub hysteresis_energy: f64,
+    /// Whether every step converged.
+    pub all_converged: bool,
+}
+
+/// Summarises a sweep over approaches (see [`CycleSummary`]).
+pub fn summarize(points: &[SweepPoint]) -> CycleSummary {
+    let mut pull_off: Option<(f64, f64)> = None;
+    let (mut jump_in, mut jump_out) = (None, None);
+    let mut work = 0.0;
+    for (k, p) in points.iter().enumerate() {
+        let r = &p.report;
+        if p.branch == Branch::Unloading && pull_off.is_none_or(|(w, _)| r.load < w) {
+            pull_off = Some((r.load, r.approach));
+        }
+        if k > 0 {
+            let prev = &points[k - 1].report;
+            let (was, is) = (prev.contact_area_fraction > 0.0, r.contact_area_fraction > 0.0);
+            if p.branch == Branch::Loading && !was && is && jump_in.is_none() {
+                jump_in = Some(r.approach);
+            }
+            if p.branch == Branch::Unloading && was && !is && jump_out.is_none() {
+                jump_out = Some(r.approach);
+            }
+            work += 0.5 * (r.load + prev.load) * (r.approach - prev.approach);
+        }
+    }
+    CycleSummary {
+        pull_off_force: pull_off.map(|p| p.0),
+        pull_off_approach: pull_off.map(|p| p.1),
+        jump_in_approach: jump_in,
+        jump_out_approach: jump_out,
+        hysteresis_energy: work,
+        all_converged: points.iter().all(|p| p.report.converged()),
+    }
+}
