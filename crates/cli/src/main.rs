@@ -1,9 +1,11 @@
 //! `roughcontact`: the command-line tool. The only place that uses clap and anyhow.
 
 mod bench;
+mod case;
 mod plot;
 mod solve;
 mod surface;
+mod sweep;
 mod theory_cmd;
 
 use clap::{Parser, Subcommand};
@@ -33,9 +35,13 @@ enum Command {
     Stats(surface::StatsArgs),
     /// Write a surface's radially averaged power spectrum as CSV and a log-log plot.
     Psd(surface::PsdArgs),
-    /// Solve one non-adhesive normal contact (rough flat, sphere or rough sphere).
+    /// Solve one normal contact, with or without adhesion (rough flat, sphere, rough sphere).
     #[command(allow_negative_numbers = true)]
     Solve(solve::SolveArgs),
+    /// An approach-retraction cycle (or a list of approaches, loads or central gaps) with
+    /// continuation: load-approach curve, pull-off, jumps and hysteresis.
+    #[command(allow_negative_numbers = true)]
+    Sweep(sweep::SweepArgs),
     /// Time the non-adhesive solver on one self-affine problem at several grid sizes.
     Bench(bench::BenchArgs),
     /// Reference curves (Maugis-Dugdale, JKR, DMT) as CSV, or their pull-off forces.
@@ -56,6 +62,7 @@ fn main() -> ExitCode {
         Command::Stats(args) => surface::stats(args),
         Command::Psd(args) => surface::psd(args),
         Command::Solve(args) => solve::solve(args),
+        Command::Sweep(args) => sweep::sweep(args),
         Command::Bench(args) => bench::bench(args),
         Command::Theory(args) => theory_cmd::theory(args),
     };

@@ -148,7 +148,7 @@ pub fn field_map(
     Ok(())
 }
 
-/// A named curve for [`loglog`]: points and whether to draw them as markers or a line.
+/// A named curve for [`loglog`] and [`lines`]: points and whether to draw them as markers or a line.
 pub struct Series<'a> {
     pub label: &'a str,
     pub points: Vec<(f64, f64)>,
@@ -206,17 +206,33 @@ pub fn loglog(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[
         .x_label_formatter(&|v| format!("{v:.0e}"))
         .draw()
         .map_err(err(path))?;
-    for s in series {
+    draw_series(&mut chart, series.iter().map(|s| (s, pos(s))), path)?;
+    root.present()
+        .with_context(|| format!("writing {}", path.display()))?;
+    Ok(())
+}
+
+/// Draws each series (as markers or a line) with its legend entry.
+fn draw_series<'a, 'b: 'a, 's, X, Y>(
+    chart: &mut ChartContext<'a, BitMapBackend<'b>, Cartesian2d<X, Y>>,
+    series: impl Iterator<Item = (&'s Series<'s>, Vec<(f64, f64)>)>,
+    path: &Path,
+) -> Result<()>
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    for (s, points) in series {
         let c = s.color;
         if s.markers {
             chart
-                .draw_series(pos(s).into_iter().map(|p| Circle::new(p, 3, c.filled())))
+                .draw_series(points.into_iter().map(|p| Circle::new(p, 3, c.filled())))
                 .map_err(err(path))?
                 .label(s.label)
                 .legend(move |(x, y)| Circle::new((x + 10, y), 3, c.filled()));
         } else {
             chart
-                .draw_series(LineSeries::new(pos(s), c.stroke_width(2)))
+                .draw_series(LineSeries::new(points, c.stroke_width(2)))
                 .map_err(err(path))?
                 .label(s.label)
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
@@ -229,6 +245,52 @@ pub fn loglog(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[
         .label_font(("sans-serif", 14))
         .draw()
         .map_err(err(path))?;
+    Ok(())
+}
+
+/// A plot of several series on linear axes (non-finite points are skipped).
+pub fn lines(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[Series]) -> Result<()> {
+    ensure_font();
+    let finite = |s: &Series| -> Vec<(f64, f64)> {
+        s.points
+            .iter()
+            .copied()
+            .filter(|(x, y)| x.is_finite() && y.is_finite())
+            .collect()
+    };
+    let all: Vec<(f64, f64)> = series.iter().flat_map(finite).collect();
+    if all.is_empty() {
+        anyhow::bail!("nothing to plot in {}", path.display());
+    }
+    let (x0, x1, y0, y1) = all.iter().fold(
+        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+        |(a, b, c, d), &(x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
+    );
+    let pad = |lo: f64, hi: f64| {
+        let d = (hi - lo)
+            .abs()
+            .max(hi.abs().max(lo.abs()) * 1e-6)
+            .max(f64::MIN_POSITIVE);
+        (lo - 0.05 * d, hi + 0.05 * d)
+    };
+    let ((x0, x1), (y0, y1)) = (pad(x0, x1), pad(y0, y1));
+    let root = BitMapBackend::new(path, (800, 600)).into_drawing_area();
+    root.fill(&WHITE).map_err(err(path))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(75)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(err(path))?;
+    chart
+        .configure_mesh()
+        .x_desc(x_label)
+        .y_desc(y_label)
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(err(path))?;
+    draw_series(&mut chart, series.iter().map(|s| (s, finite(s))), path)?;
     root.present()
         .with_context(|| format!("writing {}", path.display()))?;
     Ok(())

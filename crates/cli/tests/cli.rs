@@ -26,7 +26,7 @@ fn stderr(o: &Output) -> String {
 
 #[test]
 fn help_texts_name_their_units() {
-    for cmd in ["generate", "stats", "psd", "solve"] {
+    for cmd in ["generate", "stats", "psd", "solve", "sweep"] {
         let o = roughcontact(&[cmd, "--help"]);
         assert!(o.status.success());
         insta::assert_snapshot!(format!("help_{cmd}"), stdout(&o));
@@ -348,4 +348,189 @@ fn theory_curves_and_pull_offs() {
     assert_eq!(csv.lines().count(), 51);
     let o = roughcontact(&["theory", "maugis", "--lambda", "-1"]);
     assert!(!o.status.success());
+}
+
+fn json(path: &std::path::Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+#[test]
+fn adhesive_solve_reports_both_pressures() {
+    let d = dir("adh-solve");
+    let out = d.join("run");
+    let o = roughcontact(&[
+        "solve",
+        "--sphere-radius",
+        "1e-6",
+        "--modulus",
+        "1e9",
+        "--n",
+        "64",
+        "--length",
+        "2e-7",
+        "--work-of-adhesion",
+        "0.05",
+        "--z0",
+        "1e-9",
+        "--approach",
+        "-5e-10",
+        "--no-png",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = json(&out.join("summary.json"));
+    assert_eq!(s["converged"], true);
+    assert_eq!(s["law"], "surface");
+    assert!(s["load"].as_f64().unwrap() < 0.0, "adhesion pulls: {}", s["load"]);
+    assert!(s["adhesive_load"].as_f64().unwrap() < 0.0);
+    assert!(s["outer_iterations"].is_number() && s["inner_iterations"].is_number());
+    for f in [
+        "pressure",
+        "compressive_pressure",
+        "adhesive_pressure",
+        "gap",
+        "displacement",
+    ] {
+        assert!(out.join(format!("{f}.npy")).exists(), "{f}");
+    }
+    // A law without its parameters is refused before any work.
+    let o = roughcontact(&[
+        "solve",
+        "--sphere-radius",
+        "1e-6",
+        "--modulus",
+        "1e9",
+        "--n",
+        "16",
+        "--length",
+        "2e-7",
+        "--law",
+        "exponential",
+        "--work-of-adhesion",
+        "0.05",
+        "--approach",
+        "0",
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--range"), "{}", stderr(&o));
+}
+
+#[test]
+fn sweep_example_writes_curve_and_summary_and_resumes() {
+    let d = dir("sweep");
+    let out = d.join("hertz");
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "hertz",
+        "--n",
+        "64",
+        "--steps",
+        "4",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("curve.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 1 + 9, "{csv}");
+    assert!(
+        lines[0]
+            .starts_with("step,approach,load,mean_pressure,contact_area_fraction,attractive_area_fraction")
+    );
+    let s = json(&out.join("summary.json"));
+    assert_eq!(s["converged"], true);
+    // Without adhesion: no pull-off, no jumps, no hysteresis beyond round-off.
+    assert!(s["pull_off_force"].is_null());
+    assert!(s["jump_in_approach"].is_null());
+    assert!(out.join("load_approach.png").exists());
+    // Loading and unloading meet: the load at the turning point is Hertz's.
+    let last: Vec<&str> = lines[5].split(',').collect();
+    let (delta, load): (f64, f64) = (last[1].parse().unwrap(), last[2].parse().unwrap());
+    let hertz = 4.0 / 3.0 * 1e9 * 1e-6f64.sqrt() * delta.powf(1.5);
+    assert!((load / hertz - 1.0).abs() < 0.05, "{load} vs {hertz}");
+
+    // Cut the file after three steps, resume: the same curve.
+    let kept: Vec<&str> = lines[..4].to_vec();
+    std::fs::write(out.join("curve.csv"), kept.join("\n") + "\n").unwrap();
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "hertz",
+        "--n",
+        "64",
+        "--steps",
+        "4",
+        "--resume",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("resuming after 3 of 9 steps"),
+        "{}",
+        stderr(&o)
+    );
+    let resumed = std::fs::read_to_string(out.join("curve.csv")).unwrap();
+    let column = |text: &str, i: usize| -> Vec<f64> {
+        text.lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(i).unwrap().parse().unwrap())
+            .collect()
+    };
+    let (a, b) = (column(&csv, 2), column(&resumed, 2));
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(&b) {
+        assert!((x - y).abs() <= 1e-6 * x.abs().max(1e-12), "{x} vs {y}");
+    }
+    // Resuming with other settings is refused.
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "hertz",
+        "--n",
+        "64",
+        "--steps",
+        "5",
+        "--resume",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("different case"), "{}", stderr(&o));
+}
+
+#[test]
+fn sweep_refuses_bad_paths_and_warns_about_coarse_grids() {
+    let o = roughcontact(&[
+        "sweep",
+        "--sphere-radius",
+        "1e-6",
+        "--modulus",
+        "1e9",
+        "--n",
+        "16",
+        "--length",
+        "2e-7",
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--from"), "{}", stderr(&o));
+    let o = roughcontact(&["sweep", "--example", "challenge-small", "--print-config"]);
+    assert!(o.status.success());
+    assert!(stdout(&o).contains("mean_pressures"));
+    let d = dir("coarse");
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "challenge-small",
+        "--n",
+        "32",
+        "--mean-pressures",
+        "2.5e5",
+        "--no-png",
+        "--out",
+        d.join("c").to_str().unwrap(),
+    ]);
+    assert!(stderr(&o).contains("process-zone"), "{}", stderr(&o));
 }

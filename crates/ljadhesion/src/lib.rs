@@ -36,7 +36,7 @@ pub mod laws;
 pub mod lj;
 
 pub use error::{AdhesionError, Result};
-pub use laws::{DugdaleLaw, ExponentialLaw, LineLaw, PointLaw, SurfaceLaw};
+pub use laws::{DugdaleLaw, ExponentialLaw, LineLaw, NoAdhesion, PointLaw, SurfaceLaw};
 pub use lj::LennardJones;
 
 use ndarray::{ArrayView2, ArrayViewMut2};

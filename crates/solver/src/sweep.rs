@@ -121,14 +121,17 @@ pub fn sweep(
 #[derive(Clone, Debug, PartialEq)]
 pub struct CycleSummary {
     /// The most negative load on the unloading branch [N] (the pull-off force under
-    /// displacement control; reported as a negative number), if there is an unloading branch.
+    /// displacement control; reported as a negative number), if there is a tensile load on an
+    /// unloading branch.
     pub pull_off_force: Option<f64>,
     /// The approach at which it occurred [m].
     pub pull_off_approach: Option<f64>,
     /// The first loading step in contact after a step without [m] (the jump into contact lies
-    /// between it and the step before).
+    /// between it and the step before). Reported only when the branches differ in load (by
+    /// more than 1e-4 of the largest load) at some approach solved on both (hysteresis): a
+    /// contact that grows from a point and shrinks back to it the same way is no jump.
     pub jump_in_approach: Option<f64>,
-    /// The first unloading step out of contact after a step in contact [m].
+    /// The first unloading step out of contact after a step in contact [m] (same condition).
     pub jump_out_approach: Option<f64>,
     /// Work lost over the cycle: the work `sum W d(delta)` done on the bodies along the path
     /// (trapezoidal rule) [J], >= 0 for a dissipative cycle; meaningful when the path returns to
@@ -138,34 +141,72 @@ pub struct CycleSummary {
     pub all_converged: bool,
 }
 
+/// What [`summarize`] needs of one step (so that a sweep read back from a file can be
+/// summarised too). SI units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CyclePoint {
+    /// Approach [m].
+    pub approach: f64,
+    /// Total load [N].
+    pub load: f64,
+    /// Fraction of cells in contact [-].
+    pub contact_area_fraction: f64,
+    /// Direction of the step.
+    pub branch: Branch,
+    /// Whether the step converged.
+    pub converged: bool,
+}
+
+impl From<&SweepPoint> for CyclePoint {
+    fn from(p: &SweepPoint) -> Self {
+        CyclePoint {
+            approach: p.report.approach,
+            load: p.report.load,
+            contact_area_fraction: p.report.contact_area_fraction,
+            branch: p.branch,
+            converged: p.report.converged(),
+        }
+    }
+}
+
 /// Summarises a sweep over approaches (see [`CycleSummary`]).
-pub fn summarize(points: &[SweepPoint]) -> CycleSummary {
+pub fn summarize(points: &[CyclePoint]) -> CycleSummary {
     let mut pull_off: Option<(f64, f64)> = None;
     let (mut jump_in, mut jump_out) = (None, None);
     let mut work = 0.0;
     for (k, p) in points.iter().enumerate() {
-        let r = &p.report;
-        if p.branch == Branch::Unloading && pull_off.is_none_or(|(w, _)| r.load < w) {
-            pull_off = Some((r.load, r.approach));
+        if p.branch == Branch::Unloading && pull_off.is_none_or(|(w, _)| p.load < w) {
+            pull_off = Some((p.load, p.approach));
         }
         if k > 0 {
-            let prev = &points[k - 1].report;
-            let (was, is) = (prev.contact_area_fraction > 0.0, r.contact_area_fraction > 0.0);
+            let prev = &points[k - 1];
+            let (was, is) = (prev.contact_area_fraction > 0.0, p.contact_area_fraction > 0.0);
             if p.branch == Branch::Loading && !was && is && jump_in.is_none() {
-                jump_in = Some(r.approach);
+                jump_in = Some(p.approach);
             }
             if p.branch == Branch::Unloading && was && !is && jump_out.is_none() {
-                jump_out = Some(r.approach);
+                jump_out = Some(p.approach);
             }
-            work += 0.5 * (r.load + prev.load) * (r.approach - prev.approach);
+            work += 0.5 * (p.load + prev.load) * (p.approach - prev.approach);
         }
     }
+    let pull_off = pull_off.filter(|p| p.0 < 0.0);
+    let scale = points.iter().map(|p| p.approach.abs()).fold(0.0, f64::max);
+    let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * scale;
+    let max_load = points.iter().map(|p| p.load.abs()).fold(0.0, f64::max);
+    let hysteresis = points.iter().filter(|u| u.branch == Branch::Unloading).any(|u| {
+        points.iter().any(|l| {
+            l.branch == Branch::Loading
+                && same(l.approach, u.approach)
+                && (l.load - u.load).abs() > 1e-4 * max_load
+        })
+    });
     CycleSummary {
         pull_off_force: pull_off.map(|p| p.0),
         pull_off_approach: pull_off.map(|p| p.1),
-        jump_in_approach: jump_in,
-        jump_out_approach: jump_out,
+        jump_in_approach: jump_in.filter(|_| hysteresis),
+        jump_out_approach: jump_out.filter(|_| hysteresis),
         hysteresis_energy: work,
-        all_converged: points.iter().all(|p| p.report.converged()),
+        all_converged: points.iter().all(|p| p.converged),
     }
 }

@@ -8,7 +8,8 @@ use ndarray::Array2;
 use solver::adhesive::{OuterLoop, Start};
 use solver::geometry::{SphereProfile, flat_on_rough, sphere};
 use solver::{
-    AdhesiveOptions, Branch, ContactOptions, Control, Termination, solve, solve_adhesive, summarize, sweep,
+    AdhesiveOptions, Branch, ContactOptions, Control, CyclePoint, Termination, solve, solve_adhesive,
+    summarize, sweep,
 };
 use std::f64::consts::PI;
 use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec, generate};
@@ -62,7 +63,7 @@ fn dmt_limit_pull_off_is_two_pi_r_w0() {
             &mut |_, _, _| true,
         )
         .unwrap();
-        let summary = summarize(&points);
+        let summary = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
         assert!(summary.all_converged);
         let pull_off = summary.pull_off_force.unwrap() / (2.0 * PI * R * w0);
         println!("mu = 0.1: pull-off = {pull_off:.5} (2 pi R w0)");
@@ -89,7 +90,7 @@ fn jkr_side_cycle_jumps_and_pull_off_near_maugis() {
             &mut |_, _, _| true,
         )
         .unwrap();
-        let summary = summarize(&points);
+        let summary = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
         for p in &points {
             println!(
                 "{:9} a/z0 {:6.2} W/(pi R w0) {:8.4} area {:.4} outer {} inner {}",

@@ -1,0 +1,432 @@
+//! `sweep`: a quasi-static approach-retraction cycle (or any list of approaches, mean
+//! pressures or central gaps) with continuation, written step by step and resumable.
+
+use crate::case::{Case, layered, on_workers, to_toml, write_field};
+use crate::plot::{self, Series};
+use crate::solve::finish;
+use anyhow::{Context, Result, bail};
+use clap::{Args, ValueEnum};
+use indicatif::{ProgressBar, ProgressStyle};
+use ndarray::Array2;
+use plotters::style::RGBColor;
+use serde::{Deserialize, Serialize};
+use serde_json::json;
+use solver::{AdhesiveState, Branch, ContactState, Control, CyclePoint, approach_cycle, summarize};
+use std::fs::OpenOptions;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The path of a sweep (keys of the case file like the others).
+#[derive(Args, Debug, Default, Clone, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SweepPath {
+    /// Approach at the start and the end of the cycle [m] (negative: bodies apart).
+    #[arg(long, allow_hyphen_values = true)]
+    pub from: Option<f64>,
+    /// Turning point of the cycle [m].
+    #[arg(long, allow_hyphen_values = true)]
+    pub to: Option<f64>,
+    /// Steps from --from to --to; the way back takes as many again (default 20).
+    #[arg(long)]
+    pub steps: Option<usize>,
+    /// Explicit approaches [m], comma-separated, solved in this order.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, conflicts_with_all = ["from", "to", "steps"])]
+    pub approaches: Option<Vec<f64>>,
+    /// Explicit mean pressures [Pa] (load control), comma-separated, in this order.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, conflicts_with_all = ["from", "to", "steps", "approaches"])]
+    pub mean_pressures: Option<Vec<f64>>,
+    /// Explicit central gaps [m] (> 0), comma-separated: the approach follows, which traces the
+    /// unstable middle of a sphere's S-shaped curve.
+    #[arg(long, value_delimiter = ',', conflicts_with_all = ["from", "to", "steps", "approaches", "mean_pressures"])]
+    pub central_gaps: Option<Vec<f64>>,
+}
+
+/// Built-in cases, runnable with no input files (their TOML is in `data/examples`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Example {
+    /// Rigid sphere on an elastic flat without adhesion (Hertz), ~5 s.
+    Hertz,
+    /// Sphere with the Lennard-Jones surface law at Tabor parameter 3 (JKR side), ~1 min.
+    JkrSphere,
+    /// Sphere at Tabor parameter 0.1 (DMT side), ~10 s.
+    DmtSphere,
+    /// Rough sphere (Rq = z0) at Tabor parameter 2.
+    RoughSphere,
+    /// The contact-mechanics challenge at 256^2 with adhesion, load-controlled.
+    ChallengeSmall,
+}
+
+impl Example {
+    fn toml(self) -> (&'static str, &'static str) {
+        match self {
+            Example::Hertz => ("hertz", include_str!("../../../data/examples/hertz.toml")),
+            Example::JkrSphere => (
+                "jkr-sphere",
+                include_str!("../../../data/examples/jkr-sphere.toml"),
+            ),
+            Example::DmtSphere => (
+                "dmt-sphere",
+                include_str!("../../../data/examples/dmt-sphere.toml"),
+            ),
+            Example::RoughSphere => (
+                "rough-sphere",
+                include_str!("../../../data/examples/rough-sphere.toml"),
+            ),
+            Example::ChallengeSmall => (
+                "challenge-small",
+                include_str!("../../../data/examples/challenge-small.toml"),
+            ),
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct SweepArgs {
+    #[command(flatten)]
+    case: Case,
+    #[command(flatten)]
+    path: SweepPath,
+    /// TOML case file; its keys are the flags' names in snake_case.
+    #[arg(long, value_name = "FILE", conflicts_with = "example")]
+    config: Option<PathBuf>,
+    /// Run a built-in case (flags still override its settings).
+    #[arg(long, value_enum)]
+    example: Option<Example>,
+    /// Continue an interrupted sweep in --out: finished steps are kept, not redone.
+    #[arg(long)]
+    resume: bool,
+    /// Print the resolved case as TOML and exit without solving.
+    #[arg(long)]
+    print_config: bool,
+    /// Exit with status 0 even when a step does not converge (curve.csv says which).
+    #[arg(long)]
+    keep_going: bool,
+    /// Do not draw the load-approach plot.
+    #[arg(long)]
+    no_png: bool,
+}
+
+const HEADER: &str = "step,approach,load,mean_pressure,contact_area_fraction,attractive_area_fraction,\
+central_gap,branch,outer_iterations,inner_iterations,converged,residual,wall_time_s";
+
+/// One row of `curve.csv`, as much as the summary and the plot need.
+struct Row {
+    point: CyclePoint,
+}
+
+fn parse_rows(text: &str) -> Result<Vec<Row>> {
+    let mut rows = Vec::new();
+    for (k, line) in text.lines().skip(1).enumerate() {
+        let f: Vec<&str> = line.split(',').collect();
+        if f.len() != HEADER.split(',').count() {
+            bail!("curve.csv line {} is incomplete: {line}", k + 2);
+        }
+        let num = |i: usize| -> Result<f64> {
+            f[i].parse::<f64>()
+                .with_context(|| format!("curve.csv line {}: bad number {}", k + 2, f[i]))
+        };
+        rows.push(Row {
+            point: CyclePoint {
+                approach: num(1)?,
+                load: num(2)?,
+                contact_area_fraction: num(4)?,
+                branch: if f[7] == "unloading" {
+                    Branch::Unloading
+                } else {
+                    Branch::Loading
+                },
+                converged: f[10] == "true",
+            },
+        });
+    }
+    Ok(rows)
+}
+
+pub fn sweep(args: SweepArgs) -> Result<()> {
+    let (name, text) = match (&args.config, args.example) {
+        (Some(path), _) => (
+            path.display().to_string(),
+            Some(std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?),
+        ),
+        (None, Some(e)) => {
+            let (n, t) = e.toml();
+            (format!("example {n}"), Some(t.to_string()))
+        }
+        (None, None) => (String::new(), None),
+    };
+    let (mut case, mut path) = layered(
+        text.as_deref().map(|t| (name.as_str(), t)),
+        &args.case,
+        &args.path,
+    )?;
+    case.fill_defaults();
+    if path.approaches.is_none() && path.mean_pressures.is_none() && path.central_gaps.is_none() {
+        path.steps = path.steps.or(Some(20));
+    }
+    let resolved = to_toml(&case, &path)?;
+    if args.print_config {
+        println!("{resolved}");
+        return Ok(());
+    }
+    let controls: Vec<Control> = match (&path.approaches, &path.mean_pressures, &path.central_gaps) {
+        (Some(a), None, None) => a.iter().map(|&v| Control::Approach(v)).collect(),
+        (None, Some(p), None) => p.iter().map(|&v| Control::MeanPressure(v)).collect(),
+        (None, None, Some(g)) => g.iter().map(|&v| Control::CentralGap(v)).collect(),
+        (None, None, None) => {
+            let (from, to) = match (path.from, path.to) {
+                (Some(f), Some(t)) => (f, t),
+                _ => bail!(
+                    "give the path: --from A --to B [m] (--steps N), or --approaches, --mean-pressures or \
+                     --central-gaps, or run a built-in case with --example"
+                ),
+            };
+            approach_cycle(from, to, path.steps.unwrap_or(20))
+        }
+        _ => bail!("give one path only"),
+    };
+    if controls.iter().any(|c| {
+        let (Control::Approach(v) | Control::MeanPressure(v) | Control::Force(v) | Control::CentralGap(v)) =
+            *c;
+        !v.is_finite()
+    }) {
+        bail!("the sweep path has a non-finite value");
+    }
+    let problem = case.build()?;
+    for w in &problem.warnings {
+        eprintln!("warning: {w}");
+    }
+    let out = case.out.clone().expect("defaulted");
+    std::fs::create_dir_all(out.join("state")).with_context(|| format!("creating {}", out.display()))?;
+    let csv_path = out.join("curve.csv");
+    let case_path = out.join("case.toml");
+
+    // Resume: the same case, the finished rows and the last state.
+    let mut rows = Vec::new();
+    let mut start = None;
+    if args.resume && csv_path.exists() {
+        let old = std::fs::read_to_string(&case_path).unwrap_or_default();
+        if old.trim_end() != resolved {
+            bail!(
+                "--resume: {} holds a different case; rerun without --resume (or with the same settings)",
+                out.display()
+            );
+        }
+        rows = parse_rows(&std::fs::read_to_string(&csv_path)?)?;
+        if !rows.is_empty() {
+            start = Some(read_state(&out.join("state"))?);
+        }
+        eprintln!("resuming after {} of {} steps", rows.len(), controls.len());
+    } else {
+        std::fs::write(&case_path, resolved.clone() + "\n")?;
+        std::fs::write(&csv_path, format!("{HEADER}\n"))?;
+    }
+    let done = rows.len().min(controls.len());
+
+    let options = case.adhesive_options();
+    let bar = ProgressBar::new(controls.len() as u64).with_style(
+        ProgressStyle::with_template("{bar:30} {pos}/{len} steps, {elapsed} elapsed, ~{eta} left  {msg}")
+            .expect("valid template"),
+    );
+    bar.set_position(done as u64);
+    let mut csv = OpenOptions::new().append(true).open(&csv_path)?;
+    let started = Instant::now();
+    let state_dir = out.join("state");
+    let mut write_error = None;
+    let points = on_workers(|| {
+        solver::sweep(
+            problem.op.as_ref(),
+            problem.law.as_ref(),
+            problem.g0.view(),
+            &controls[done..],
+            &options,
+            start,
+            &mut |k, p, state| {
+                let r = &p.report;
+                let line = format!(
+                    "{},{:e},{:e},{:e},{},{},{:e},{},{},{},{},{:e},{:.3}\n",
+                    done + k,
+                    r.approach,
+                    r.load,
+                    r.mean_pressure,
+                    r.contact_area_fraction,
+                    r.attractive_area_fraction,
+                    r.central_gap,
+                    p.branch.name(),
+                    r.outer_iterations,
+                    r.inner_iterations,
+                    r.converged(),
+                    r.residual,
+                    r.wall_time_s
+                );
+                let saved = write_state(&state_dir, state)
+                    .and_then(|_| csv.write_all(line.as_bytes()).map_err(Into::into))
+                    .and_then(|_| csv.flush().map_err(Into::into));
+                bar.set_message(format!("approach {:.4e} m, load {:.4e} N", r.approach, r.load));
+                bar.inc(1);
+                match saved {
+                    Ok(()) => true,
+                    Err(e) => {
+                        write_error = Some(e);
+                        false
+                    }
+                }
+            },
+        )
+    })?;
+    bar.finish_and_clear();
+    if let Some(e) = write_error {
+        return Err(e.context("writing the sweep's results"));
+    }
+    rows.extend(points.iter().map(|p| Row {
+        point: CyclePoint::from(p),
+    }));
+    let cycle: Vec<CyclePoint> = rows.iter().map(|r| r.point).collect();
+    let summary = summarize(&cycle);
+
+    let domain = problem.domain;
+    let lj_z0 = case.z0.filter(|_| problem.adhesive());
+    let tabor = match (case.sphere_radius, lj_z0, case.work_of_adhesion) {
+        (Some(r), Some(z0), Some(w0)) => Some(theory::tabor_parameter(r, w0, problem.e_star, z0)),
+        _ => None,
+    };
+    let range = problem.law.range();
+    let json = json!({
+        "version": env!("CARGO_PKG_VERSION"),
+        "case": case,
+        "path": path,
+        "units": {
+            "pull_off_force": "N", "pull_off_approach": "m", "jump_in_approach": "m",
+            "jump_out_approach": "m", "hysteresis_energy": "J", "lengths": "m",
+            "curve.csv": "approach m, load N, mean_pressure Pa, central_gap m, wall_time_s s"
+        },
+        "surface_hash": problem.surface_hash,
+        "grid": { "nx": domain.nx, "ny": domain.ny, "dx": domain.dx, "dy": domain.dy, "periodic": domain.periodic },
+        "law": problem.law.name(),
+        "adhesive_range": problem.adhesive().then_some(range),
+        "adhesive_range_per_cell": problem.adhesive().then_some(range / domain.dx.max(domain.dy)),
+        "tabor_parameter": tabor,
+        "warnings": problem.warnings,
+        "steps": cycle.len(),
+        "pull_off_force": summary.pull_off_force,
+        "pull_off_approach": summary.pull_off_approach,
+        "jump_in_approach": summary.jump_in_approach,
+        "jump_out_approach": summary.jump_out_approach,
+        "hysteresis_energy": summary.hysteresis_energy,
+        "converged": summary.all_converged,
+        "wall_time_s": started.elapsed().as_secs_f64(),
+    });
+    std::fs::write(
+        out.join("summary.json"),
+        serde_json::to_string_pretty(&json)? + "\n",
+    )?;
+    if !args.no_png && cycle.len() > 1 {
+        plot_cycle(&out.join("load_approach.png"), &cycle)?;
+    }
+    println!("steps                 {}", cycle.len());
+    if let Some(w) = summary.pull_off_force {
+        println!(
+            "pull-off force        {w:.6e} N at approach {:.4e} m",
+            summary.pull_off_approach.unwrap_or(f64::NAN)
+        );
+    }
+    if let Some(a) = summary.jump_in_approach {
+        println!("jump in at approach   {a:.4e} m");
+    }
+    if let Some(a) = summary.jump_out_approach {
+        println!("jump out at approach  {a:.4e} m");
+    }
+    println!("hysteresis energy     {:.6e} J", summary.hysteresis_energy);
+    if let Some(mu) = tabor {
+        println!("Tabor parameter       {mu:.4}");
+    }
+    println!("wrote {}/curve.csv, summary.json", out.display());
+    let failed = cycle.iter().filter(|p| !p.converged).count();
+    finish(
+        summary.all_converged,
+        format!(
+            "{failed} of {} steps did not converge (see curve.csv)",
+            cycle.len()
+        ),
+        args.keep_going,
+        &out,
+    )
+}
+
+fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
+    write_field(dir, "compressive_pressure", &state.contact.pressure)?;
+    write_field(dir, "adhesive_pressure", &state.adhesive_pressure)?;
+    write_field(dir, "gap", &state.contact.gap)?;
+    write_field(dir, "displacement", &state.contact.displacement)?;
+    std::fs::write(
+        dir.join("approach.txt"),
+        format!("{:e}\n", state.contact.approach),
+    )?;
+    Ok(())
+}
+
+fn read_state(dir: &Path) -> Result<AdhesiveState> {
+    let read = |name: &str| -> Result<Array2<f64>> {
+        let path = dir.join(format!("{name}.npy"));
+        ndarray_npy::read_npy(&path).with_context(|| format!("reading {}", path.display()))
+    };
+    let approach: f64 = std::fs::read_to_string(dir.join("approach.txt"))?
+        .trim()
+        .parse()?;
+    Ok(AdhesiveState {
+        contact: ContactState {
+            pressure: read("compressive_pressure")?,
+            gap: read("gap")?,
+            displacement: read("displacement")?,
+            approach,
+        },
+        adhesive_pressure: read("adhesive_pressure")?,
+    })
+}
+
+fn plot_cycle(path: &Path, cycle: &[CyclePoint]) -> Result<()> {
+    let (lf, lu) = plot::length_unit(cycle.iter().map(|p| p.approach.abs()).fold(0.0, f64::max));
+    let max_load = cycle.iter().map(|p| p.load.abs()).fold(0.0, f64::max);
+    let (ff, fu) = force_unit(max_load);
+    let branch = |b: Branch| -> Vec<(f64, f64)> {
+        cycle
+            .iter()
+            .filter(|p| p.branch == b)
+            .map(|p| (p.approach * lf, p.load * ff))
+            .collect()
+    };
+    plot::lines(
+        path,
+        "load against approach",
+        &format!("approach [{lu}]"),
+        &format!("load [{fu}]"),
+        &[
+            Series {
+                label: "loading",
+                points: branch(Branch::Loading),
+                markers: true,
+                color: RGBColor(31, 119, 180),
+            },
+            Series {
+                label: "unloading",
+                points: branch(Branch::Unloading),
+                markers: true,
+                color: RGBColor(214, 39, 40),
+            },
+        ],
+    )
+}
+
+fn force_unit(v: f64) -> (f64, &'static str) {
+    if v >= 1.0 {
+        (1.0, "N")
+    } else if v >= 1e-3 {
+        (1e3, "mN")
+    } else if v >= 1e-6 {
+        (1e6, "µN")
+    } else if v >= 1e-9 {
+        (1e9, "nN")
+    } else {
+        (1e12, "pN")
+    }
+}
