@@ -44,7 +44,8 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Time the non-adhesive solver on one self-affine problem at several grid sizes.
     Bench(bench::BenchArgs),
-    /// Reference curves (Maugis-Dugdale, JKR, DMT) as CSV, or their pull-off forces.
+    /// Reference curves (Maugis-Dugdale, JKR, DMT, Greenwood's Lennard-Jones sphere) as CSV,
+    /// or their pull-off forces.
     #[command(allow_negative_numbers = true)]
     Theory(theory_cmd::TheoryArgs),
 }

@@ -26,7 +26,7 @@ fn stderr(o: &Output) -> String {
 
 #[test]
 fn help_texts_name_their_units() {
-    for cmd in ["generate", "stats", "psd", "solve", "sweep"] {
+    for cmd in ["generate", "stats", "psd", "solve", "sweep", "theory"] {
         let o = roughcontact(&[cmd, "--help"]);
         assert!(o.status.success());
         insta::assert_snapshot!(format!("help_{cmd}"), stdout(&o));
@@ -347,6 +347,29 @@ fn theory_curves_and_pull_offs() {
     assert!(csv.starts_with("m,contact_radius_A,load_P,approach_D\n"));
     assert_eq!(csv.lines().count(), 51);
     let o = roughcontact(&["theory", "maugis", "--lambda", "-1"]);
+    assert!(!o.status.success());
+    // Greenwood's Lennard-Jones sphere: an S at mu = 2, its pull-offs in 2 pi R w0, a plot.
+    let o = roughcontact(&["theory", "greenwood", "--tabor", "2", "--summary", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let lc = v["pull_off_load_control"].as_f64().unwrap();
+    assert!(lc < -0.75 && lc > -0.85, "{lc}");
+    assert!(v["pull_off_displacement_control"].as_f64().unwrap() > lc);
+    assert!(v["jump_in_approach"].as_f64().unwrap() > v["jump_out_approach"].as_f64().unwrap());
+    let d = dir("greenwood");
+    let png = d.join("g.png");
+    let o = roughcontact(&[
+        "theory",
+        "greenwood",
+        "--tabor",
+        "0.5",
+        "--plot",
+        png.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).starts_with("central_separation,approach,load,contact_radius\n"));
+    assert!(png.exists());
+    let o = roughcontact(&["theory", "greenwood", "--tabor", "0"]);
     assert!(!o.status.success());
 }
 
