@@ -26,6 +26,10 @@ pub struct SolveControl {
     /// (negative holds the bodies apart, with adhesion).
     #[arg(long, allow_hyphen_values = true)]
     pub approach: Option<f64>,
+    /// Displacement control by the mean gap over the box [m] (periodic domains, where the
+    /// mean displacement is zero: the approach is mean(initial gap) - mean gap).
+    #[arg(long)]
+    pub mean_gap: Option<f64>,
 }
 
 #[derive(Args, Debug)]
@@ -70,13 +74,27 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         println!("{}", to_toml(&case, &control)?);
         return Ok(());
     }
-    let control = match (control.mean_pressure, control.load, control.approach) {
-        (Some(p), None, None) => Control::MeanPressure(p),
-        (None, Some(w), None) => Control::Force(w),
-        (None, None, Some(d)) => Control::Approach(d),
-        _ => bail!("give exactly one of --mean-pressure [Pa], --load [N] or --approach [m]"),
-    };
     let problem = case.build()?;
+    let control = match (
+        control.mean_pressure,
+        control.load,
+        control.approach,
+        control.mean_gap,
+    ) {
+        (Some(p), None, None, None) => Control::MeanPressure(p),
+        (None, Some(w), None, None) => Control::Force(w),
+        (None, None, Some(d), None) => Control::Approach(d),
+        (None, None, None, Some(g)) => {
+            if !problem.domain.periodic {
+                bail!("--mean-gap needs a periodic domain (on a free one the mean displacement is not zero)");
+            }
+            if !(g.is_finite() && g >= 0.0) {
+                bail!("--mean-gap must be finite and >= 0 m, got {g}");
+            }
+            Control::Approach(problem.g0.mean().unwrap_or(0.0) - g)
+        }
+        _ => bail!("give exactly one of --mean-pressure [Pa], --load [N], --approach [m] or --mean-gap [m]"),
+    };
     for w in &problem.warnings {
         eprintln!("warning: {w}");
     }
