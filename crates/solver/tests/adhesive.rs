@@ -417,3 +417,54 @@ fn sphere_curve_follows_greenwood() {
         }
     });
 }
+
+/// Prescribing the central gap instead of the approach traces the part of an S-shaped curve
+/// that a displacement-controlled sweep jumps over (the approach turns back), and it follows
+/// Greenwood's curve at the same central separation (h(0) = 1 + g(0)/z0).
+#[test]
+fn central_gap_control_traces_the_unstable_branch() {
+    pool().install(|| {
+        let mu = 2.0;
+        let (op, g0, law, w0) = sphere_case(mu, 64, 150.0);
+        // Down to 0.9 z0: closer to contact the neck under the apex narrows below what 4.7-z0
+        // cells resolve.
+        let gaps: Vec<f64> = (0..=8).map(|k| 2.5 - 0.2 * k as f64).collect();
+        let path: Vec<Control> = gaps.iter().map(|g| Control::CentralGap(g * Z0)).collect();
+        let points = sweep(
+            &op,
+            &law,
+            g0.view(),
+            &path,
+            &AdhesiveOptions::default(),
+            None,
+            &mut |_, _, _| true,
+        )
+        .unwrap();
+        let greenwood = theory::greenwood::Greenwood::new(mu, theory::greenwood::Mesh::default());
+        let alphas: Vec<f64> = points.iter().map(|p| p.report.approach / Z0).collect();
+        for (p, g) in points.iter().zip(&gaps) {
+            assert!(p.report.converged(), "{:?}", p.report.termination);
+            assert!(
+                (p.report.central_gap / Z0 - g).abs() < 1e-3,
+                "{} vs {g}",
+                p.report.central_gap / Z0
+            );
+            assert_eq!(p.report.contact_area_fraction, 0.0);
+            let theory = greenwood.at(1.0 + g).unwrap();
+            println!(
+                "g(0)/z0 {g:4.2}: alpha {:7.4} (Greenwood {:7.4}), W {:7.4} (Greenwood {:7.4})",
+                p.report.approach / Z0,
+                theory.approach,
+                p.report.load / (2.0 * PI * R * w0),
+                theory.load
+            );
+            assert!((p.report.approach / Z0 - theory.approach).abs() < 0.05);
+        }
+        // The approach rises, turns (the jump-in point of a displacement-controlled sweep)
+        // and falls again as the central gap keeps closing.
+        let top = alphas.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        let k = alphas.iter().position(|&a| a == top).unwrap();
+        assert!(k > 0 && k < alphas.len() - 1, "{alphas:?}");
+        assert!(alphas[alphas.len() - 1] < top - 0.05, "{alphas:?}");
+    });
+}
