@@ -64,3 +64,47 @@ pub fn erf(x: f64) -> f64 {
         1.0 - (-x * x).exp() / (PI.sqrt() * (x + f))
     }
 }
+
+/// The isotropic self-affine power spectrum of the paper's Eq. 13, normalised to an RMS height:
+/// `C(q) = C0` for `q_long <= q < q_rolloff`, `C0 (q/q_rolloff)^(-2(1+H))` up to `q_short`,
+/// zero elsewhere. Wavevectors in rad/m, heights in m.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SelfAffineSpectrum {
+    pub hurst: f64,
+    pub q_long: f64,
+    pub q_rolloff: f64,
+    pub q_short: f64,
+    pub rms_height: f64,
+}
+
+impl SelfAffineSpectrum {
+    /// `integral d^2q q^n C(q) / C0 = 2 pi integral q^(n+1) C(q)/C0 dq`.
+    fn shape_moment(&self, n: f64) -> f64 {
+        let (ql, qr, qs, h) = (self.q_long, self.q_rolloff, self.q_short, self.hurst);
+        let plateau = (qr.powf(n + 2.0) - ql.powf(n + 2.0)) / (n + 2.0);
+        let e = n - 2.0 * h;
+        let tail = qr.powf(2.0 + 2.0 * h)
+            * if e.abs() < 1e-12 {
+                (qs / qr).ln()
+            } else {
+                (qs.powf(e) - qr.powf(e)) / e
+            };
+        2.0 * PI * (plateau + tail)
+    }
+
+    /// The spectral moment `integral d^2q |q|^n C(q)`: `Rq^2` for `n = 0`, the mean square
+    /// gradient for `n = 2`, and for `n = 1` the integral of the elastic energy of full contact
+    /// (Persson & Tosatti) [m^(2-n)].
+    pub fn moment(&self, n: f64) -> f64 {
+        self.rms_height * self.rms_height * self.shape_moment(n) / self.shape_moment(0.0)
+    }
+}
+
+/// Persson & Tosatti's (2001) effective work of adhesion [J/m^2]: the adhesion gained over the
+/// true (larger) area in full contact, `w0 (1 + g_bar^2 / 2)`, minus the elastic energy per
+/// nominal area stored by flattening the roughness, `(E*/4) integral d^2q |q| C(q)`
+/// (`moment_1` [m], e.g. [`SelfAffineSpectrum::moment`]`(1.0)`). The surfaces stick
+/// (full contact holds without load) when it is positive.
+pub fn persson_tosatti_work(w0: f64, e_star: f64, moment_1: f64, rms_gradient: f64) -> f64 {
+    w0 * (1.0 + 0.5 * rms_gradient * rms_gradient) - 0.25 * e_star * moment_1
+}

@@ -101,3 +101,49 @@ fn rough_contact_areas() {
     assert!((erf(3.0) - 0.9999779095030014).abs() < 1e-15);
     assert!(ciavarella_sticky(1e-9, 50e9, 1e-5, 0.1));
 }
+
+#[test]
+fn self_affine_moments_and_persson_tosatti() {
+    use theory::rough::{SelfAffineSpectrum, persson_tosatti_work};
+    let s = SelfAffineSpectrum {
+        hurst: 0.8,
+        q_long: 2.0 * std::f64::consts::PI / 1e-4,
+        q_rolloff: 2.0 * std::f64::consts::PI / 2e-5,
+        q_short: 2.0 * std::f64::consts::PI / 1e-7,
+        rms_height: 1e-6,
+    };
+    assert!((s.moment(0.0) / 1e-12 - 1.0).abs() < 1e-12);
+    // Against a midpoint quadrature on a logarithmic grid.
+    let c = |q: f64| {
+        if q < s.q_rolloff {
+            1.0
+        } else {
+            (q / s.q_rolloff).powf(-2.0 * (1.0 + s.hurst))
+        }
+    };
+    let quad = |n: f64| {
+        let steps = 200_000;
+        let (a, b) = (s.q_long.ln(), s.q_short.ln());
+        let h = (b - a) / steps as f64;
+        (0..steps)
+            .map(|k| {
+                let q = (a + (k as f64 + 0.5) * h).exp();
+                2.0 * std::f64::consts::PI * q.powf(n + 2.0) * c(q) * h
+            })
+            .sum::<f64>()
+    };
+    for n in [1.0, 2.0] {
+        let expected = 1e-12 * quad(n) / quad(0.0);
+        assert!((s.moment(n) / expected - 1.0).abs() < 1e-6, "n = {n}");
+    }
+    // The elastic term grows like Rq^2: a smooth surface sticks, a rough one does not.
+    let g = s.moment(2.0).sqrt();
+    let w = persson_tosatti_work(0.05, 25e6, s.moment(1.0), g);
+    assert!(w < 0.0, "Rq = 1 um on E* = 25 MPa is not sticky: {w}");
+    let smooth = SelfAffineSpectrum {
+        rms_height: 1e-9,
+        ..s
+    };
+    let w = persson_tosatti_work(0.05, 25e6, smooth.moment(1.0), smooth.moment(2.0).sqrt());
+    assert!(w > 0.0 && w < 0.05 * 1.01);
+}
