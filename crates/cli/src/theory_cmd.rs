@@ -67,6 +67,178 @@ enum Model {
         #[arg(long, default_value_t = 0.02)]
         ring_width: f64,
     },
+    /// Hertz sphere: load, contact radius and peak pressure against approach (SI units).
+    Hertz {
+        /// Sphere radius R [m].
+        #[arg(long)]
+        radius: f64,
+        /// Composite modulus E* [Pa].
+        #[arg(long)]
+        modulus: f64,
+        /// Largest approach on the curve [m].
+        #[arg(long)]
+        max_approach: f64,
+    },
+    /// Relative contact area of a nominally flat rough surface against the reduced pressure
+    /// p/(E* g_bar): Persson's erf law and Müser's formula (the paper's Eq. 14, corrected).
+    Area {
+        /// Müser's prefactor k (the small-load slope).
+        #[arg(long, default_value_t = 2.0)]
+        k: f64,
+        /// Largest reduced pressure p/(E* g_bar) on the curve.
+        #[arg(long, default_value_t = 1.0)]
+        max_pressure: f64,
+    },
+    /// Stickiness of a self-affine surface (Eq. 13 spectrum): the modified Johnson parameter
+    /// (Eq. 15), Ciavarella's variable and criterion (Eq. 16) and Persson-Tosatti's effective
+    /// work of adhesion, from plain numbers (take them from `roughcontact stats`).
+    Sticky {
+        /// Work of adhesion w0 [J/m^2].
+        #[arg(long)]
+        work_of_adhesion: f64,
+        /// Composite modulus E* [Pa].
+        #[arg(long)]
+        modulus: f64,
+        /// RMS height Rq [m].
+        #[arg(long)]
+        rms_height: f64,
+        /// Hurst exponent H [-].
+        #[arg(long, default_value_t = 0.8)]
+        hurst: f64,
+        /// Longest wavelength lambda_L [m] (the box).
+        #[arg(long)]
+        long_wavelength: f64,
+        /// Roll-off wavelength [m] (default: lambda_L, no plateau).
+        #[arg(long)]
+        rolloff_wavelength: Option<f64>,
+        /// Shortest wavelength [m].
+        #[arg(long)]
+        short_wavelength: f64,
+    },
+}
+
+fn hertz(a: &TheoryArgs, r: f64, e: f64, max: f64) -> Result<()> {
+    if !(r > 0.0 && e > 0.0 && max > 0.0 && r.is_finite() && e.is_finite() && max.is_finite()) {
+        bail!("--radius, --modulus and --max-approach must be finite and > 0");
+    }
+    let mut out = open(a)?;
+    writeln!(out, "approach_m,load_n,contact_radius_m,max_pressure_pa")?;
+    let mut pts = Vec::new();
+    for k in 0..a.points {
+        let d = max * k as f64 / (a.points - 1) as f64;
+        let w = theory::hertz::load_of_approach(d, r, e);
+        let c = (r * d).sqrt();
+        let p0 = if c > 0.0 {
+            3.0 * w / (2.0 * std::f64::consts::PI * c * c)
+        } else {
+            0.0
+        };
+        writeln!(out, "{d:e},{w:e},{c:e},{p0:e}")?;
+        pts.push((d, w));
+    }
+    if let Some(path) = &a.plot {
+        draw(path, "Hertz", "approach [m]", "load [N]", pts)?;
+    }
+    Ok(())
+}
+
+fn area(a: &TheoryArgs, k: f64, max: f64) -> Result<()> {
+    if !(k > 0.0 && max > 0.0 && k.is_finite() && max.is_finite()) {
+        bail!("--k and --max-pressure must be finite and > 0");
+    }
+    let mut out = open(a)?;
+    writeln!(out, "reduced_pressure,persson,muser")?;
+    let (mut p1, mut p2) = (Vec::new(), Vec::new());
+    for i in 0..a.points {
+        let x = max * i as f64 / (a.points - 1) as f64;
+        let (ap, am) = (theory::rough::persson_area(x), theory::rough::muser_area(x, k));
+        writeln!(out, "{x:e},{ap:e},{am:e}")?;
+        p1.push((x, ap));
+        p2.push((x, am));
+    }
+    if let Some(path) = &a.plot {
+        crate::plot::lines(
+            path,
+            "relative contact area",
+            "p / (E* g_bar)",
+            "a_r",
+            &[
+                crate::plot::Series {
+                    label: "Persson",
+                    points: p1,
+                    markers: false,
+                    color: plotters::style::RGBColor(31, 119, 180),
+                },
+                crate::plot::Series {
+                    label: "Müser",
+                    points: p2,
+                    markers: false,
+                    color: plotters::style::RGBColor(214, 39, 40),
+                },
+            ],
+        )?;
+    }
+    Ok(())
+}
+
+#[allow(clippy::too_many_arguments)]
+fn sticky(
+    a: &TheoryArgs,
+    w0: f64,
+    e: f64,
+    rq: f64,
+    hurst: f64,
+    long: f64,
+    rolloff: Option<f64>,
+    short: f64,
+) -> Result<()> {
+    use std::f64::consts::PI;
+    use theory::rough::{
+        SelfAffineSpectrum, ciavarella_sticky, ciavarella_variable, johnson_parameter, persson_tosatti_work,
+    };
+    let rolloff = rolloff.unwrap_or(long);
+    let all = [w0, e, rq, long, rolloff, short];
+    if all.iter().any(|v| !(v.is_finite() && *v > 0.0))
+        || !(short < rolloff && rolloff <= long)
+        || !(hurst > 0.0 && hurst < 1.0)
+    {
+        bail!("need positive finite inputs, short < roll-off <= long wavelength and 0 < H < 1");
+    }
+    let spectrum = SelfAffineSpectrum {
+        hurst,
+        q_long: 2.0 * PI / long,
+        q_rolloff: 2.0 * PI / rolloff,
+        q_short: 2.0 * PI / short,
+        rms_height: rq,
+    };
+    let gradient = spectrum.moment(2.0).sqrt();
+    let johnson = johnson_parameter(w0, e, rq, spectrum.q_long, spectrum.q_short, hurst);
+    let ciavarella = ciavarella_variable(rq, e, long, w0);
+    let pt = persson_tosatti_work(w0, e, spectrum.moment(1.0), gradient);
+    let mut out = open(a)?;
+    if a.json {
+        let v = json!({
+            "rms_gradient": gradient, "johnson_parameter": johnson,
+            "ciavarella_variable": ciavarella, "ciavarella_sticky": ciavarella_sticky(rq, e, long, w0),
+            "persson_tosatti_work": pt, "persson_tosatti_sticky": pt > 0.0,
+            "units": "persson_tosatti_work in J/m^2; the others dimensionless",
+        });
+        writeln!(out, "{}", serde_json::to_string_pretty(&v)?)?;
+    } else {
+        writeln!(out, "RMS gradient                      {gradient:.6e}")?;
+        writeln!(out, "modified Johnson parameter        {johnson:.6e}")?;
+        writeln!(
+            out,
+            "Ciavarella's Rq^2 E*/(lambda_L w0) {ciavarella:.6e} (sticky below 0.6: {})",
+            ciavarella_sticky(rq, e, long, w0)
+        )?;
+        writeln!(
+            out,
+            "Persson-Tosatti effective work    {pt:.6e} J/m^2 (sticky when > 0: {})",
+            pt > 0.0
+        )?;
+    }
+    Ok(())
 }
 
 fn greenwood(
@@ -178,6 +350,35 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
     {
         return greenwood(&a, tabor, max_approach, from, resolution, ring_width);
     }
+    match a.model {
+        Model::Hertz {
+            radius,
+            modulus,
+            max_approach,
+        } => return hertz(&a, radius, modulus, max_approach),
+        Model::Area { k, max_pressure } => return area(&a, k, max_pressure),
+        Model::Sticky {
+            work_of_adhesion,
+            modulus,
+            rms_height,
+            hurst,
+            long_wavelength,
+            rolloff_wavelength,
+            short_wavelength,
+        } => {
+            return sticky(
+                &a,
+                work_of_adhesion,
+                modulus,
+                rms_height,
+                hurst,
+                long_wavelength,
+                rolloff_wavelength,
+                short_wavelength,
+            );
+        }
+        _ => {}
+    }
     let (lambda, tabor) = match a.model {
         Model::Maugis {
             lambda: Some(l),
@@ -190,7 +391,9 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
         Model::Maugis { .. } => bail!("give exactly one of --lambda or --tabor"),
         Model::Jkr => (1e7, None),
         Model::Dmt => (1e-7, None),
-        Model::Greenwood { .. } => unreachable!("handled above"),
+        Model::Greenwood { .. } | Model::Hertz { .. } | Model::Area { .. } | Model::Sticky { .. } => {
+            unreachable!("handled above")
+        }
     };
     if !(lambda.is_finite() && lambda > 0.0) {
         bail!("the Maugis parameter must be finite and > 0, got {lambda}");

@@ -371,6 +371,55 @@ fn theory_curves_and_pull_offs() {
     assert!(png.exists());
     let o = roughcontact(&["theory", "greenwood", "--tabor", "0"]);
     assert!(!o.status.success());
+    // Rough-surface formulas: the challenge's spectrum at Rq = 0.76 um has an RMS gradient
+    // near 1 and is not sticky on E* = 25 MPa with w0 = 50 mJ/m^2 by either criterion.
+    let o = roughcontact(&[
+        "theory",
+        "sticky",
+        "--work-of-adhesion",
+        "0.05",
+        "--modulus",
+        "25e6",
+        "--rms-height",
+        "7.6e-7",
+        "--long-wavelength",
+        "1e-4",
+        "--rolloff-wavelength",
+        "2e-5",
+        "--short-wavelength",
+        "1e-7",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert!((v["rms_gradient"].as_f64().unwrap() - 1.0).abs() < 0.05);
+    assert_eq!(v["ciavarella_sticky"], false);
+    assert_eq!(v["persson_tosatti_sticky"], false);
+    let o = roughcontact(&["theory", "area", "--points", "11", "--max-pressure", "0.01"]);
+    let csv = stdout(&o);
+    assert!(csv.starts_with("reduced_pressure,persson,muser\n"));
+    let last: Vec<f64> = csv
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    assert!(
+        (last[2] / (2.0 * last[0]) - 1.0).abs() < 1e-3,
+        "Muser's small-load slope is k"
+    );
+    let o = roughcontact(&[
+        "theory",
+        "hertz",
+        "--radius",
+        "1e-6",
+        "--modulus",
+        "1e9",
+        "--max-approach",
+        "1e-9",
+    ]);
+    assert!(o.status.success());
 }
 
 fn json(path: &std::path::Path) -> serde_json::Value {
