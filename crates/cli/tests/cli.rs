@@ -606,3 +606,24 @@ fn sweep_refuses_bad_paths_and_warns_about_coarse_grids() {
     ]);
     assert!(stderr(&o).contains("process-zone"), "{}", stderr(&o));
 }
+
+#[test]
+fn a_bistable_unloading_step_settles() {
+    // On the rough sphere, unloading from 1 to 1.5 nm apart leaves a few cells undecided
+    // between contact and separation; Anderson mixing alone orbited there for 20000 outer
+    // iterations. The stall detection hands over to damped relaxation, which settles.
+    let d = dir("bistable");
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "rough-sphere",
+        "--approaches=-1e-9,-1.5e-9",
+        "--max-iterations",
+        "2000",
+        "--no-png",
+        "--out",
+        d.join("r").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(json(&d.join("r/summary.json"))["converged"], true);
+}

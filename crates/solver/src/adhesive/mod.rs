@@ -31,6 +31,9 @@ use std::time::Instant;
 
 const INNER_FACTOR: f64 = 0.1;
 
+/// Outer iterations without a 10 % improvement of the best residual that count as a stall.
+const STALL: usize = 60;
+
 /// How the outer loop updates the adhesive pressure.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum OuterLoop {
@@ -311,6 +314,8 @@ pub fn solve_adhesive_observed(
     let (mut calls, mut inner_iterations, mut outer) = (0, 0, 0);
     let mut termination = Termination::MaxIterations;
     let mut falling = 0;
+    // Stall detection: the best residual so far and when it last improved by 10 %.
+    let (mut best, mut improved_at, mut stalls) = (f64::INFINITY, 0, 0);
     let mut approach = 0.0;
     loop {
         op.apply(p_a.view(), u_a.view_mut(), &mut ws)?;
@@ -396,9 +401,22 @@ pub fn solve_adhesive_observed(
         // grows, regrow it slowly while the residual falls.
         // A jump into or out of contact makes the residual grow for a while by itself, so the
         // factor has a floor.
-        if history.len() >= 2 && residual > history[history.len() - 2] {
+        if residual < 0.9 * best {
+            best = residual;
+            improved_at = outer;
+        }
+        if outer - improved_at > STALL {
+            // Cycling between nearly equal states (a few cells at a contact edge, near a
+            // jump): Anderson mixing can orbit there for ever. Drop it for the damped plain
+            // relaxation, whose small steps settle on one state, with a lower floor.
+            stalls += 1;
+            improved_at = outer;
+            mixer = Anderson::new(0);
+            beta = (beta * 0.5).max(beta_min * 0.02);
+            falling = 0;
+        } else if history.len() >= 2 && residual > history[history.len() - 2] {
             if residual > 2.0 * history[history.len() - 2] || options.outer_loop == OuterLoop::DualLoop {
-                beta = (beta * 0.7).max(beta_min);
+                beta = (beta * 0.7).max(if stalls > 0 { beta_min * 0.02 } else { beta_min });
                 mixer.reset();
             }
             falling = 0;
