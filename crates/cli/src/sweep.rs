@@ -53,7 +53,7 @@ pub enum Example {
     DmtSphere,
     /// Rough sphere (Rq = z0) at Tabor parameter 2.
     RoughSphere,
-    /// The contact-mechanics challenge at 256^2 with adhesion, load-controlled.
+    /// The contact-mechanics challenge at 256^2 with its exponential adhesion, load-controlled.
     ChallengeSmall,
 }
 
