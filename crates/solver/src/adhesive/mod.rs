@@ -52,9 +52,10 @@ pub struct AdhesiveOptions {
     pub tolerance: f64,
     /// Outer iteration limit.
     pub max_outer_iterations: usize,
-    /// Relaxation factor `beta` in (0, 1]; `None` chooses it from the law's stiffness bound and
-    /// the cell's elastic stiffness, `1 / (1 + k_law c_cell)`. Either way it is halved when the
-    /// residual grows and regrown slowly while it falls.
+    /// Global relaxation factor `beta` in (0, 1] (`None`: 1). Each cell's step is further
+    /// scaled by `1 / (1 + k c)`, with `k` the law's attractive stiffness at the cell's gap and
+    /// `c` the cell's compliance. `beta` shrinks when the residual grows or stalls and regrows
+    /// slowly while it falls.
     pub relaxation: Option<f64>,
     /// Iterates kept by Anderson mixing.
     pub history: usize,
@@ -161,19 +162,6 @@ impl AdhesiveReport {
 /// The displacement [m] of one cell under unit pressure [Pa] on itself: the cell's compliance.
 pub fn cell_compliance(domain: &Domain, e_star: f64) -> f64 {
     elastic::love::cell_influence(0.0, 0.0, domain.dx / 2.0, domain.dy / 2.0, e_star)
-}
-
-/// The automatic relaxation factor `1 / (1 + k_law c_cell)`: the plain relaxation is stable
-/// when the law's stiffness times the cell compliance is small; this factor keeps a single cell
-/// stable whatever their ratio.
-pub fn automatic_relaxation(domain: &Domain, e_star: f64, law: &dyn AdhesionLaw) -> f64 {
-    let k = law.stiffness_bound();
-    if k.is_finite() {
-        1.0 / (1.0 + k * cell_compliance(domain, e_star))
-    } else {
-        // A discontinuous law (Dugdale): no stiffness to scale by.
-        0.05
-    }
 }
 
 /// Warnings about a grid too coarse for the law: the cohesive (process-zone) length
