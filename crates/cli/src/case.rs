@@ -433,6 +433,26 @@ impl Case {
     }
 }
 
+/// Writes `summary.json` into `out`: the version, the resolved case, the surface's
+/// fingerprint and the grid, then the run's own `results` (a JSON object).
+pub fn write_summary(out: &Path, case: &impl Serialize, problem: &Problem, results: Value) -> Result<()> {
+    let d = problem.domain;
+    let mut summary = serde_json::json!({
+        "version": env!("CARGO_PKG_VERSION"),
+        "case": case,
+        "surface_hash": problem.surface_hash,
+        "grid": { "nx": d.nx, "ny": d.ny, "dx": d.dx, "dy": d.dy, "periodic": d.periodic },
+    });
+    if let (Value::Object(all), Value::Object(results)) = (&mut summary, results) {
+        all.extend(results);
+    }
+    std::fs::write(
+        out.join("summary.json"),
+        serde_json::to_string_pretty(&summary)? + "\n",
+    )?;
+    Ok(())
+}
+
 /// Writes a field as `.npy` into `dir`.
 pub fn write_field(dir: &Path, name: &str, field: &Array2<f64>) -> Result<()> {
     io::write_npy(field, &dir.join(format!("{name}.npy")))?;

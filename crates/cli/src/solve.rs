@@ -1,6 +1,6 @@
 //! `solve`: one normal contact, with or without adhesion, from flags or a TOML case file.
 
-use crate::case::{Case, Problem, layered, on_workers, to_toml, write_field};
+use crate::case::{Case, Problem, layered, on_workers, to_toml, write_field, write_summary};
 use crate::plot;
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -127,15 +127,11 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     write_field(&out, "gap", &state.gap)?;
     write_field(&out, "displacement", &state.displacement)?;
     let summary = json!({
-        "version": env!("CARGO_PKG_VERSION"),
-        "case": case,
         "units": {
             "load": "N", "mean_pressure": "Pa", "approach": "m", "max_pressure": "Pa",
             "elastic_energy": "J", "lengths": "m", "modulus": "Pa", "wall_time_s": "s",
             "pressure.npy": "Pa", "gap.npy": "m", "displacement.npy": "m"
         },
-        "surface_hash": problem.surface_hash,
-        "grid": { "nx": domain.nx, "ny": domain.ny, "dx": domain.dx, "dy": domain.dy, "periodic": domain.periodic },
         "load": report.load,
         "mean_pressure": report.mean_pressure,
         "approach": report.approach,
@@ -151,10 +147,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         "residual_history": report.residual_history,
         "wall_time_s": report.wall_time_s,
     });
-    std::fs::write(
-        out.join("summary.json"),
-        serde_json::to_string_pretty(&summary)? + "\n",
-    )?;
+    write_summary(&out, &case, &problem, summary)?;
     if !args.no_png {
         pressure_map(
             &out,
@@ -246,16 +239,12 @@ fn solve_adhesive(
     write_field(out, "gap", &state.contact.gap)?;
     write_field(out, "displacement", &state.contact.displacement)?;
     let summary = json!({
-        "version": env!("CARGO_PKG_VERSION"),
-        "case": case,
         "units": {
             "load": "N", "mean_pressure": "Pa", "approach": "m", "pressures": "Pa",
             "lengths": "m", "modulus": "Pa", "work_of_adhesion": "J/m^2", "wall_time_s": "s",
             "pressure.npy": "Pa (total)", "compressive_pressure.npy": "Pa", "adhesive_pressure.npy": "Pa",
             "gap.npy": "m", "displacement.npy": "m"
         },
-        "surface_hash": problem.surface_hash,
-        "grid": { "nx": domain.nx, "ny": domain.ny, "dx": domain.dx, "dy": domain.dy, "periodic": domain.periodic },
         "law": problem.law.name(),
         "warnings": problem.warnings,
         "load": report.load,
@@ -277,10 +266,7 @@ fn solve_adhesive(
         "residual_history": report.residual_history,
         "wall_time_s": report.wall_time_s,
     });
-    std::fs::write(
-        out.join("summary.json"),
-        serde_json::to_string_pretty(&summary)? + "\n",
-    )?;
+    write_summary(out, case, problem, summary)?;
     if !args.no_png {
         pressure_map(
             out,

@@ -1,7 +1,7 @@
 //! `sweep`: a quasi-static approach-retraction cycle (or any list of approaches, mean
 //! pressures or central gaps) with continuation, written step by step and resumable.
 
-use crate::case::{Case, layered, on_workers, to_toml, write_field};
+use crate::case::{Case, layered, on_workers, to_toml, write_field, write_summary};
 use crate::plot::{self, Series};
 use crate::solve::finish;
 use anyhow::{Context, Result, bail};
@@ -292,16 +292,12 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     };
     let range = problem.law.range();
     let json = json!({
-        "version": env!("CARGO_PKG_VERSION"),
-        "case": case,
         "path": path,
         "units": {
             "pull_off_force": "N", "pull_off_approach": "m", "jump_in_approach": "m",
             "jump_out_approach": "m", "hysteresis_energy": "J", "lengths": "m",
             "curve.csv": "approach m, load N, mean_pressure Pa, central_gap m, wall_time_s s"
         },
-        "surface_hash": problem.surface_hash,
-        "grid": { "nx": domain.nx, "ny": domain.ny, "dx": domain.dx, "dy": domain.dy, "periodic": domain.periodic },
         "law": problem.law.name(),
         "adhesive_range": problem.adhesive().then_some(range),
         "adhesive_range_per_cell": problem.adhesive().then_some(range / domain.dx.max(domain.dy)),
@@ -316,10 +312,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         "converged": summary.all_converged,
         "wall_time_s": started.elapsed().as_secs_f64(),
     });
-    std::fs::write(
-        out.join("summary.json"),
-        serde_json::to_string_pretty(&json)? + "\n",
-    )?;
+    write_summary(&out, &case, &problem, json)?;
     if !args.no_png && cycle.len() > 1 {
         plot_cycle(&out.join("load_approach.png"), &cycle)?;
     }

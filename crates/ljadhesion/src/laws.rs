@@ -7,6 +7,27 @@ use crate::lj::LennardJones;
 use crate::{AdhesionLaw, Cells};
 use ndarray::{ArrayView2, ArrayViewMut2};
 
+/// The trait methods the three Lennard-Jones laws take from their [`LennardJones`].
+macro_rules! lennard_jones_scales {
+    ($name:literal) => {
+        fn stiffness_bound(&self) -> f64 {
+            self.0.stiffness_bound()
+        }
+        fn work_of_adhesion(&self) -> f64 {
+            self.0.work_of_adhesion()
+        }
+        fn range(&self) -> f64 {
+            self.0.z0()
+        }
+        fn peak_pressure(&self) -> f64 {
+            self.0.min_pressure()
+        }
+        fn name(&self) -> &'static str {
+            $name
+        }
+    };
+}
+
 /// The naive law: `p_i = p(z1)`, the Lennard-Jones pressure at the cell's node.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointLaw(pub LennardJones);
@@ -29,21 +50,7 @@ impl AdhesionLaw for PointLaw {
         let lj = self.0;
         field::nodal(gap, out, |g| lj.pressure(lj.separation(g)))
     }
-    fn stiffness_bound(&self) -> f64 {
-        self.0.stiffness_bound()
-    }
-    fn work_of_adhesion(&self) -> f64 {
-        self.0.work_of_adhesion()
-    }
-    fn range(&self) -> f64 {
-        self.0.z0()
-    }
-    fn peak_pressure(&self) -> f64 {
-        self.0.min_pressure()
-    }
-    fn name(&self) -> &'static str {
-        "point"
-    }
+    lennard_jones_scales!("point");
 }
 
 impl AdhesionLaw for LineLaw {
@@ -58,21 +65,7 @@ impl AdhesionLaw for LineLaw {
             |_, _, _, v1, v2| lj.mean_pressure_v(v1, v2),
         )
     }
-    fn stiffness_bound(&self) -> f64 {
-        self.0.stiffness_bound()
-    }
-    fn work_of_adhesion(&self) -> f64 {
-        self.0.work_of_adhesion()
-    }
-    fn range(&self) -> f64 {
-        self.0.z0()
-    }
-    fn peak_pressure(&self) -> f64 {
-        self.0.min_pressure()
-    }
-    fn name(&self) -> &'static str {
-        "line"
-    }
+    lennard_jones_scales!("line");
 }
 
 impl AdhesionLaw for SurfaceLaw {
@@ -92,22 +85,9 @@ impl AdhesionLaw for SurfaceLaw {
             },
         )
     }
-    /// The bound of the mean pressure; the area factor `S` multiplies it where the gap is steep.
-    fn stiffness_bound(&self) -> f64 {
-        self.0.stiffness_bound()
-    }
-    fn work_of_adhesion(&self) -> f64 {
-        self.0.work_of_adhesion()
-    }
-    fn range(&self) -> f64 {
-        self.0.z0()
-    }
-    fn peak_pressure(&self) -> f64 {
-        self.0.min_pressure()
-    }
-    fn name(&self) -> &'static str {
-        "surface"
-    }
+    // The stiffness bound is that of the mean pressure; the area factor `S` multiplies it
+    // where the gap is steep.
+    lennard_jones_scales!("surface");
 }
 
 /// The exponential law of the contact-mechanics challenge, with a hard wall:

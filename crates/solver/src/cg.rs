@@ -88,7 +88,7 @@ pub fn solve_observed(
 /// Buffers of the conjugate-gradient solver, owned by the caller so that repeated solves on
 /// one grid (sweeps, the adhesive inner loop) allocate nothing.
 pub struct Scratch {
-    ws: elastic::Workspace,
+    pub(crate) ws: elastic::Workspace,
     direction: Array2<f64>,
     response: Array2<f64>,
 }

@@ -276,11 +276,11 @@ pub fn solve_adhesive_observed(
         }
     };
     // The elastic response of the compressive pressure, for the central-gap control.
-    let mut ws = op.make_workspace();
+    // One operator workspace, shared by the outer products and the inner solves.
     let mut scratch = Scratch::new(op);
     let mut u_c = Array2::zeros(shape);
     if warm {
-        op.apply(contact.pressure.view(), u_c.view_mut(), &mut ws)?;
+        op.apply(contact.pressure.view(), u_c.view_mut(), &mut scratch.ws)?;
     }
     let mut u_a = Array2::<f64>::zeros(shape);
     let mut g_eff = Array2::<f64>::zeros(shape);
@@ -306,7 +306,7 @@ pub fn solve_adhesive_observed(
     let (mut best, mut improved_at, mut stalls) = (f64::INFINITY, 0, 0);
     let mut approach = 0.0;
     loop {
-        op.apply(p_a.view(), u_a.view_mut(), &mut ws)?;
+        op.apply(p_a.view(), u_a.view_mut(), &mut scratch.ws)?;
         calls += 1;
         let adhesive_load = p_a.sum() * cell;
         let (inner_control, shift) = match control {
