@@ -1,14 +1,7 @@
 //! `roughcontact`: the command-line tool. The only place that uses clap and anyhow.
 
-mod bench;
-mod case;
-mod plot;
-mod solve;
-mod surface;
-mod sweep;
-mod theory_cmd;
-
 use clap::{Parser, Subcommand};
+use roughcontact::{bench, solve, surface, sweep, theory_cmd};
 use std::process::ExitCode;
 
 /// Deterministic contact mechanics of rough surfaces with adhesion.

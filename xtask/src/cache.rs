@@ -1,0 +1,63 @@
+//! Runs cached by their inputs: a run's result is stored as JSON under a key hashed from its
+//! kind and its inputs (serialised), so that rebuilding one figure, or a figure sharing runs
+//! with another (Figs. 11-14), does not recompute what is already known. Bump [`VERSION`]
+//! when the physics or a result's layout changes; `--fresh` ignores what is stored.
+
+use anyhow::{Context, Result};
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+use serde_json::Value;
+use std::path::PathBuf;
+
+/// Part of every key: results of older code are not reused.
+pub const VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "/figures-1");
+
+pub struct Cache {
+    dir: PathBuf,
+    fresh: bool,
+}
+
+/// FNV-1a, 64 bits: stable across platforms and releases (unlike `DefaultHasher`).
+fn fnv1a(text: &str) -> u64 {
+    let mut hash = 0xcbf29ce484222325u64;
+    for b in text.bytes() {
+        hash ^= b as u64;
+        hash = hash.wrapping_mul(0x100000001b3);
+    }
+    hash
+}
+
+impl Cache {
+    pub fn new(dir: PathBuf, fresh: bool) -> Result<Self> {
+        std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+        Ok(Cache { dir, fresh })
+    }
+
+    /// The stored result of `job`, or `compute()`'s, stored for next time.
+    pub fn get_or<J: Serialize, R: Serialize + DeserializeOwned>(
+        &self,
+        kind: &str,
+        job: &J,
+        compute: impl FnOnce() -> Result<R>,
+    ) -> Result<R> {
+        let inputs = serde_json::to_value(job)?;
+        let key = format!("{VERSION}|{kind}|{inputs}");
+        let path = self.dir.join(format!("{kind}-{:016x}.json", fnv1a(&key)));
+        if !self.fresh
+            && let Ok(text) = std::fs::read_to_string(&path)
+            && let Ok(stored) = serde_json::from_str::<Value>(&text)
+            && stored.get("key").and_then(Value::as_str) == Some(key.as_str())
+            && let Some(result) = stored.get("result")
+            && let Ok(result) = serde_json::from_value(result.clone())
+        {
+            return Ok(result);
+        }
+        let result = compute()?;
+        let stored = serde_json::json!({ "key": key, "inputs": inputs, "result": result });
+        // Written whole then renamed, so that an interrupted run leaves no half file.
+        let tmp = path.with_extension("tmp");
+        std::fs::write(&tmp, serde_json::to_string(&stored)?)?;
+        std::fs::rename(&tmp, &path)?;
+        Ok(result)
+    }
+}

@@ -1,0 +1,57 @@
+//! Fig. 13: pull-off force against the modified Johnson parameter alpha* (Eq. 15) for Tabor
+//! parameters 2, 5 and 7.
+
+use crate::rough_sphere::{MODULUS, PullOffFigure, Z0, plan, points, work_of_adhesion};
+use crate::{Context, FigureReport};
+use anyhow::Result;
+use std::f64::consts::PI;
+
+/// The rough points of Figs. 13-14 (Fig. 11's roughnesses, mu = 2, 5, 7).
+pub fn wanted(ctx: &Context) -> Vec<(u32, f64, f64)> {
+    let p = plan(ctx);
+    p.mus[2]
+        .iter()
+        .flat_map(|&mu| p.rqs.iter().filter(|&&rq| rq > 0.0).map(move |&rq| (mu, rq, 4.0)))
+        .collect()
+}
+
+pub fn run(ctx: &Context) -> Result<FigureReport> {
+    let pts = points(ctx, "Fig. 13", &wanted(ctx))?;
+    let fig = PullOffFigure {
+        number: 13,
+        title: "Pull-off force vs the modified Johnson parameter α*",
+        x_label: "modified Johnson parameter α* (Eq. 15)",
+        x_name: "johnson_parameter",
+        x_log: true,
+    };
+    let johnson = |pt: &crate::rough_sphere::Point| {
+        let o = &pt.outcomes[0];
+        theory::rough::johnson_parameter(
+            work_of_adhesion(pt.mu),
+            MODULUS,
+            pt.mean(|o| o.rq),
+            2.0 * PI / o.length,
+            2.0 * PI / o.cutoff,
+            0.8,
+        )
+    };
+    let (mut report, curves) = fig.draw(ctx, &pts, johnson, Vec::new())?;
+    report.computed.push(format!(
+        "α* = (4 w0 q1^(0.8H-1) / (π E* Rq² q0^(0.8H)))² with q0 = 2π/L (the box), q1 the short cutoff, H = 0.8, \
+         Rq measured; roughness {:?} z0 (z0 = {} nm).",
+        plan(ctx).rqs.iter().filter(|&&r| r > 0.0).collect::<Vec<_>>(),
+        Z0 * 1e9
+    ));
+    for (mu, c) in &curves {
+        report.agreement.push(format!(
+            "μ = {mu}: α* from {:.3e} to {:.3e}, pull-off from {:.3} to {:.3} πRw0; rising with α* (larger α* \
+             stickier, as Li, Pohrt & Popov predict): {}.",
+            c[0].0,
+            c[c.len() - 1].0,
+            c[0].1,
+            c[c.len() - 1].1,
+            if c.windows(2).all(|w| w[1].1 >= w[0].1 - 0.02) { "yes" } else { "no (see the table)" }
+        ));
+    }
+    Ok(report)
+}

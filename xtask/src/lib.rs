@@ -1,0 +1,164 @@
+//! `cargo xtask figures`: Figures 5-14 of Ghanbarzadeh, Faraji & Neville (2020) rebuilt from
+//! nothing, as PNG + SVG with their data as CSV, and `FIGURES.md` saying what was computed and
+//! how well each figure agrees with its reference (method.md section 7).
+//!
+//! Each figure is a module (`fig05` ... `fig14`) that asks for its runs, draws itself and
+//! reports. The runs are shared physics (`sphere`, `challenge`, `rough_sphere`): cached on
+//! disk by their inputs ([`cache`]) and run in parallel with a progress bar ([`Context::run`]).
+//! Quick mode uses small grids (a few minutes, run by the test suite); full mode the largest
+//! this machine affords, stated in each figure's report.
+
+pub mod cache;
+pub mod challenge;
+pub mod fig05;
+pub mod fig06;
+pub mod fig07;
+pub mod fig08;
+pub mod fig09;
+pub mod fig10;
+pub mod fig11;
+pub mod fig12;
+pub mod fig13;
+pub mod fig14;
+pub mod report;
+pub mod rough_sphere;
+pub mod sphere;
+pub mod style;
+
+use anyhow::{Context as _, Result, bail};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
+use std::path::PathBuf;
+use std::time::Instant;
+
+pub use report::{FigureReport, Table};
+
+/// What to build and where.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Small grids and few points: a few minutes.
+    pub quick: bool,
+    /// Figure numbers to build (all of 5-14 when empty).
+    pub only: Vec<u32>,
+    /// Output directory (figures, CSV, FIGURES.md, and the run cache in `cache/`).
+    pub out: PathBuf,
+    /// The contact-mechanics challenge's own topography, if the user has it (Figs. 8-9).
+    pub challenge_surface: Option<PathBuf>,
+    /// Recompute every run instead of reading the cache.
+    pub fresh: bool,
+    /// Show progress bars.
+    pub progress: bool,
+}
+
+pub const ALL: [u32; 10] = [5, 6, 7, 8, 9, 10, 11, 12, 13, 14];
+
+/// What every figure module gets: the options and the cache.
+pub struct Context {
+    pub options: Options,
+    pub cache: cache::Cache,
+}
+
+impl Context {
+    pub fn quick(&self) -> bool {
+        self.options.quick
+    }
+
+    /// `quick` in quick mode, `full` otherwise.
+    pub fn pick<T>(&self, quick: T, full: T) -> T {
+        if self.options.quick { quick } else { full }
+    }
+
+    /// Runs independent `jobs` in parallel (each through the cache under `kind`), with a
+    /// progress bar named `what`; results in the order of `jobs`.
+    pub fn run<J, R>(
+        &self,
+        what: &str,
+        kind: &str,
+        jobs: &[J],
+        f: impl Fn(&J) -> Result<R> + Sync,
+    ) -> Result<Vec<R>>
+    where
+        J: serde::Serialize + Sync,
+        R: serde::Serialize + serde::de::DeserializeOwned + Send,
+    {
+        let bar = if self.options.progress {
+            ProgressBar::new(jobs.len() as u64)
+        } else {
+            ProgressBar::with_draw_target(Some(jobs.len() as u64), ProgressDrawTarget::hidden())
+        };
+        bar.set_style(
+            ProgressStyle::with_template("{prefix:>12} [{bar:30}] {pos}/{len} runs, {elapsed}")
+                .expect("valid template")
+                .progress_chars("=> "),
+        );
+        bar.set_prefix(what.to_string());
+        let out = jobs
+            .par_iter()
+            .map(|job| {
+                let r = self.cache.get_or(kind, job, || f(job));
+                bar.inc(1);
+                r
+            })
+            .collect::<Result<Vec<R>>>();
+        bar.finish_and_clear();
+        out
+    }
+}
+
+/// Builds the requested figures into `options.out` and writes `FIGURES.md` there.
+pub fn figures(options: Options) -> Result<Vec<FigureReport>> {
+    let only = if options.only.is_empty() {
+        ALL.to_vec()
+    } else {
+        options.only.clone()
+    };
+    if let Some(bad) = only.iter().find(|n| !ALL.contains(n)) {
+        bail!("there is no figure {bad}: the paper's figures with results are 5 to 14");
+    }
+    std::fs::create_dir_all(&options.out).with_context(|| format!("creating {}", options.out.display()))?;
+    let cache = cache::Cache::new(options.out.join("cache"), options.fresh)?;
+    let ctx = Context { options, cache };
+    let mut reports = Vec::new();
+    for n in only {
+        let start = Instant::now();
+        let mut r = match n {
+            5 => fig05::run(&ctx),
+            6 => fig06::run(&ctx),
+            7 => fig07::run(&ctx),
+            8 => fig08::run(&ctx),
+            9 => fig09::run(&ctx),
+            10 => fig10::run(&ctx),
+            11 => fig11::run(&ctx),
+            12 => fig12::run(&ctx),
+            13 => fig13::run(&ctx),
+            14 => fig14::run(&ctx),
+            _ => unreachable!("checked above"),
+        }
+        .with_context(|| format!("figure {n}"))?;
+        r.seconds = start.elapsed().as_secs_f64();
+        r.mode = if ctx.quick() { "quick" } else { "full" }.into();
+        r.write(&ctx.options.out)?;
+        if ctx.options.progress {
+            eprintln!("figure {n:>2}: {} ({:.0} s)", r.title, r.seconds);
+        }
+        reports.push(r);
+    }
+    report::write_markdown(&ctx.options)?;
+    Ok(reports)
+}
+
+/// Statistics of the roughness behind `case` (its heights on a periodic flat, without sphere
+/// or adhesion): RMS gradient [-], local radius (inverse RMS curvature) [m], Rq [m], cell [m].
+pub fn surface_statistics(case: &roughcontact::case::Case) -> Result<(f64, f64, f64, f64)> {
+    let mut flat = case.clone();
+    flat.law = None;
+    flat.work_of_adhesion = None;
+    flat.sphere_radius = None;
+    flat.domain = Some(roughcontact::case::DomainKind::Periodic);
+    flat.fill_defaults();
+    let p = flat.build()?;
+    let d = p.domain;
+    let grid = surfgen::Grid::new(d.nx, d.ny, d.dx * d.nx as f64, d.dy * d.ny as f64)?;
+    let s = surfgen::statistics(p.g0.view(), &grid, true, None);
+    Ok((s.rms_gradient, s.local_radius, s.heights.rms_height, d.dx))
+}

@@ -1,0 +1,72 @@
+//! `cargo xtask figures [--quick] [--only N,...] [--out DIR]`.
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "xtask", about = "Project automation for roughcontact")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Regenerate Figures 5-14 of Ghanbarzadeh, Faraji & Neville (2020) as PNG + SVG + CSV,
+    /// with FIGURES.md reporting the agreement with each reference.
+    Figures {
+        /// Small grids and few points (a few minutes); what CI runs.
+        #[arg(long)]
+        quick: bool,
+        /// Only these figures, e.g. --only 5,6,11.
+        #[arg(long, value_delimiter = ',')]
+        only: Vec<u32>,
+        /// Output directory (default: figures, or figures-quick with --quick).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// The contact-mechanics challenge's own topography (any format `roughcontact`
+        /// reads; a bare .npy is taken as 100 um square) for Figs. 8-10.
+        #[arg(long, value_name = "FILE")]
+        challenge_surface: Option<PathBuf>,
+        /// Recompute every run instead of reusing the cache in OUT/cache.
+        #[arg(long)]
+        fresh: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<()> {
+    let Command::Figures {
+        quick,
+        only,
+        out,
+        challenge_surface,
+        fresh,
+    } = Cli::parse().command;
+    let out = out.unwrap_or_else(|| PathBuf::from(if quick { "figures-quick" } else { "figures" }));
+    let reports = xtask::figures(xtask::Options {
+        quick,
+        only,
+        out: out.clone(),
+        challenge_surface,
+        fresh,
+        progress: true,
+    })?;
+    eprintln!(
+        "wrote {} figure(s) and {}",
+        reports.len(),
+        out.join("FIGURES.md").display()
+    );
+    Ok(())
+}
