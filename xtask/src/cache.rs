@@ -61,3 +61,30 @@ impl Cache {
         Ok(result)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_stored_result_is_reused_and_fresh_recomputes() {
+        let dir = std::env::temp_dir().join(format!("xtask-cache-{}", std::process::id()));
+        let cache = Cache::new(dir.clone(), false).unwrap();
+        let a: f64 = cache.get_or("t", &(1, "x"), || Ok(2.5)).unwrap();
+        let b: f64 = cache.get_or("t", &(1, "x"), || panic!("not reused")).unwrap();
+        assert_eq!((a, b), (2.5, 2.5));
+        let c: f64 = cache.get_or("t", &(2, "x"), || Ok(4.0)).unwrap();
+        assert_eq!(c, 4.0);
+        let fresh = Cache::new(dir.clone(), true).unwrap();
+        let d: f64 = fresh.get_or("t", &(1, "x"), || Ok(7.0)).unwrap();
+        assert_eq!(d, 7.0);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn the_hash_is_fnv1a() {
+        // Reference values of 64-bit FNV-1a.
+        assert_eq!(fnv1a(""), 0xcbf29ce484222325);
+        assert_eq!(fnv1a("a"), 0xaf63dc4c8601ec8c);
+    }
+}

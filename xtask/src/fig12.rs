@@ -18,6 +18,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_label: "RMS gradient ḡ",
         x_name: "rms_gradient",
         x_log: false,
+        legend: crate::style::Legend::UpperRight,
     };
     let (mut report, curves) = fig.draw(ctx, &pts, |pt| pt.mean(|o| o.rms_gradient), Vec::new())?;
     report.computed.push(format!(

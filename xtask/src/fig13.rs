@@ -23,6 +23,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_label: "modified Johnson parameter α* (Eq. 15)",
         x_name: "johnson_parameter",
         x_log: true,
+        legend: crate::style::Legend::LowerRight,
     };
     let johnson = |pt: &crate::rough_sphere::Point| {
         let o = &pt.outcomes[0];

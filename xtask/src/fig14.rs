@@ -14,6 +14,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_label: "Rq² E* / (λL w0)",
         x_name: "ciavarella_variable",
         x_log: true,
+        legend: crate::style::Legend::UpperRight,
     };
     let x = |pt: &crate::rough_sphere::Point| {
         theory::rough::ciavarella_variable(

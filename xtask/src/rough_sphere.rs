@@ -238,7 +238,7 @@ pub fn plan(ctx: &crate::Context) -> Plan {
     Plan {
         max_n: ctx.pick(64, 128),
         seeds: ctx.pick(vec![1, 2], vec![1, 2, 3]),
-        rqs: ctx.pick(vec![0.0, 1.0, 2.0, 4.0], vec![0.0, 1.0, 2.0, 4.0, 6.0]),
+        rqs: ctx.pick(vec![0.0, 1.0, 2.0, 4.0, 8.0], vec![0.0, 1.0, 2.0, 4.0, 8.0]),
         cutoffs: ctx.pick(vec![4.0, 8.0, 16.0], vec![4.0, 8.0, 12.0, 16.0]),
         tolerance: 1e-5,
         mus: ctx.pick(
@@ -381,6 +381,7 @@ pub struct PullOffFigure<'a> {
     pub x_label: &'a str,
     pub x_name: &'a str,
     pub x_log: bool,
+    pub legend: crate::style::Legend,
 }
 
 impl PullOffFigure<'_> {
@@ -410,6 +411,7 @@ impl PullOffFigure<'_> {
         );
         let mut chart = Chart::new(self.title, self.x_label, "pull-off force F/(πRw0)");
         chart.x_log = self.x_log;
+        chart.legend = self.legend;
         chart.curves = extra;
         let mut mus: Vec<u32> = points.iter().map(|p| p.mu).collect();
         mus.dedup();
@@ -490,5 +492,55 @@ impl PullOffFigure<'_> {
             ));
         }
         Ok((report, curves))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_papers_works_give_its_tabor_parameters() {
+        for (mu, expected) in [(2, 2.0), (5, 5.0), (7, 7.0)] {
+            assert!((tabor(mu) / expected - 1.0).abs() < 0.02, "{mu}: {}", tabor(mu));
+        }
+    }
+
+    #[test]
+    fn crossing_and_falling() {
+        let c = [(0.0, 1.5), (1.0, 1.0), (2.0, 0.5)];
+        assert_eq!(crossing(&c, 0.75), Some(1.5));
+        assert_eq!(crossing(&c, 2.0), None);
+        assert!(falling(&c, 0.0));
+        assert!(!falling(&[(0.0, 1.0), (1.0, 1.1)], 0.05));
+        assert_eq!(mean_std(&[1.0, 3.0]), (2.0, 2f64.sqrt()));
+    }
+
+    #[test]
+    fn grids_resolve_the_process_zone_up_to_the_cap() {
+        let plan = Plan {
+            max_n: 4096,
+            seeds: vec![1],
+            rqs: vec![],
+            cutoffs: vec![],
+            tolerance: 1e-5,
+            mus: [vec![], vec![], vec![]],
+        };
+        for mu in [2, 5, 7] {
+            let n = plan.n_for(mu);
+            let j = Job {
+                mu,
+                rq: 0.0,
+                cutoff_cells: 0.0,
+                seed: 0,
+                n,
+                tolerance: 1e-5,
+            };
+            assert!(j.length() / n as f64 <= process_zone(mu), "{mu}");
+            assert!(
+                j.length() / (n / 2) as f64 > process_zone(mu),
+                "{mu}: {n} is not the smallest"
+            );
+        }
     }
 }

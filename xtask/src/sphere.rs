@@ -533,3 +533,34 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
 fn fmt_cell(c: f64) -> String {
     format!("{c:.2}")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn there_and_back_includes_both_ends_and_the_turning_point() {
+        let v = there_and_back(-1.0, 1.0, 0.5, -2.0, 0.25);
+        assert_eq!(&v[..5], &[-1.0, -0.5, 0.0, 0.5, 1.0]);
+        assert_eq!(v.len(), 5 + 12);
+        assert!((v[v.len() - 1] + 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn work_of_adhesion_gives_the_tabor_parameter() {
+        for mu in [0.1, 1.0, 3.0] {
+            let s = setup(mu, 64);
+            let back = theory::tabor_parameter(RADIUS, s.work_of_adhesion(), MODULUS, Z0);
+            assert!((back / mu - 1.0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn interpolation_finds_the_increasing_segment() {
+        let pts = [(0.0, 0.0), (1.0, 1.0), (0.5, 2.0), (2.0, 3.0)];
+        assert_eq!(interpolate(pts.iter().copied(), 0.5), Some(0.5));
+        // Between 0.5 and 2.0 on the last (increasing) segment.
+        assert_eq!(interpolate(pts[2..].iter().copied(), 1.25), Some(2.5));
+        assert_eq!(interpolate(pts.iter().copied(), 5.0), None);
+    }
+}
