@@ -103,14 +103,24 @@ impl Path {
     /// Solves the path with continuation; `on_state` sees every step's state.
     pub fn solve_with(&self, on_state: &mut dyn FnMut(usize, &AdhesiveState)) -> Result<Vec<Step>> {
         let case = self.setup.case();
-        let p = case.build()?;
+        self.sweep_on(&case, &case.build()?, None, on_state)
+    }
+
+    /// Sweeps this path's controls on an already built problem, from `start`.
+    fn sweep_on(
+        &self,
+        case: &Case,
+        p: &roughcontact::case::Problem,
+        start: Option<AdhesiveState>,
+        on_state: &mut dyn FnMut(usize, &AdhesiveState),
+    ) -> Result<Vec<Step>> {
         let points = sweep(
             p.op.as_ref(),
             p.law.as_ref(),
             p.g0.view(),
             &self.controls(),
             &case.adhesive_options(),
-            None,
+            start,
             &mut |k, _: &SweepPoint, s| {
                 on_state(k, s);
                 true
@@ -136,8 +146,10 @@ impl Path {
     /// times finer steps (the pull-off of a DMT-like sphere sits in a sharp corner). The
     /// refined steps follow the path's own in the result.
     pub fn solve(&self) -> Result<Vec<Step>> {
+        let case = self.setup.case();
+        let p = case.build()?;
         let mut states = Vec::new();
-        let mut steps = self.solve_with(&mut |_, s| states.push(s.clone()))?;
+        let mut steps = self.sweep_on(&case, &p, None, &mut |_, s| states.push(s.clone()))?;
         let k = (1..steps.len().saturating_sub(1))
             .filter(|&k| steps[k].unloading && steps[k - 1].unloading)
             .min_by(|&a, &b| steps[a].load.total_cmp(&steps[b].load));
@@ -148,21 +160,11 @@ impl Path {
                 by: By::Approach,
                 values: (1..20).map(|j| a + (b - a) * j as f64 / 20.0).collect(),
             };
-            let case = self.setup.case();
-            let p = case.build()?;
-            let points = solver::sweep::sweep(
-                p.op.as_ref(),
-                p.law.as_ref(),
-                p.g0.view(),
-                &fine.controls(),
-                &case.adhesive_options(),
-                Some(states[k - 1].clone()),
-                &mut |_, _, _| true,
-            )?;
-            steps.extend(points.iter().map(|q| Step {
+            let refined = fine.sweep_on(&case, &p, Some(states[k - 1].clone()), &mut |_, _| {})?;
+            steps.extend(refined.into_iter().map(|q| Step {
                 unloading: true,
                 refined: true,
-                ..fine.step(q)
+                ..q
             }));
         }
         Ok(steps)
