@@ -41,7 +41,10 @@ pub struct LineLaw(pub LennardJones);
 /// The surface-integral law (the paper's Eq. 11): the line law times the area factor of the
 /// tilted cell, `p_i = S (Phi(z2) - Phi(z1)) / (z2 - z1)` with
 /// `S = sqrt(1 + ((z2 - z1)/a_x)^2 + ((z3 - z1)/a_y)^2)`; node 3 is the +y neighbour.
-/// On a flat gap field `S = 1` and it equals [`PointLaw`] exactly.
+/// On a flat gap field `S = 1` and it equals [`PointLaw`] exactly. Like the line law it is
+/// one-sided: the mean is over the gaps from the node to its +x neighbour, so the value
+/// belongs half a cell off the node, and on a problem symmetric about the node (a sphere) the
+/// field leans towards +x and +y where the gap varies steeply within a cell.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceLaw(pub LennardJones);
 

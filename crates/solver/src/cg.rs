@@ -226,7 +226,6 @@ pub fn solve_in(
     let mut calls = 0;
     let mut g_norm_old = 1.0;
     let mut conjugate = false;
-    let mut change = f64::INFINITY;
     let mut termination = Termination::MaxIterations;
     let mut iterations = 0;
     // `u = K p` is either fresh from the operator or updated in step as `u - tau K t`
@@ -309,7 +308,9 @@ pub fn solve_in(
             .iter()
             .fold([0.0; 3], |a, b| [a[0] + b[0], a[1] + b[1], a[2] + b[2]]);
         let gap_residual = ((g2_contact + g2_out) / in_contact.max(1.0)).sqrt() / h_ref;
-        let residual = gap_residual.max(change);
+        // The KKT residual: p >= 0 holds by construction, so zero gap where p > 0 and no
+        // interpenetration where p = 0 are all that is left to check.
+        let residual = gap_residual;
         if residual < options.tolerance && !fresh {
             // Confirm on a fresh product before accepting.
             fresh_needed = true;
@@ -359,9 +360,11 @@ pub fn solve_in(
             if p > 0.0 { r * (t - t_mean) } else { 0.0 }
         });
         let tau = if rt > 0.0 { gt / rt } else { 0.0 };
-        // Pass F: step, projection onto p >= 0, release of interpenetrating free cells, and the
-        // matching update of u while it stays exact.
-        let rows: Vec<(f64, f64, bool, bool)> = p
+        // Pass F: step, projection onto p >= 0, release of every interpenetrating cell at zero
+        // pressure (free ones and those just clipped: releasing the clipped ones too saves about
+        // a tenth of the iterations on rough surfaces), and the matching update of u while it
+        // stays exact.
+        let rows: Vec<(f64, bool, bool)> = p
             .as_slice_mut()
             .expect("standard layout")
             .par_chunks_mut(nx)
@@ -370,7 +373,7 @@ pub fn solve_in(
             .zip(t.as_slice().expect("standard layout").par_chunks(nx))
             .zip(r.as_slice().expect("standard layout").par_chunks(nx))
             .map(|((((p, u), g), t), r)| {
-                let (mut moved, mut total, mut clipped, mut released) = (0.0, 0.0, false, false);
+                let (mut total, mut clipped, mut released) = (0.0, false, false);
                 for i in 0..p.len() {
                     let old = p[i];
                     let mut new = old - tau * t[i];
@@ -378,26 +381,23 @@ pub fn solve_in(
                         new = 0.0;
                         clipped = true;
                     }
-                    if old == 0.0 {
+                    if new == 0.0 {
                         new = if g[i] < 0.0 { -tau * g[i] } else { 0.0 };
                         released |= new > 0.0;
                     }
                     p[i] = new;
                     u[i] -= tau * r[i];
-                    moved += (new - old).abs();
                     total += new;
                 }
-                (moved, total, clipped, released)
+                (total, clipped, released)
             })
             .collect();
-        let released = rows.iter().any(|r| r.3);
+        let released = rows.iter().any(|r| r.2);
         // Releasing cells restarts the conjugate directions (Polonsky & Keer); any change of
         // the active set makes the updated u inexact.
         conjugate = !released;
-        fresh_needed |= released || rows.iter().any(|r| r.2);
-        let moved: f64 = rows.iter().map(|r| r.0).sum();
-        let p_sum: f64 = rows.iter().map(|r| r.1).sum();
-        change = if p_sum > 0.0 { moved / p_sum } else { 0.0 };
+        fresh_needed |= released || rows.iter().any(|r| r.1);
+        let p_sum: f64 = rows.iter().map(|r| r.0).sum();
         if p_sum == 0.0 {
             termination = Termination::NoContact;
             u.fill(0.0);
