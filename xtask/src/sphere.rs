@@ -218,11 +218,20 @@ impl Greenwood {
         interpolate(b.iter().map(|p| (p.0, p.1)), alpha)
     }
 
-    /// The load on the branch apart (before the jump in; the whole curve without one) at
-    /// approach `alpha`.
-    pub fn load_apart(&self, alpha: f64) -> Option<f64> {
-        let b = &self.points[..=self.jump_in.unwrap_or(self.points.len() - 1)];
-        interpolate(b.iter().map(|p| (p.0, p.1)), alpha)
+    /// The load at approach `alpha` on the branch whose central separation is nearest to
+    /// `separation` [z0]: where the S-curve has three equilibria at one approach, the one the
+    /// BEM state is on (attached or apart), whatever its compressive contact area.
+    pub fn load_on_branch(&self, alpha: f64, separation: f64) -> Option<f64> {
+        self.points
+            .windows(2)
+            .filter_map(|w| {
+                let ((a0, w0, h0), (a1, w1, h1)) = (w[0], w[1]);
+                let t = (alpha - a0) / (a1 - a0);
+                ((0.0..=1.0).contains(&t) && a1 != a0)
+                    .then(|| (w0 + t * (w1 - w0), (h0 + t * (h1 - h0) - separation).abs()))
+            })
+            .min_by(|x, y| x.1.total_cmp(&y.1))
+            .map(|(w, _)| w)
     }
 
     /// The approach on the contact branch at load `w`.
@@ -397,17 +406,14 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
         // Agreement: pull-off, tensile branch, compressive shift (the hard wall of Eq. 12).
         let unloading: Vec<&Step> = cycle.iter().filter(|s| s.unloading).collect();
         let pull_off = unloading.iter().map(|s| s.load).fold(f64::INFINITY, f64::min);
-        // In contact: Greenwood's contact branch; detached: his branch before the jump in.
+        // Each point against the branch it is on: the nearest in central separation (the BEM's
+        // gap is measured from the equilibrium spacing z0, Greenwood's separation from zero).
         let tensile = unloading
             .iter()
             .filter(|s| s.approach <= -0.5)
             .filter_map(|s| {
-                let w = if s.contact_area_fraction > 0.0 {
-                    g.load_in_contact(s.approach)
-                } else {
-                    g.load_apart(s.approach)
-                };
-                w.map(|w| (s.load - w).abs())
+                g.load_on_branch(s.approach, 1.0 + s.central_gap)
+                    .map(|w| (s.load - w).abs())
             })
             .fold(0.0, f64::max);
         let shifts: Vec<f64> = unloading
@@ -427,13 +433,15 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
         // The jump out: the last unloading step in contact (the path's own steps only).
         let jump = match g.jump_out {
             Some(j) => {
+                // Attached: the apex within half a z0 of equilibrium (compressive contact may
+                // already be gone: the neck is held by adhesion alone near the jump).
                 let last = cycle
                     .iter()
-                    .filter(|s| s.unloading && !s.refined && s.contact_area_fraction > 0.0)
+                    .filter(|s| s.unloading && !s.refined && s.central_gap < 0.5)
                     .map(|s| s.approach)
                     .fold(f64::INFINITY, f64::min);
                 format!(
-                    "; jumps out of contact after α = {last:.2} z0 (steps of {h_out} z0), Greenwood at {:.2} z0",
+                    "; last attached at α = {last:.2} z0 (steps of {h_out} z0), Greenwood at {:.2} z0",
                     g.points[j].0
                 )
             }
@@ -555,6 +563,29 @@ mod tests {
             let back = theory::tabor_parameter(RADIUS, s.work_of_adhesion(), MODULUS, Z0);
             assert!((back / mu - 1.0).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn a_point_is_compared_with_the_branch_it_is_on() {
+        // An S: apart (h 3 -> 2), unstable middle (h 2 -> 1.5), attached (h 1.5 -> 1); three
+        // equilibria at alpha = -1.5, with loads -0.1, -0.3 and -0.6.
+        let g = Greenwood {
+            points: vec![
+                (-3.0, 0.0, 3.0),
+                (-1.0, -0.2, 2.0),
+                (-2.0, -0.4, 1.5),
+                (-1.0, -0.8, 1.0),
+            ],
+            jump_in: Some(1),
+            jump_out: Some(2),
+            pull_off_load_control: -0.8,
+            pull_off_displacement_control: -0.4,
+        };
+        let near = |a, h| g.load_on_branch(a, h).unwrap();
+        assert!((near(-1.5, 2.9) + 0.15).abs() < 1e-12);
+        assert!((near(-1.5, 1.7) + 0.3).abs() < 1e-12);
+        assert!((near(-1.5, 1.0) + 0.6).abs() < 1e-12);
+        assert_eq!(g.load_on_branch(-4.0, 3.0), None);
     }
 
     #[test]
