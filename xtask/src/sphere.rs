@@ -320,10 +320,7 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
             paths.push(Path {
                 setup: setup(mu, n),
                 by: By::CentralGap,
-                values: (0..=count)
-                    .map(|k| 3.0 - k as f64 * h)
-                    .chain(tail)
-                    .collect(),
+                values: (0..=count).map(|k| 3.0 - k as f64 * h).chain(tail).collect(),
             });
         }
     }
@@ -436,9 +433,9 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
                 shifts.iter().sum::<f64>() / shifts.len() as f64
             )
         };
-        // The jump out: the last unloading step in contact (the path's own steps only).
-        // Attached: the apex within half a z0 of equilibrium (compressive contact may already
-        // be gone: the neck is held by adhesion alone near the jump).
+        // The jump out: the last attached unloading step (the path's own steps only), attached
+        // meaning the apex within half a z0 of equilibrium (compressive contact may already be
+        // gone: near the jump the neck is held by adhesion alone).
         let last_attached = cycle
             .iter()
             .filter(|s| s.unloading && !s.refined && s.central_gap < 0.5)
@@ -515,9 +512,7 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
                     format!(
                         " Its fold (the jump out under approach control) at α = {:.2} z0, g(0) = {:.3} \
                          z0, Greenwood's at α = {:.2} z0.{early}",
-                        q.approach,
-                        q.central_gap,
-                        g.points[j].0
+                        q.approach, q.central_gap, g.points[j].0
                     )
                 }
                 _ => String::new(),
@@ -603,7 +598,7 @@ mod tests {
     #[test]
     fn a_point_is_compared_with_the_branch_it_is_on() {
         // An S: apart (h 3 -> 2), unstable middle (h 2 -> 1.5), attached (h 1.5 -> 1); three
-        // equilibria at alpha = -1.5, with loads -0.1, -0.3 and -0.6.
+        // equilibria at alpha = -1.5, with loads -0.15, -0.3 and -0.6.
         let g = Greenwood {
             points: vec![
                 (-3.0, 0.0, 3.0),
