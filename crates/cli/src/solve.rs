@@ -254,6 +254,7 @@ fn solve_adhesive(
         "approach": report.approach,
         "contact_area_fraction": report.contact_area_fraction,
         "attractive_area_fraction": report.attractive_area_fraction,
+        "attached_area_fraction": report.attached_area_fraction,
         "contact_clusters": report.clusters,
         "max_pressure": report.max_pressure,
         "min_pressure": report.min_pressure,
@@ -281,6 +282,7 @@ fn solve_adhesive(
     println!("approach                 {:.6e} m", report.approach);
     println!("contact area fraction    {:.6}", report.contact_area_fraction);
     println!("attractive area fraction {:.6}", report.attractive_area_fraction);
+    println!("attached area fraction   {:.6}", report.attached_area_fraction);
     println!(
         "iterations               {} outer, {} inner, residual {:.2e}, {:?}",
         report.outer_iterations, report.inner_iterations, report.residual, report.termination

@@ -108,7 +108,7 @@ pub struct SweepArgs {
 }
 
 const HEADER: &str = "step,approach,load,mean_pressure,contact_area_fraction,attractive_area_fraction,\
-central_gap,branch,outer_iterations,inner_iterations,converged,residual,wall_time_s";
+attached_area_fraction,central_gap,branch,outer_iterations,inner_iterations,converged,residual,wall_time_s";
 
 /// One row of `curve.csv`, as much as the summary and the plot need.
 struct Row {
@@ -131,12 +131,13 @@ fn parse_rows(text: &str) -> Result<Vec<Row>> {
                 approach: num(1)?,
                 load: num(2)?,
                 contact_area_fraction: num(4)?,
-                branch: if f[7] == "unloading" {
+                attached_area_fraction: num(6)?,
+                branch: if f[8] == "unloading" {
                     Branch::Unloading
                 } else {
                     Branch::Loading
                 },
-                converged: f[10] == "true",
+                converged: f[11] == "true",
             },
         });
     }
@@ -244,13 +245,14 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             &mut |k, p, state| {
                 let r = &p.report;
                 let line = format!(
-                    "{},{:e},{:e},{:e},{},{},{:e},{},{},{},{},{:e},{:.3}\n",
+                    "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3}\n",
                     done + k,
                     r.approach,
                     r.load,
                     r.mean_pressure,
                     r.contact_area_fraction,
                     r.attractive_area_fraction,
+                    r.attached_area_fraction,
                     r.central_gap,
                     p.branch.name(),
                     r.outer_iterations,

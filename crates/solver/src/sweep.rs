@@ -126,12 +126,14 @@ pub struct CycleSummary {
     pub pull_off_force: Option<f64>,
     /// The approach at which it occurred [m].
     pub pull_off_approach: Option<f64>,
-    /// The first loading step in contact after a step without [m] (the jump into contact lies
-    /// between it and the step before). Reported only when the branches differ in load (by
-    /// more than 1e-4 of the largest load) at some approach solved on both (hysteresis): a
-    /// contact that grows from a point and shrinks back to it the same way is no jump.
+    /// The first loading step attached after a step apart [m] (the jump into contact lies
+    /// between it and the step before); attached means some cell within the law's range
+    /// ([`CyclePoint::attached_area_fraction`]), so that an adhesive neck without compressive
+    /// contact counts. Reported only when the branches differ in load (by more than 1e-4 of
+    /// the largest load) at some approach solved on both (hysteresis): a contact that grows
+    /// from a point and shrinks back to it the same way is no jump.
     pub jump_in_approach: Option<f64>,
-    /// The first unloading step out of contact after a step in contact [m] (same condition).
+    /// The first unloading step apart after an attached step [m] (same condition).
     pub jump_out_approach: Option<f64>,
     /// Work lost over the cycle: the work `sum W d(delta)` done on the bodies along the path
     /// (trapezoidal rule) [J], >= 0 for a dissipative cycle; meaningful when the path returns to
@@ -151,6 +153,8 @@ pub struct CyclePoint {
     pub load: f64,
     /// Fraction of cells in contact [-].
     pub contact_area_fraction: f64,
+    /// Fraction of cells within the adhesive law's range, contact included [-].
+    pub attached_area_fraction: f64,
     /// Direction of the step.
     pub branch: Branch,
     /// Whether the step converged.
@@ -163,6 +167,7 @@ impl From<&SweepPoint> for CyclePoint {
             approach: p.report.approach,
             load: p.report.load,
             contact_area_fraction: p.report.contact_area_fraction,
+            attached_area_fraction: p.report.attached_area_fraction,
             branch: p.branch,
             converged: p.report.converged(),
         }
@@ -180,7 +185,7 @@ pub fn summarize(points: &[CyclePoint]) -> CycleSummary {
         }
         if k > 0 {
             let prev = &points[k - 1];
-            let (was, is) = (prev.contact_area_fraction > 0.0, p.contact_area_fraction > 0.0);
+            let (was, is) = (prev.attached_area_fraction > 0.0, p.attached_area_fraction > 0.0);
             if p.branch == Branch::Loading && !was && is && jump_in.is_none() {
                 jump_in = Some(p.approach);
             }
@@ -208,5 +213,42 @@ pub fn summarize(points: &[CyclePoint]) -> CycleSummary {
         jump_out_approach: jump_out.filter(|_| hysteresis),
         hysteresis_energy: work,
         all_converged: points.iter().all(|p| p.converged),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(approach: f64, load: f64, contact: f64, attached: f64, branch: Branch) -> CyclePoint {
+        CyclePoint {
+            approach,
+            load,
+            contact_area_fraction: contact,
+            attached_area_fraction: attached,
+            branch,
+            converged: true,
+        }
+    }
+
+    #[test]
+    fn an_adhesive_neck_without_contact_is_still_attached() {
+        use Branch::{Loading, Unloading};
+        let cycle = [
+            point(-2.0, -0.1, 0.0, 0.0, Loading),
+            point(-1.0, -0.2, 0.0, 0.0, Loading),
+            point(0.0, -0.7, 0.01, 0.02, Loading),
+            point(1.0, 0.5, 0.05, 0.06, Loading),
+            point(0.0, -0.7, 0.01, 0.02, Unloading),
+            point(-1.0, -0.8, 0.0, 0.01, Unloading),
+            // A neck: no compressive contact, still attached and pulling hard.
+            point(-2.0, -0.6, 0.0, 0.005, Unloading),
+            point(-3.0, -0.05, 0.0, 0.0, Unloading),
+        ];
+        let s = summarize(&cycle);
+        assert_eq!(s.jump_in_approach, Some(0.0));
+        assert_eq!(s.jump_out_approach, Some(-3.0));
+        assert_eq!(s.pull_off_force, Some(-0.8));
+        assert_eq!(s.pull_off_approach, Some(-1.0));
     }
 }
