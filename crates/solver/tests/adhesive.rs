@@ -149,9 +149,7 @@ fn dual_loop_and_accelerated_loop_agree() {
             fast_report.outer_iterations, slow_report.outer_iterations
         );
         assert!(fast_report.converged() && slow_report.converged());
-        // Measured: 24 against 48-50 outer iterations (the count of the plain loop moves by a
-        // few with the inner solver's stopping point), so at least 1.8 times fewer.
-        assert!(fast_report.outer_iterations * 9 < slow_report.outer_iterations * 5);
+        assert!(fast_report.outer_iterations * 2 < slow_report.outer_iterations);
         assert!((fast_report.load / slow_report.load - 1.0).abs() < 1e-5);
         let scale = law.peak_pressure().abs();
         let diff = (&fast.adhesive_pressure - &slow.adhesive_pressure)
