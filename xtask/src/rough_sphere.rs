@@ -68,6 +68,18 @@ pub struct Outcome {
 }
 
 impl Job {
+    /// The smooth sphere of `mu` on an `n`^2 grid.
+    pub fn smooth(mu: u32, n: usize, tolerance: f64) -> Job {
+        Job {
+            mu,
+            rq: 0.0,
+            cutoff_cells: 0.0,
+            seed: 0,
+            n,
+            tolerance,
+        }
+    }
+
     pub fn w0(&self) -> f64 {
         work_of_adhesion(self.mu)
     }
@@ -251,14 +263,7 @@ pub fn plan(ctx: &crate::Context) -> Plan {
 impl Plan {
     /// The grid for `mu`: cells no larger than the process zone, up to `max_n`.
     pub fn n_for(&self, mu: u32) -> usize {
-        let probe = Job {
-            mu,
-            rq: 0.0,
-            cutoff_cells: 0.0,
-            seed: 0,
-            n: 1,
-            tolerance: self.tolerance,
-        };
+        let probe = Job::smooth(mu, 1, self.tolerance);
         let needed = (probe.length() / process_zone(mu)).ceil() as usize;
         needed.next_power_of_two().clamp(32, self.max_n)
     }
@@ -268,14 +273,7 @@ impl Plan {
         mus.iter()
             .map(|&mu| {
                 let n = self.n_for(mu);
-                let j = Job {
-                    mu,
-                    rq: 0.0,
-                    cutoff_cells: 0.0,
-                    seed: 0,
-                    n,
-                    tolerance: self.tolerance,
-                };
+                let j = Job::smooth(mu, n, self.tolerance);
                 format!(
                     "μ = {mu}: {n}² cells of {:.1} nm, {:.2} process zones (E* w0/σ0² = {:.1} nm){}",
                     j.length() / n as f64 * 1e9,
@@ -528,14 +526,7 @@ mod tests {
         };
         for mu in [2, 5, 7] {
             let n = plan.n_for(mu);
-            let j = Job {
-                mu,
-                rq: 0.0,
-                cutoff_cells: 0.0,
-                seed: 0,
-                n,
-                tolerance: 1e-5,
-            };
+            let j = Job::smooth(mu, n, 1e-5);
             assert!(j.length() / n as f64 <= process_zone(mu), "{mu}");
             assert!(
                 j.length() / (n / 2) as f64 > process_zone(mu),
