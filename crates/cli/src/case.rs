@@ -50,6 +50,9 @@ pub enum OuterKind {
     DualLoop,
     /// Anderson mixing of the adhesive pressure (fewer outer iterations, same solution).
     Accelerated,
+    /// No outer loop: conjugate gradients on the total energy (point or exponential law,
+    /// periodic domain, approach or mean-gap control; fastest there).
+    Energy,
 }
 
 /// A contact case: every flag is also a key of the TOML case file (`--config`), with the same
@@ -115,7 +118,7 @@ pub struct Case {
     /// Range of the exponential or Dugdale law [m] (Dugdale default: 0.974 z0 if --z0 given).
     #[arg(long)]
     pub range: Option<f64>,
-    /// Outer loop of the adhesive solver (default accelerated).
+    /// Adhesive solver: dual-loop, accelerated (the default) or energy.
     #[arg(long, value_enum)]
     pub solver: Option<OuterKind>,
     /// Convergence tolerance: without adhesion the scale-free gap residual (default 1e-8, at
@@ -262,6 +265,7 @@ impl Case {
         AdhesiveOptions {
             outer_loop: match self.solver {
                 Some(OuterKind::DualLoop) => OuterLoop::DualLoop,
+                Some(OuterKind::Energy) => OuterLoop::EnergyDescent,
                 _ => OuterLoop::Accelerated,
             },
             tolerance: self.tolerance.unwrap_or(1e-6),

@@ -66,6 +66,57 @@ impl Periodic {
     }
 }
 
+/// The periodic half-space's stiffness: the inverse of [`Periodic`] on fields of zero mean,
+/// `p(q) = E* |q| u(q) / 2` for `q != 0`; the mean of `u` is ignored and the pressure comes out
+/// with zero mean (the mean pressure is the load, which the displacement's fluctuations do not
+/// fix). For solvers whose unknown is the displacement or the gap rather than the pressure.
+pub struct PeriodicStiffness {
+    domain: Domain,
+    conv: Convolution,
+}
+
+impl PeriodicStiffness {
+    /// The operator on the periodic `domain` for composite modulus `e_star` [Pa].
+    pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
+        let e_star = check_modulus(e_star)?;
+        domain.validate()?;
+        let Domain { nx, ny, dx, dy, .. } = domain;
+        let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
+        let kernel = Array2::from_shape_fn((nx / 2 + 1, ny), |(kx, ky)| {
+            0.5 * e_star * wavevector(kx, nx, lx).hypot(wavevector(ky, ny, ly))
+        });
+        Ok(PeriodicStiffness {
+            domain: Domain {
+                periodic: true,
+                ..domain
+            },
+            conv: Convolution::new(nx, ny, kernel, (ny, nx), (ny, nx)),
+        })
+    }
+
+    /// Buffers for [`PeriodicStiffness::apply`]; make one per concurrent caller.
+    pub fn make_workspace(&self) -> Workspace {
+        Workspace(self.conv.make_workspace())
+    }
+
+    /// Writes the pressure [Pa] (zero mean) that holds the surface at `displacement` [m].
+    ///
+    /// # Errors
+    /// [`ElasticError::ShapeMismatch`] if a field is not `(ny, nx)`.
+    pub fn apply(
+        &self,
+        displacement: ArrayView2<f64>,
+        pressure: ArrayViewMut2<f64>,
+        ws: &mut Workspace,
+    ) -> Result<()> {
+        let shape = self.domain.shape();
+        check("displacement", shape, displacement.dim())?;
+        check("pressure", shape, pressure.dim())?;
+        self.conv.apply(displacement, pressure, &mut ws.0);
+        Ok(())
+    }
+}
+
 /// The free (non-periodic) half-space: exact influence coefficients of uniform pressure on
 /// each rectangular cell (Love 1929), applied as a linear convolution by FFT on a zero-padded
 /// `2nx` by `2ny` grid (DC-FFT). The displacement is the true one (zero at infinity).

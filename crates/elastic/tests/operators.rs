@@ -1,7 +1,9 @@
 //! The half-space operators against exact solutions.
 
 use elastic::love::rectangle_displacement;
-use elastic::{Compliance, Domain, ElasticError, Free, Material, Periodic, composite_modulus};
+use elastic::{
+    Compliance, Domain, ElasticError, Free, Material, Periodic, PeriodicStiffness, composite_modulus,
+};
 use ndarray::Array2;
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -254,6 +256,39 @@ proptest! {
         prop_assert!(dot(&p1, &u1) > 0.0);
         prop_assert!(op.energy(p1.view(), u1.view()) > 0.0);
     }
+}
+
+#[test]
+fn the_periodic_stiffness_inverts_the_compliance_on_zero_mean_fields() {
+    let dom = domain(48, 40, 1e-6, true);
+    let (op, stiff) = (
+        Periodic::new(dom, E).unwrap(),
+        PeriodicStiffness::new(dom, E).unwrap(),
+    );
+    let mut p = random_field(40, 48, 7);
+    let mean = p.mean().unwrap();
+    p -= mean;
+    let u = apply(&op, &p);
+    let mut back = Array2::zeros(p.dim());
+    stiff
+        .apply(u.view(), back.view_mut(), &mut stiff.make_workspace())
+        .unwrap();
+    let scale = p.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let err = (&back - &p).iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(
+        err < 1e-12 * scale,
+        "stiffness(compliance(p)) - p = {err:e} of {scale:e}"
+    );
+    // A uniform displacement is a rigid shift: no pressure (beyond round-off of the
+    // pressure scale E* u / dx).
+    stiff
+        .apply(
+            Array2::from_elem(p.dim(), 1e-6).view(),
+            back.view_mut(),
+            &mut stiff.make_workspace(),
+        )
+        .unwrap();
+    assert!(back.iter().all(|v| v.abs() < 1e-12 * E * 1e-6 / 1e-6));
 }
 
 #[test]

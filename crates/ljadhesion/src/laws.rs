@@ -4,7 +4,7 @@
 use crate::error::{Result, positive};
 use crate::field;
 use crate::lj::LennardJones;
-use crate::{AdhesionLaw, Cells};
+use crate::{AdhesionLaw, Cells, LocalPotential};
 use ndarray::{ArrayView2, ArrayViewMut2};
 
 /// The trait methods the three Lennard-Jones laws take from their [`LennardJones`].
@@ -54,6 +54,22 @@ impl AdhesionLaw for PointLaw {
         field::nodal(gap, out, |g| lj.pressure(lj.separation(g)))
     }
     lennard_jones_scales!("point");
+    fn local_potential(&self) -> Option<&dyn LocalPotential> {
+        Some(self)
+    }
+}
+
+/// `V(g) = -Phi(g + z0)`: `-w0` in contact, convex up to the peak pull at `z = 3^(1/6) z0`.
+impl LocalPotential for PointLaw {
+    fn energy(&self, gap: f64) -> f64 {
+        self.0.energy_per_area(self.0.separation(gap))
+    }
+    fn pressure(&self, gap: f64) -> f64 {
+        self.0.pressure(self.0.separation(gap))
+    }
+    fn curvature(&self, gap: f64) -> f64 {
+        self.0.curvature(self.0.separation(gap))
+    }
 }
 
 impl AdhesionLaw for LineLaw {
@@ -137,6 +153,26 @@ impl AdhesionLaw for ExponentialLaw {
     }
     fn name(&self) -> &'static str {
         "exponential"
+    }
+    fn local_potential(&self) -> Option<&dyn LocalPotential> {
+        Some(self)
+    }
+}
+
+/// `V(g) = -w0 exp(-g / rho)`: concave everywhere.
+impl LocalPotential for ExponentialLaw {
+    fn energy(&self, gap: f64) -> f64 {
+        -self.w0 * (-gap.max(0.0) / self.rho).exp()
+    }
+    fn pressure(&self, gap: f64) -> f64 {
+        ExponentialLaw::pressure(self, gap)
+    }
+    fn curvature(&self, gap: f64) -> f64 {
+        ExponentialLaw::pressure(self, gap) / self.rho
+    }
+    fn evaluate(&self, gap: f64) -> (f64, f64, f64) {
+        let p = ExponentialLaw::pressure(self, gap);
+        (p * self.rho, p, p / self.rho)
     }
 }
 
@@ -227,5 +263,20 @@ impl AdhesionLaw for NoAdhesion {
     }
     fn name(&self) -> &'static str {
         "none"
+    }
+    fn local_potential(&self) -> Option<&dyn LocalPotential> {
+        Some(self)
+    }
+}
+
+impl LocalPotential for NoAdhesion {
+    fn energy(&self, _gap: f64) -> f64 {
+        0.0
+    }
+    fn pressure(&self, _gap: f64) -> f64 {
+        0.0
+    }
+    fn curvature(&self, _gap: f64) -> f64 {
+        0.0
     }
 }

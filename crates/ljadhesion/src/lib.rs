@@ -78,4 +78,30 @@ pub trait AdhesionLaw: Sync + Send {
 
     /// Short name (`point`, `line`, `surface`, `exponential`, `dugdale`).
     fn name(&self) -> &'static str;
+
+    /// The law as a [`LocalPotential`], if it is one: each cell's pressure depends on its own
+    /// gap alone and derives from an interaction energy (the point, exponential and no-adhesion
+    /// laws). Energy-minimising solvers need it; the line and surface laws, which mix a cell's
+    /// gap with its neighbours' without an energy behind them, and the discontinuous Dugdale
+    /// law, give `None`.
+    fn local_potential(&self) -> Option<&dyn LocalPotential> {
+        None
+    }
+}
+
+/// A law given by an interaction energy per area `V(g)` [J/m^2] of each cell's own gap `g >= 0`
+/// [m]: `V(0) = -w0`, `V -> 0` far apart, pressure `p = -dV/dg` [Pa] (<= 0 attractive, the
+/// [`AdhesionLaw::pressure_field`] of every cell). Negative gaps count as contact (`g = 0`).
+pub trait LocalPotential: Sync + Send {
+    /// `V(g)` [J/m^2].
+    fn energy(&self, gap: f64) -> f64;
+    /// `p(g) = -dV/dg` [Pa].
+    fn pressure(&self, gap: f64) -> f64;
+    /// `d^2V/dg^2 = -dp/dg` [Pa/m]: positive where the law stiffens the contact (the
+    /// Lennard-Jones tail just outside contact), negative where it softens it.
+    fn curvature(&self, gap: f64) -> f64;
+    /// `(V, p, V'')` at once, for laws that share the work between them.
+    fn evaluate(&self, gap: f64) -> (f64, f64, f64) {
+        (self.energy(gap), self.pressure(gap), self.curvature(gap))
+    }
 }

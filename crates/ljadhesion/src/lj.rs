@@ -70,6 +70,15 @@ impl LennardJones {
         -self.phi(z)
     }
 
+    /// `-dp/dz` [Pa/m] at atomic separation `z` [m]:
+    /// `(8 w0 / (z0 z)) (3 (z0/z)^9 - (z0/z)^3)`, `16 w0 / z0^2` at `z = z0`, zero at the peak
+    /// pull, negative beyond.
+    pub fn curvature(&self, z: f64) -> f64 {
+        let v = self.z0 / z;
+        let v3 = v * v * v;
+        8.0 * self.w0 / (self.z0 * z) * (3.0 * v3 * v3 * v3 - v3)
+    }
+
     /// The most negative pressure, `-16 w0 / (9 sqrt(3) z0)` [Pa], reached at `z = 3^(1/6) z0`.
     pub fn min_pressure(&self) -> f64 {
         -16.0 * self.w0 / (9.0 * 3f64.sqrt() * self.z0)

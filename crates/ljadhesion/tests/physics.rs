@@ -303,3 +303,50 @@ fn bad_input_is_refused() {
         ));
     }
 }
+
+#[test]
+fn local_potentials_are_consistent_with_their_laws() {
+    let laws: Vec<Box<dyn AdhesionLaw>> = vec![
+        Box::new(PointLaw(lj())),
+        Box::new(ExponentialLaw::new(W0, Z0).unwrap()),
+        Box::new(NoAdhesion),
+    ];
+    let cells = Cells {
+        dx: 1e-8,
+        dy: 1e-8,
+        periodic: true,
+    };
+    for law in &laws {
+        let v = law.local_potential().expect("a local law");
+        assert_eq!(v.energy(0.0), -law.work_of_adhesion(), "{}", law.name());
+        assert!(v.energy(1e3 * Z0).abs() < 2e-6 * W0); // the LJ tail: (4/3) w0 (z0/z)^2
+        let gaps = Array2::from_shape_fn((1, 40), |(_, i)| 0.05 * Z0 * i as f64);
+        let mut field = Array2::zeros(gaps.dim());
+        law.pressure_field(gaps.view(), &cells, field.view_mut()).unwrap();
+        for (&g, &p) in gaps.iter().zip(field.iter()) {
+            assert_eq!(v.pressure(g), p, "{} at {g:e}", law.name());
+            // Central differences, one-sided at contact (the hard wall).
+            let h = 1e-5 * Z0;
+            let (lo, hi) = if g == 0.0 { (0.0, 2.0 * h) } else { (g - h, g + h) };
+            let mid = 0.5 * (lo + hi);
+            let dv = (v.energy(hi) - v.energy(lo)) / (hi - lo);
+            let dp = (v.pressure(hi) - v.pressure(lo)) / (hi - lo);
+            let scale = law.peak_pressure().abs().max(1.0);
+            assert!(
+                (-dv - v.pressure(mid)).abs() < 1e-6 * scale,
+                "{}: p at {g:e}",
+                law.name()
+            );
+            let k = law.stiffness_bound().max(1.0);
+            assert!(
+                (-dp - v.curvature(mid)).abs() < 1e-5 * k,
+                "{}: V'' at {g:e}",
+                law.name()
+            );
+        }
+    }
+    // The line, surface and Dugdale laws have no local energy.
+    assert!(LineLaw(lj()).local_potential().is_none());
+    assert!(SurfaceLaw(lj()).local_potential().is_none());
+    assert!(DugdaleLaw::equivalent_to(&lj()).local_potential().is_none());
+}

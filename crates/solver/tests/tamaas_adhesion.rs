@@ -7,7 +7,7 @@ use ljadhesion::ExponentialLaw;
 use ndarray::Array2;
 use solver::adhesive::Start;
 use solver::geometry::flat_on_rough;
-use solver::{AdhesiveOptions, Control, solve_adhesive};
+use solver::{AdhesiveOptions, Control, OuterLoop, solve_adhesive};
 use std::path::Path;
 
 fn load(name: &str) -> Array2<f64> {
@@ -19,6 +19,15 @@ fn load(name: &str) -> Array2<f64> {
 
 #[test]
 fn exponential_adhesion_agrees_with_tamaas() {
+    agrees_with_tamaas(OuterLoop::Accelerated);
+}
+
+#[test]
+fn energy_descent_agrees_with_tamaas() {
+    agrees_with_tamaas(OuterLoop::EnergyDescent);
+}
+
+fn agrees_with_tamaas(outer_loop: OuterLoop) {
     let h = load("surface.npy");
     let reference = load("tamaas_pressure.npy");
     let reference_gap = load("tamaas_gap.npy");
@@ -39,6 +48,7 @@ fn exponential_adhesion_agrees_with_tamaas() {
     let law = ExponentialLaw::new(1e-3, 2.0 / n as f64).unwrap();
     let options = AdhesiveOptions {
         tolerance: 1e-9,
+        outer_loop,
         ..AdhesiveOptions::default()
     };
     let (state, report) = rayon::ThreadPoolBuilder::new().build().unwrap().install(|| {

@@ -8,7 +8,9 @@
 //! towards the law evaluated on the new gaps, `p_a <- p_a + beta (law(g) - p_a)`
 //! ([`OuterLoop::DualLoop`], the paper's scheme), or mixes the last few iterates
 //! ([`OuterLoop::Accelerated`], Anderson mixing), which reaches the same fixed point in far
-//! fewer outer iterations.
+//! fewer outer iterations. On periodic domains under approach control, laws with a local
+//! potential (point, exponential) can also be solved with no outer loop at all, by descending
+//! the total energy ([`OuterLoop::EnergyDescent`], module `energy`).
 //!
 //! Convergence (the paper's criterion, made scale-free): the mean over the grid of
 //! `|law(g) - p_a|` times the compliance of one cell (the displacement of a cell under unit
@@ -17,6 +19,7 @@
 //! is below `1e-6 z0`.
 
 mod anderson;
+mod energy;
 
 use crate::cg::{Scratch, solve_in};
 use crate::error::{Result, SolverError, invalid};
@@ -25,6 +28,7 @@ use crate::report::{Termination, count_clusters};
 use crate::state::ContactState;
 use anderson::Anderson;
 use elastic::{Compliance, Domain};
+use ljadhesion::LocalPotential;
 use ljadhesion::{AdhesionLaw, Cells};
 use ndarray::{Array2, ArrayView2, Zip};
 use std::time::Instant;
@@ -46,6 +50,12 @@ pub enum OuterLoop {
     DualLoop,
     /// Anderson mixing of the last [`AdhesiveOptions::history`] iterates (the default).
     Accelerated,
+    /// No outer loop: constrained conjugate gradients on the total energy over the gap, for
+    /// laws with a [`ljadhesion::LocalPotential`] on periodic domains under approach control.
+    /// Its iterations are reported as inner iterations (no outer ones); the tolerance applies
+    /// to the largest force imbalance of a cell times the cell's compliance, over the law's
+    /// range (the module docs' measure, taken at its worst cell instead of on average).
+    EnergyDescent,
 }
 
 /// Settings of the adhesive solver, independent of the problem.
@@ -256,6 +266,13 @@ pub fn solve_adhesive_observed(
             "must be > 0 m: in contact the central gap does not fix the approach",
         ));
     }
+    if options.outer_loop == OuterLoop::EnergyDescent {
+        let potential = energy_descent_law(&domain, law, control)?;
+        let Control::Approach(delta) = control else {
+            unreachable!("checked by energy_descent_law")
+        };
+        return energy::solve(op, law, potential, g0, delta, options, start, observer);
+    }
     let cell = domain.cell_area();
     let n = (domain.nx * domain.ny) as f64;
     let cells = Cells {
@@ -304,7 +321,7 @@ pub fn solve_adhesive_observed(
     let beta_max = 1.0;
     let beta_min = 0.05 * beta;
     let mut mixer = Anderson::new(match options.outer_loop {
-        OuterLoop::DualLoop => 0,
+        OuterLoop::DualLoop | OuterLoop::EnergyDescent => 0,
         OuterLoop::Accelerated => options.history,
     });
     let mut history: Vec<f64> = Vec::new();
@@ -448,6 +465,69 @@ pub fn solve_adhesive_observed(
     displacement += &u_c;
     contact.displacement = displacement;
     contact.approach = approach;
+    Ok(assemble(
+        &domain,
+        law,
+        contact,
+        p_a,
+        (outer, inner_iterations, calls),
+        history,
+        beta,
+        termination,
+        started,
+    ))
+}
+
+/// The law's local potential, if the energy descent can solve this problem; else why not.
+fn energy_descent_law<'a>(
+    domain: &Domain,
+    law: &'a dyn AdhesionLaw,
+    control: Control,
+) -> Result<&'a dyn LocalPotential> {
+    let Some(potential) = law.local_potential() else {
+        return Err(invalid(
+            "solver",
+            f64::NAN,
+            format!(
+                "energy descent needs a law with a local potential (point, exponential), not `{}`",
+                law.name()
+            ),
+        ));
+    };
+    if !domain.periodic {
+        return Err(invalid(
+            "solver",
+            f64::NAN,
+            "energy descent needs a periodic domain (use `accelerated` on free ones)",
+        ));
+    }
+    if !matches!(control, Control::Approach(_)) {
+        return Err(invalid(
+            "solver",
+            f64::NAN,
+            "energy descent takes the approach (or mean gap) as its control",
+        ));
+    }
+    Ok(potential)
+}
+
+/// The state and report of a finished solve: `contact` with its gap, compressive pressure,
+/// displacement and approach set, and the adhesive pressure `p_a`.
+#[allow(clippy::too_many_arguments)]
+fn assemble(
+    domain: &Domain,
+    law: &dyn AdhesionLaw,
+    contact: ContactState,
+    p_a: Array2<f64>,
+    (outer, inner_iterations, calls): (usize, usize, usize),
+    history: Vec<f64>,
+    relaxation: f64,
+    termination: Termination,
+    started: Instant,
+) -> (AdhesiveState, AdhesiveReport) {
+    let cell = domain.cell_area();
+    let n = (domain.nx * domain.ny) as f64;
+    let centre = (domain.ny / 2, domain.nx / 2);
     let compressive_load = contact.pressure.sum() * cell;
     let adhesive_load = p_a.sum() * cell;
     let load = compressive_load + adhesive_load;
@@ -467,7 +547,7 @@ pub fn solve_adhesive_observed(
         mean_pressure: load / (n * cell),
         compressive_load,
         adhesive_load,
-        approach,
+        approach: contact.approach,
         central_gap: contact.gap[centre],
         contact_area_fraction: in_contact as f64 / n,
         attractive_area_fraction: attractive as f64 / n,
@@ -480,7 +560,7 @@ pub fn solve_adhesive_observed(
         operator_calls: calls,
         residual: history.last().copied().unwrap_or(f64::NAN),
         residual_history: history,
-        relaxation: beta,
+        relaxation,
         termination,
         wall_time_s: started.elapsed().as_secs_f64(),
     };
@@ -488,5 +568,5 @@ pub fn solve_adhesive_observed(
         contact,
         adhesive_pressure: p_a,
     };
-    Ok((state, report))
+    (state, report)
 }
