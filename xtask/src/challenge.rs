@@ -95,7 +95,7 @@ impl Run {
         };
         let mean = |a: &ndarray::Array2<f64>| a.iter().sum::<f64>() / a.len() as f64;
         if p.adhesive() {
-            let options = case.adhesive_options();
+            let options = case.adhesive_options(Control::MeanPressure(0.0));
             let mut state: Option<AdhesiveState> = None;
             for &r in &self.reduced {
                 let control = Control::MeanPressure(r * p.e_star * rms_gradient);

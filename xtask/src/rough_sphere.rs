@@ -135,7 +135,7 @@ impl Job {
         let options = solver::AdhesiveOptions {
             tolerance: self.tolerance,
             max_outer_iterations: 5000,
-            ..case.adhesive_options()
+            ..case.adhesive_options(Control::Approach(0.0))
         };
         let (rms_gradient, rq) = if self.rq > 0.0 {
             let (g, _, rq, _) = crate::surface_statistics(&case)?;

@@ -119,7 +119,7 @@ impl Path {
             p.law.as_ref(),
             p.g0.view(),
             &self.controls(),
-            &case.adhesive_options(),
+            &case.adhesive_options(Control::Approach(0.0)),
             start,
             &mut |k, _: &SweepPoint, s| {
                 on_state(k, s);

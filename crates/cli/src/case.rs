@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize, de::DeserializeOwned};
 use serde_json::{Map, Value};
 use solver::adhesive::OuterLoop;
 use solver::geometry::{SphereProfile, flat_on_rough, sphere};
-use solver::{AdhesiveOptions, ContactOptions};
+use solver::{AdhesiveOptions, ContactOptions, Control};
 use std::path::{Path, PathBuf};
 use surfgen::io::{self, ReadOptions};
 use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec};
@@ -46,6 +46,9 @@ pub enum LawKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum OuterKind {
+    /// `energy` where it applies (point or exponential law, periodic domain, approach or
+    /// mean-gap control), `accelerated` elsewhere.
+    Auto,
     /// The paper's relaxation of the adhesive pressure.
     DualLoop,
     /// Anderson mixing of the adhesive pressure (fewer outer iterations, same solution).
@@ -118,7 +121,8 @@ pub struct Case {
     /// Range of the exponential or Dugdale law [m] (Dugdale default: 0.974 z0 if --z0 given).
     #[arg(long)]
     pub range: Option<f64>,
-    /// Adhesive solver: dual-loop, accelerated (the default) or energy.
+    /// Adhesive solver: auto (the default: energy where it applies, else accelerated),
+    /// dual-loop, accelerated or energy.
     #[arg(long, value_enum)]
     pub solver: Option<OuterKind>,
     /// Convergence tolerance: without adhesion the scale-free gap residual (default 1e-8, at
@@ -239,7 +243,7 @@ impl Case {
         }));
         if adhesive {
             self.law = self.law.or(Some(LawKind::Surface));
-            self.solver = self.solver.or(Some(OuterKind::Accelerated));
+            self.solver = self.solver.or(Some(OuterKind::Auto));
         } else {
             self.law = Some(LawKind::None);
         }
@@ -261,12 +265,18 @@ impl Case {
         }
     }
 
-    pub fn adhesive_options(&self) -> AdhesiveOptions {
+    /// The adhesive solver's settings for solves under controls like `control`.
+    pub fn adhesive_options(&self, control: Control) -> AdhesiveOptions {
+        let energy_applies = matches!(self.law, Some(LawKind::Point | LawKind::Exponential))
+            && self.domain != Some(DomainKind::Free)
+            && matches!(control, Control::Approach(_));
         AdhesiveOptions {
             outer_loop: match self.solver {
                 Some(OuterKind::DualLoop) => OuterLoop::DualLoop,
                 Some(OuterKind::Energy) => OuterLoop::EnergyDescent,
-                _ => OuterLoop::Accelerated,
+                Some(OuterKind::Accelerated) => OuterLoop::Accelerated,
+                None | Some(OuterKind::Auto) if energy_applies => OuterLoop::EnergyDescent,
+                None | Some(OuterKind::Auto) => OuterLoop::Accelerated,
             },
             tolerance: self.tolerance.unwrap_or(1e-6),
             max_outer_iterations: self.max_iterations.unwrap_or(20_000),

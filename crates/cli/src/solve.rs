@@ -8,6 +8,7 @@ use elastic::Domain;
 use ndarray::Array2;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
+use solver::adhesive::OuterLoop;
 use solver::{Control, Start};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -211,11 +212,16 @@ fn solve_adhesive(
     problem: &Problem,
     out: &Path,
 ) -> Result<()> {
-    let options = case.adhesive_options();
+    let options = case.adhesive_options(control);
     let mut last = Instant::now();
     let mut progress = |it: usize, residual: f64| {
         if last.elapsed().as_secs_f64() > 1.0 {
-            eprint!("\router iteration {it:>6}  residual {residual:.3e}");
+            let kind = if options.outer_loop == OuterLoop::EnergyDescent {
+                ""
+            } else {
+                "outer "
+            };
+            eprint!("\r{kind}iteration {it:>6}  residual {residual:.3e}");
             last = Instant::now();
         }
     };
@@ -292,8 +298,13 @@ fn solve_adhesive(
     finish(
         report.converged(),
         format!(
-            "the adhesive solve did not converge: {:?}, residual {:.3e} after {} outer iterations (tolerance {:.1e})",
-            report.termination, report.residual, report.outer_iterations, options.tolerance
+            "the adhesive solve did not converge: {:?}, residual {:.3e} after {} outer and {} inner iterations \
+             (tolerance {:.1e})",
+            report.termination,
+            report.residual,
+            report.outer_iterations,
+            report.inner_iterations,
+            options.tolerance
         ),
         args.keep_going,
         out,

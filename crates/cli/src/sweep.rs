@@ -186,6 +186,9 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         }
         _ => bail!("give one path only"),
     };
+    if controls.is_empty() {
+        bail!("the sweep path is empty");
+    }
     if controls.iter().any(|c| {
         let (Control::Approach(v) | Control::MeanPressure(v) | Control::Force(v) | Control::CentralGap(v)) =
             *c;
@@ -224,7 +227,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     }
     let done = rows.len().min(controls.len());
 
-    let options = case.adhesive_options();
+    let options = case.adhesive_options(controls[0]);
     let bar = ProgressBar::new(controls.len() as u64).with_style(
         ProgressStyle::with_template("{bar:30} {pos}/{len} steps, {elapsed} elapsed, ~{eta} left  {msg}")
             .expect("valid template"),

@@ -3,13 +3,13 @@
 //! complementarity, the adhesive law satisfied, adhesion enlarging the contact).
 
 use elastic::{Compliance, Domain, Free, Periodic};
-use ljadhesion::{AdhesionLaw, Cells, ExponentialLaw, LennardJones, SurfaceLaw};
+use ljadhesion::{AdhesionLaw, Cells, ExponentialLaw, LennardJones, PointLaw, SurfaceLaw};
 use ndarray::Array2;
 use solver::adhesive::{OuterLoop, Start};
 use solver::geometry::{SphereProfile, flat_on_rough, sphere};
 use solver::{
-    AdhesiveOptions, Branch, ContactOptions, Control, CyclePoint, Termination, solve, solve_adhesive,
-    summarize, sweep,
+    AdhesiveOptions, AdhesiveState, Branch, ContactOptions, Control, CyclePoint, Termination, approach_cycle,
+    solve, solve_adhesive, summarize, sweep,
 };
 use std::f64::consts::PI;
 use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec, generate};
@@ -264,6 +264,141 @@ fn rough_adhesive_contact_balances_and_enlarges_the_area() {
     });
 }
 
+/// The largest deviation of an adhesive solution from its equations, in units of the law's
+/// range: gaps against `g0 - delta + K (p_c + p_a)` (zero in contact), the adhesive pressure
+/// against the law times the cell compliance; and whether complementarity holds.
+fn equilibrium_error(op: &Periodic, law: &dyn AdhesionLaw, g0: &Array2<f64>, state: &AdhesiveState) -> f64 {
+    let domain = *op.domain();
+    let mut u = Array2::zeros(g0.dim());
+    op.apply(
+        state.total_pressure().view(),
+        u.view_mut(),
+        &mut op.make_workspace(),
+    )
+    .unwrap();
+    let mut law_p = Array2::zeros(g0.dim());
+    let cells = Cells {
+        dx: domain.dx,
+        dy: domain.dy,
+        periodic: true,
+    };
+    law.pressure_field(state.contact.gap.view(), &cells, law_p.view_mut())
+        .unwrap();
+    let c = solver::adhesive::cell_compliance(&domain, op.e_star());
+    let mut worst = 0.0f64;
+    for (k, (&p, &g)) in state.contact.pressure.iter().zip(&state.contact.gap).enumerate() {
+        assert!(p >= 0.0 && g >= 0.0 && (p == 0.0 || g == 0.0));
+        let free_gap = g0.as_slice().unwrap()[k] - state.contact.approach + u.as_slice().unwrap()[k];
+        let expected = if p > 0.0 { 0.0 } else { free_gap };
+        worst = worst.max((expected - g).abs());
+        let pa = state.adhesive_pressure.as_slice().unwrap()[k];
+        worst = worst.max((pa - law_p.as_slice().unwrap()[k]).abs() * c);
+    }
+    worst / law.range()
+}
+
+#[test]
+fn energy_descent_and_the_dual_loop_agree_on_rough_contact() {
+    pool().install(|| {
+        let (op, g0) = rough(128);
+        let domain = *op.domain();
+        // The point law: Lennard-Jones with a local potential, z0 = 2 cells.
+        let law = PointLaw(LennardJones::new(5e-3, 2.0 * domain.dx).unwrap());
+        let approach = g0.mean().unwrap() - 3e-8;
+        let solve_with = |outer_loop, tolerance| {
+            let options = AdhesiveOptions {
+                outer_loop,
+                tolerance,
+                ..AdhesiveOptions::default()
+            };
+            solve_adhesive(
+                &op,
+                &law,
+                g0.view(),
+                Control::Approach(approach),
+                &options,
+                Start::Loading,
+            )
+            .unwrap()
+        };
+        let (energy, e_report) = solve_with(OuterLoop::EnergyDescent, 1e-8);
+        let (fixed_point, f_report) = solve_with(OuterLoop::Accelerated, 1e-9);
+        assert!(e_report.converged() && f_report.converged());
+        println!(
+            "energy descent: {} iterations, {} operator calls; dual loop (accelerated): {} / {}, {} calls; \
+             loads {:.9e} / {:.9e} N; equations {:.1e} / {:.1e}",
+            e_report.inner_iterations,
+            e_report.operator_calls,
+            f_report.outer_iterations,
+            f_report.inner_iterations,
+            f_report.operator_calls,
+            e_report.load,
+            f_report.load,
+            equilibrium_error(&op, &law, &g0, &energy),
+            equilibrium_error(&op, &law, &g0, &fixed_point),
+        );
+        assert_eq!(e_report.outer_iterations, 0);
+        // Each solves the equations...
+        assert!(equilibrium_error(&op, &law, &g0, &energy) < 1e-6);
+        assert!(equilibrium_error(&op, &law, &g0, &fixed_point) < 1e-5);
+        // ... and they find the same state, the mean gap held exactly.
+        assert!((energy.contact.gap.mean().unwrap() / 3e-8 - 1.0).abs() < 1e-12);
+        assert!((e_report.load / f_report.load - 1.0).abs() < 1e-5);
+        assert_eq!(
+            energy.contact.pressure.mapv(|p| p > 0.0),
+            fixed_point.contact.pressure.mapv(|p| p > 0.0)
+        );
+        assert!(e_report.contact_area_fraction > 0.01 && e_report.attractive_area_fraction > 0.0);
+    });
+}
+
+#[test]
+fn an_energy_descent_cycle_shows_adhesive_hysteresis() {
+    pool().install(|| {
+        let (op, g0) = rough(64);
+        // A short range (1 nm, against an RMS height of 20 nm): asperities snap into contact
+        // and stick on the way back.
+        let law = ExponentialLaw::new(5e-3, 1e-9).unwrap();
+        let mean = g0.mean().unwrap();
+        // From a mean gap of 80 nm (the highest peak 10 ranges away) to 15 nm and back.
+        let path = approach_cycle(mean - 8e-8, mean - 1.5e-8, 10);
+        let options = AdhesiveOptions {
+            outer_loop: OuterLoop::EnergyDescent,
+            ..AdhesiveOptions::default()
+        };
+        let points = sweep(&op, &law, g0.view(), &path, &options, None, &mut |_, _, _| true).unwrap();
+        assert!(points.iter().all(|p| p.report.converged()));
+        let cycle: Vec<CyclePoint> = points.iter().map(CyclePoint::from).collect();
+        let summary = summarize(&cycle);
+        println!("{summary:?}");
+        // At every approach the unloading branch is at least as attached and as tensile as
+        // the loading one (it comes from contact), and somewhere strictly so.
+        let n = path.len() / 2;
+        let scale = points.iter().fold(0.0f64, |m, p| m.max(p.report.load.abs()));
+        let mut differs = false;
+        for k in 0..n {
+            let (load, unload) = (&points[k].report, &points[path.len() - 1 - k].report);
+            assert_eq!(load.approach, unload.approach);
+            println!(
+                "{:.3e}: {:.4e} ({:.4} {}) / {:.4e} ({:.4} {})",
+                load.approach,
+                load.load,
+                load.contact_area_fraction,
+                load.inner_iterations,
+                unload.load,
+                unload.contact_area_fraction,
+                unload.inner_iterations
+            );
+            assert!(unload.load <= load.load + 1e-6 * scale);
+            assert!(unload.contact_area_fraction >= load.contact_area_fraction);
+            differs |= unload.load < load.load - 1e-3 * scale;
+        }
+        assert!(differs, "no hysteresis");
+        assert!(summary.pull_off_force.is_some_and(|w| w < 0.0));
+        assert!(summary.hysteresis_energy > 0.0);
+    });
+}
+
 #[test]
 fn load_control_past_pull_off_says_so() {
     pool().install(|| {
@@ -305,6 +440,40 @@ fn bad_input_is_refused() {
             ..AdhesiveOptions::default()
         }
     ));
+    // The energy descent needs a local potential, a periodic domain and approach control.
+    let energy = AdhesiveOptions {
+        outer_loop: OuterLoop::EnergyDescent,
+        ..AdhesiveOptions::default()
+    };
+    assert!(bad(Control::Approach(0.0), energy));
+    let point = PointLaw(law.0);
+    assert!(
+        solve_adhesive(
+            &op,
+            &point,
+            g0.view(),
+            Control::Approach(0.0),
+            &energy,
+            Start::Loading
+        )
+        .is_err()
+    );
+    let (rough_op, rough_g0) = rough(32);
+    let mean = rough_g0.mean().unwrap();
+    let on_rough = |control| {
+        solve_adhesive(
+            &rough_op,
+            &point,
+            rough_g0.view(),
+            control,
+            &energy,
+            Start::Loading,
+        )
+    };
+    assert!(on_rough(Control::Approach(mean - 1e-8)).is_ok());
+    assert!(on_rough(Control::MeanPressure(1e5)).is_err());
+    // ... and a mean gap left: past full contact, no state exists.
+    assert!(on_rough(Control::Approach(mean)).is_err());
     let mut nan = g0.clone();
     nan[(3, 4)] = f64::NAN;
     assert!(

@@ -106,8 +106,16 @@ impl Problem<'_> {
     /// Writes `max(from + step d + c, 0)` into `gap`, with the shift `c` that restores the mean
     /// gap: the Euclidean projection of the step onto the constraints. `c` comes from Newton
     /// on the convex, piecewise-linear mean (exact after finitely many steps). Also leaves
-    /// `gap - g0` in the scratch field, for [`Problem::evaluate`].
-    fn step_and_project(&mut self, from: &Array2<f64>, d: &Array2<f64>, step: f64, gap: &mut Array2<f64>) {
+    /// `gap - g0` in the scratch field, for [`Problem::evaluate`]. With `hold`, cells of `from`
+    /// in contact stay there and only the others shift (a warm start's first guess).
+    fn step_and_project(
+        &mut self,
+        from: &Array2<f64>,
+        d: &Array2<f64>,
+        step: f64,
+        gap: &mut Array2<f64>,
+        hold: bool,
+    ) {
         let (nx, n) = (self.nx, (self.nx * self.ny) as f64);
         let (fs, ds) = (from.as_slice().expect("layout"), d.as_slice().expect("layout"));
         let mut c = 0.0;
@@ -116,7 +124,11 @@ impl Problem<'_> {
                 let (f, d) = (&fs[j * nx..][..nx], &ds[j * nx..][..nx]);
                 f.iter().zip(d).fold([0.0, 0.0], |[s, k], (&f, &d)| {
                     let v = f + step * d + c;
-                    if v > 0.0 { [s + v, k + 1.0] } else { [s, k] }
+                    if v > 0.0 && !(hold && f <= 0.0) {
+                        [s + v, k + 1.0]
+                    } else {
+                        [s, k]
+                    }
                 })
             });
             if free == 0.0 {
@@ -140,7 +152,11 @@ impl Problem<'_> {
             .and(d)
             .and(&self.g0)
             .par_for_each(|g, u, &f, &d, &g0| {
-                *g = (f + step * d + c).max(0.0);
+                *g = if hold && f <= 0.0 {
+                    0.0
+                } else {
+                    (f + step * d + c).max(0.0)
+                };
                 *u = *g - g0;
             });
     }
@@ -329,7 +345,10 @@ pub(super) fn solve(
         }
     };
     let mut x = Point::new(Array2::zeros(shape));
-    problem.step_and_project(&first, &first, 0.0, &mut x.gap);
+    // A warm start keeps its contact: moving the counterface by less than the law's range
+    // should not tear cells off (a uniform shift would, and the descent would then settle in
+    // the detached state's basin rather than follow the attached branch).
+    problem.step_and_project(&first, &first, 0.0, &mut x.gap, matches!(start, Start::Warm(_)));
     drop(first);
     problem.evaluate(&mut x)?;
     let mut direction = Array2::zeros(shape);
@@ -387,7 +406,7 @@ pub(super) fn solve(
         let mut accepted = false;
         let mut cut = false;
         for _ in 0..MAX_CUTS {
-            problem.step_and_project(&x.gap, &direction, step, &mut trial.gap);
+            problem.step_and_project(&x.gap, &direction, step, &mut trial.gap, false);
             problem.evaluate(&mut trial)?;
             let rise = trial.total_energy() - energy;
             if rise <= slack {
