@@ -46,15 +46,15 @@ pub enum LawKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum OuterKind {
-    /// `energy` where it applies (point or exponential law, periodic domain, approach or
-    /// mean-gap control), `accelerated` elsewhere.
+    /// `energy` where it is the tested default (point or exponential law, periodic domain,
+    /// approach or mean-gap control), `accelerated` elsewhere.
     Auto,
     /// The paper's relaxation of the adhesive pressure.
     DualLoop,
     /// Anderson mixing of the adhesive pressure (fewer outer iterations, same solution).
     Accelerated,
     /// No outer loop: conjugate gradients on the total energy (point or exponential law,
-    /// periodic domain, approach or mean-gap control; fastest there).
+    /// periodic domain; approach, mean-gap or load control; fastest there).
     Energy,
 }
 

@@ -353,6 +353,39 @@ fn energy_descent_and_the_dual_loop_agree_on_rough_contact() {
 }
 
 #[test]
+fn energy_descent_under_load_control_balances_and_pulls_off() {
+    pool().install(|| {
+        let (op, g0) = rough(128);
+        let domain = *op.domain();
+        let law = ExponentialLaw::new(5e-3, 2.0 * domain.dx).unwrap();
+        let mean_pressure = 1e5;
+        let solve_with = |outer_loop, control| {
+            let options = AdhesiveOptions {
+                outer_loop,
+                tolerance: 1e-8,
+                ..AdhesiveOptions::default()
+            };
+            solve_adhesive(&op, &law, g0.view(), control, &options, Start::Loading).unwrap()
+        };
+        let (energy, e_report) = solve_with(OuterLoop::EnergyDescent, Control::MeanPressure(mean_pressure));
+        let (fixed_point, f_report) =
+            solve_with(OuterLoop::Accelerated, Control::MeanPressure(mean_pressure));
+        assert!(e_report.converged() && f_report.converged());
+        // The load is carried, the equations hold, and both solvers find the same state.
+        assert!((e_report.mean_pressure / mean_pressure - 1.0).abs() < 1e-6);
+        assert!(equilibrium_error(&op, &law, &g0, &energy) < 1e-6);
+        assert!((e_report.approach - f_report.approach).abs() < 1e-5 * law.range());
+        assert_eq!(
+            energy.contact.pressure.mapv(|p| p > 0.0),
+            fixed_point.contact.pressure.mapv(|p| p > 0.0)
+        );
+        // Pulling harder than the attraction can hold flies apart, and says so.
+        let (_, apart) = solve_with(OuterLoop::EnergyDescent, Control::MeanPressure(-1e7));
+        assert_eq!(apart.termination, Termination::PulledOff);
+    });
+}
+
+#[test]
 fn an_energy_descent_cycle_shows_adhesive_hysteresis() {
     pool().install(|| {
         let (op, g0) = rough(64);
@@ -471,7 +504,7 @@ fn bad_input_is_refused() {
         )
     };
     assert!(on_rough(Control::Approach(mean - 1e-8)).is_ok());
-    assert!(on_rough(Control::MeanPressure(1e5)).is_err());
+    assert!(on_rough(Control::CentralGap(1e-9)).is_err());
     // ... and a mean gap left: past full contact, no state exists.
     assert!(on_rough(Control::Approach(mean)).is_err());
     let mut nan = g0.clone();

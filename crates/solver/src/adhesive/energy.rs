@@ -21,6 +21,7 @@
 
 use super::{AdhesiveOptions, AdhesiveReport, AdhesiveState, Start, assemble};
 use crate::error::{Result, SolverError, invalid};
+use crate::options::Control;
 use crate::report::Termination;
 use crate::state::ContactState;
 use elastic::{Compliance, PeriodicStiffness};
@@ -53,10 +54,13 @@ struct Point {
     curvature: Array2<f64>,
     /// The gradient `S (g - g0) - p(g)` [Pa], then projected ([`Problem::project_gradient`]).
     gradient: Array2<f64>,
-    /// Elastic and interaction energy per area [J/m^2].
+    /// Elastic energy, and interaction energy plus the load's potential `p_mean mean(g)`, per
+    /// area [J/m^2].
     energy: (f64, f64),
     /// The gradient's sum over the cells off the wall, and their number.
     free: (f64, f64),
+    /// The smallest gap [m].
+    min_gap: f64,
 }
 
 impl Point {
@@ -70,6 +74,7 @@ impl Point {
             gradient: Array2::zeros(shape),
             energy: (0.0, 0.0),
             free: (0.0, 0.0),
+            min_gap: 0.0,
         }
     }
 
@@ -96,8 +101,10 @@ struct Problem<'a> {
     g0: ArrayView2<'a, f64>,
     nx: usize,
     ny: usize,
-    /// The prescribed mean gap [m].
+    /// The prescribed mean gap [m] (approach control).
     mean_gap: f64,
+    /// The prescribed mean pressure [Pa] (load control: the mean gap is free).
+    load: Option<f64>,
     scratch: Array2<f64>,
     calls: usize,
 }
@@ -119,7 +126,7 @@ impl Problem<'_> {
         let (nx, n) = (self.nx, (self.nx * self.ny) as f64);
         let (fs, ds) = (from.as_slice().expect("layout"), d.as_slice().expect("layout"));
         let mut c = 0.0;
-        for _ in 0..100 {
+        for _ in 0..if self.load.is_some() { 0 } else { 100 } {
             let [sum, free] = row_sums(self.ny, |j| {
                 let (f, d) = (&fs[j * nx..][..nx], &ds[j * nx..][..nx]);
                 f.iter().zip(d).fold([0.0, 0.0], |[s, k], (&f, &d)| {
@@ -169,10 +176,11 @@ impl Problem<'_> {
             .apply(self.scratch.view(), at.elastic.view_mut(), &mut self.ws)?;
         self.calls += 1;
         let potential = self.potential;
+        let load = self.load.unwrap_or(0.0);
         let gs = at.gap.as_slice().expect("layout");
         let ds = self.scratch.as_slice().expect("layout");
         let es = at.elastic.as_slice().expect("layout");
-        let sums: Vec<[f64; 5]> = at
+        let sums: Vec<[f64; 6]> = at
             .law
             .as_slice_mut()
             .expect("layout")
@@ -181,16 +189,18 @@ impl Problem<'_> {
             .zip(at.gradient.as_slice_mut().expect("layout").par_chunks_mut(nx))
             .enumerate()
             .map(|(j, ((lr, cr), rr))| {
-                // Elastic and interaction energy, free gradient and count, non-finite gaps.
-                let mut sums = [0.0; 5];
+                // Elastic energy, interaction energy and the load's potential, free gradient
+                // and count, non-finite gaps, smallest gap.
+                let mut sums = [0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY];
                 for i in 0..nx {
                     let k = j * nx + i;
                     let g = gs[k];
                     let (v, p, c) = potential.evaluate(g);
                     (lr[i], cr[i]) = (p, c);
-                    rr[i] = es[k] - p;
+                    rr[i] = es[k] - p + load;
                     sums[0] += ds[k] * es[k];
-                    sums[1] += v;
+                    sums[1] += v + load * g;
+                    sums[5] = sums[5].min(g);
                     if g > 0.0 {
                         sums[2] += rr[i];
                         sums[3] += 1.0;
@@ -202,10 +212,13 @@ impl Problem<'_> {
                 sums
             })
             .collect();
-        let t = sums.iter().fold([0.0; 5], |mut a, b| {
-            a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
-            a
-        });
+        let t = sums
+            .iter()
+            .fold([0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY], |mut a, b| {
+                a.iter_mut().take(5).zip(b).for_each(|(a, b)| *a += b);
+                a[5] = a[5].min(b[5]);
+                a
+            });
         if t[4] > 0.0 {
             let k = gs.iter().position(|g| !g.is_finite()).unwrap_or(0);
             return Err(SolverError::NonFinite {
@@ -218,6 +231,7 @@ impl Problem<'_> {
         let n = (self.nx * self.ny) as f64;
         at.energy = (0.5 * t[0] / n, t[1] / n);
         at.free = (t[2], t[3]);
+        at.min_gap = t[5];
         Ok(())
     }
 
@@ -227,7 +241,7 @@ impl Problem<'_> {
     /// stays. Returns its sums against `old`.
     fn project_gradient(&self, at: &mut Point, old: &Array2<f64>) -> GradientSums {
         let nx = self.nx;
-        let lambda = if at.free.1 > 0.0 {
+        let lambda = if self.load.is_none() && at.free.1 > 0.0 {
             at.free.0 / at.free.1
         } else {
             0.0
@@ -253,7 +267,11 @@ impl Problem<'_> {
                 .collect();
             parts.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
         };
-        let shift = if moving > 0.0 { sum / moving } else { 0.0 };
+        let shift = if self.load.is_none() && moving > 0.0 {
+            sum / moving
+        } else {
+            0.0
+        };
         let os = old.as_slice().expect("layout");
         let parts: Vec<[f64; 3]> = at
             .gradient
@@ -286,14 +304,15 @@ impl Problem<'_> {
     }
 }
 
-/// Solves under `Control::Approach(delta)` on the periodic operator `op`; see the module docs.
+/// Solves under approach control (`Control::Approach`) or load control (`Control::Force`,
+/// `Control::MeanPressure`) on the periodic operator `op`; see the module docs.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn solve(
     op: &dyn Compliance,
     law: &dyn AdhesionLaw,
     potential: &dyn LocalPotential,
     g0: ArrayView2<f64>,
-    delta: f64,
+    control: Control,
     options: &AdhesiveOptions,
     start: Start,
     observer: &mut dyn FnMut(usize, f64),
@@ -310,8 +329,15 @@ pub(super) fn solve(
             value,
         });
     }
+    let n = (nx * ny) as f64;
+    let (delta, load) = match control {
+        Control::Approach(d) => (d, None),
+        Control::MeanPressure(p) => (0.0, Some(p)),
+        Control::Force(w) => (0.0, Some(w / (n * domain.cell_area()))),
+        Control::CentralGap(_) => unreachable!("refused by the caller"),
+    };
     let mean_gap = g0.mean().unwrap_or(0.0) - delta;
-    if mean_gap <= 0.0 {
+    if load.is_none() && mean_gap <= 0.0 {
         return Err(invalid(
             "approach",
             delta,
@@ -327,11 +353,22 @@ pub(super) fn solve(
         nx,
         ny,
         mean_gap,
+        load,
         scratch: Array2::zeros(shape),
         calls: 0,
     };
     let first = match start {
-        Start::Loading => g0.mapv(|g| g - delta),
+        // Under load control the rigid shift has no elastic stiffness, and a first step from
+        // a point contact would snap far more of the surface in than a quasi-static approach
+        // does: start from the non-adhesive contact at the same (compressive) load instead.
+        Start::Loading => match load {
+            Some(p) if p > 0.0 => {
+                crate::cg::solve(op, g0, Control::MeanPressure(p), &options.inner, None)?
+                    .0
+                    .gap
+            }
+            _ => g0.mapv(|g| g - delta),
+        },
         Start::Unloading => Array2::zeros(shape),
         Start::Warm(s) => {
             if s.contact.gap.dim() != shape {
@@ -373,6 +410,11 @@ pub(super) fn solve(
         if iterations == options.max_outer_iterations {
             break;
         }
+        if load.is_some_and(|p| p < 0.0) && x.min_gap > 1e3 * law.range() {
+            // Pulled by more than any attraction at these gaps can hold: flying apart.
+            termination = Termination::PulledOff;
+            break;
+        }
         iterations += 1;
         problem
             .stiffness
@@ -400,7 +442,13 @@ pub(super) fn solve(
         } else {
             elastic_curv + law_pos
         };
-        let mut step = -slope / curvature;
+        let mut step = if curvature > 0.0 {
+            -slope / curvature
+        } else {
+            // No stiffness along the direction at all (a free rigid shift under load
+            // control, in a concave part of the law): move by one range of the law.
+            law.range() / direction.iter().fold(f64::MIN_POSITIVE, |m, d| m.max(d.abs()))
+        };
         let energy = x.total_energy();
         let slack = 1e-13 * (x.energy.0 + x.energy.1.abs()) + f64::MIN_POSITIVE;
         let mut accepted = false;
@@ -455,23 +503,36 @@ pub(super) fn solve(
             slope = -sums.squared;
         }
     }
-    let lambda = sums.lambda;
+    // The mean pressure: prescribed, or minus the multiplier of the mean gap.
+    let mean_pressure = load.unwrap_or(-sums.lambda);
 
-    // Contact pressure where the gap is closed: the gradient less the multiplier.
+    // Contact pressure where the gap is closed: the gradient's elastic and adhesive part plus
+    // the mean pressure.
     let mut pressure = Array2::zeros(shape);
     Zip::from(&mut pressure)
         .and(&x.gap)
         .and(&x.elastic)
         .and(&x.law)
-        .par_for_each(|p, &g, &e, &l| *p = if g <= 0.0 { (e - l - lambda).max(0.0) } else { 0.0 });
+        .par_for_each(|p, &g, &e, &l| {
+            *p = if g <= 0.0 {
+                (e - l + mean_pressure).max(0.0)
+            } else {
+                0.0
+            }
+        });
     let mut displacement = &x.gap - &g0;
     let mean = displacement.mean().unwrap_or(0.0);
     displacement.mapv_inplace(|u| u - mean);
+    // On a periodic domain the mean displacement is zero.
+    let approach = match load {
+        None => delta,
+        Some(_) => g0.mean().unwrap_or(0.0) - x.gap.mean().unwrap_or(0.0),
+    };
     let contact = ContactState {
         pressure,
         gap: x.gap,
         displacement,
-        approach: delta,
+        approach,
     };
     Ok(assemble(
         &domain,

@@ -8,7 +8,7 @@
 //! towards the law evaluated on the new gaps, `p_a <- p_a + beta (law(g) - p_a)`
 //! ([`OuterLoop::DualLoop`], the paper's scheme), or mixes the last few iterates
 //! ([`OuterLoop::Accelerated`], Anderson mixing), which reaches the same fixed point in far
-//! fewer outer iterations. On periodic domains under approach control, laws with a local
+//! fewer outer iterations. On periodic domains under approach or load control, laws with a local
 //! potential (point, exponential) can also be solved with no outer loop at all, by descending
 //! the total energy ([`OuterLoop::EnergyDescent`], module `energy`).
 //!
@@ -51,7 +51,8 @@ pub enum OuterLoop {
     /// Anderson mixing of the last [`AdhesiveOptions::history`] iterates (the default).
     Accelerated,
     /// No outer loop: constrained conjugate gradients on the total energy over the gap, for
-    /// laws with a [`ljadhesion::LocalPotential`] on periodic domains under approach control.
+    /// laws with a [`ljadhesion::LocalPotential`] on periodic domains, under approach or load
+    /// control.
     /// Its iterations are reported as inner iterations (no outer ones); the tolerance applies
     /// to the largest force imbalance of a cell times the cell's compliance, over the law's
     /// range (the module docs' measure, taken at its worst cell instead of on average).
@@ -268,10 +269,7 @@ pub fn solve_adhesive_observed(
     }
     if options.outer_loop == OuterLoop::EnergyDescent {
         let potential = energy_descent_law(&domain, law, control)?;
-        let Control::Approach(delta) = control else {
-            unreachable!("checked by energy_descent_law")
-        };
-        return energy::solve(op, law, potential, g0, delta, options, start, observer);
+        return energy::solve(op, law, potential, g0, control, options, start, observer);
     }
     let cell = domain.cell_area();
     let n = (domain.nx * domain.ny) as f64;
@@ -501,11 +499,11 @@ fn energy_descent_law<'a>(
             "energy descent needs a periodic domain (use `accelerated` on free ones)",
         ));
     }
-    if !matches!(control, Control::Approach(_)) {
+    if let Control::CentralGap(g) = control {
         return Err(invalid(
-            "solver",
-            f64::NAN,
-            "energy descent takes the approach (or mean gap) as its control",
+            "central_gap",
+            g,
+            "energy descent takes the approach (or mean gap), the load or the mean pressure",
         ));
     }
     Ok(potential)
