@@ -8,13 +8,17 @@
 //! `E(g) = (1/2) <g - g0, S (g - g0)> / N + mean(V(g))` over `g >= 0` with that mean, `S` the
 //! periodic stiffness ([`elastic::PeriodicStiffness`]) and `V` the law's interaction energy.
 //! Its gradient `r = S (g - g0) - p(g)` [Pa] balances the mean-pressure multiplier where
-//! `g > 0` and is the contact pressure where `g = 0`. Each iteration takes the conjugate
-//! direction of the projected gradient (Polak-Ribiere, restarted when it is not a descent
-//! direction), a step from the exact curvature `S + V''` along it (only its positive part when
-//! the law makes it negative), and projects onto the constraints; a step that would raise the
-//! energy is halved, so every iterate lowers the energy. A descent method settles on a stable
-//! state only: near a jump it stays on its branch up to the fold, where a fixed-point
-//! iteration on the adhesive pressure can also land on the unstable branch between.
+//! `g > 0` and is the contact pressure where `g = 0`. Under load control (mean pressure
+//! `p_m` given) the mean gap is free and the load's potential `p_m mean(g)` joins `E`.
+//!
+//! Each iteration takes the conjugate direction of the projected gradient (Polak-Ribiere,
+//! restarted when it is not a descent direction or a step was cut), a step from the exact
+//! curvature `S + V''` along it (only its positive part when the law makes it negative), and
+//! projects onto the constraints; a step that would raise the energy is cut to the minimiser
+//! of a parabola through the energies seen, so every iterate lowers the energy. A descent
+//! method settles on stable states only: near a jump it stays on its branch up to the fold,
+//! where a fixed-point iteration on the adhesive pressure can also land on the unstable
+//! branch between.
 //!
 //! Two operator applications per iteration (the direction and the trial gap), against one per
 //! inner iteration times many inner iterations per outer one in the dual loop.
