@@ -25,6 +25,9 @@ pub enum SolverError {
         col: usize,
         value: f64,
     },
+    /// The chosen method cannot solve this problem (the message says what can).
+    #[error("{0}")]
+    Unsupported(String),
     /// The elastic operator refused its input.
     #[error(transparent)]
     Elastic(#[from] elastic::ElasticError),

@@ -28,8 +28,7 @@ use crate::report::{Termination, count_clusters};
 use crate::state::ContactState;
 use anderson::Anderson;
 use elastic::{Compliance, Domain};
-use ljadhesion::LocalPotential;
-use ljadhesion::{AdhesionLaw, Cells};
+use ljadhesion::{AdhesionLaw, Cells, LocalPotential};
 use ndarray::{Array2, ArrayView2, Zip};
 use std::time::Instant;
 
@@ -52,8 +51,7 @@ pub enum OuterLoop {
     Accelerated,
     /// No outer loop: constrained conjugate gradients on the total energy over the gap, for
     /// laws with a [`ljadhesion::LocalPotential`] on periodic domains, under approach or load
-    /// control.
-    /// Its iterations are reported as inner iterations (no outer ones); the tolerance applies
+    /// control. Its iterations are reported as inner iterations (no outer ones); the tolerance applies
     /// to the largest force imbalance of a cell times the cell's compliance, over the law's
     /// range (the module docs' measure, taken at its worst cell instead of on average).
     EnergyDescent,
@@ -483,20 +481,14 @@ fn energy_descent_law<'a>(
     control: Control,
 ) -> Result<&'a dyn LocalPotential> {
     let Some(potential) = law.local_potential() else {
-        return Err(invalid(
-            "solver",
-            f64::NAN,
-            format!(
-                "energy descent needs a law with a local potential (point, exponential), not `{}`",
-                law.name()
-            ),
-        ));
+        return Err(SolverError::Unsupported(format!(
+            "energy descent needs a law with a local potential (point, exponential), not `{}`",
+            law.name()
+        )));
     };
     if !domain.periodic {
-        return Err(invalid(
-            "solver",
-            f64::NAN,
-            "energy descent needs a periodic domain (use `accelerated` on free ones)",
+        return Err(SolverError::Unsupported(
+            "energy descent needs a periodic domain (use `accelerated` on free ones)".into(),
         ));
     }
     if let Control::CentralGap(g) = control {
