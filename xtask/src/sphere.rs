@@ -120,6 +120,7 @@ impl Path {
             p.g0.view(),
             &self.controls(),
             &case.adhesive_options(Control::Approach(0.0)),
+            None,
             start,
             &mut |k, _: &SweepPoint, s| {
                 on_state(k, s);

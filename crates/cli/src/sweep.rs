@@ -40,6 +40,12 @@ pub struct SweepPath {
     /// unstable middle of a sphere's S-shaped curve.
     #[arg(long, value_delimiter = ',', conflicts_with_all = ["from", "to", "steps", "approaches", "mean_pressures"])]
     pub central_gaps: Option<Vec<f64>>,
+    /// Largest change of approach or central gap between two solves [m]: a longer step is
+    /// split into substeps that are solved (their iterations count in curve.csv) but not
+    /// written, which keeps the sweep quasi-static [default: the adhesive law's range, z0 for
+    /// Lennard-Jones; no splitting without adhesion]. Load steps are never split.
+    #[arg(long)]
+    pub max_step: Option<f64>,
 }
 
 /// Built-in cases, runnable with no input files (their TOML is in `data/examples`).
@@ -228,6 +234,23 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     let done = rows.len().min(controls.len());
 
     let options = case.adhesive_options(controls[0]);
+    let max_step = path.max_step.or(problem.adhesive().then(|| problem.law.range()));
+    if let Some(h) = max_step
+        && !(h.is_finite() && h > 0.0)
+    {
+        bail!("--max-step must be a positive length [m], got {h}");
+    }
+    let split: usize = controls[done.saturating_sub(1)..]
+        .windows(2)
+        .map(|w| solver::substeps(Some(w[0]), w[1], max_step).len())
+        .sum();
+    if split > 0 {
+        eprintln!(
+            "note: {split} substeps are solved between the path's steps (none longer than {:.3e} m, \
+             to stay quasi-static); a larger --max-step is faster but may jump between branches",
+            max_step.unwrap_or(f64::NAN)
+        );
+    }
     let bar = ProgressBar::new(controls.len() as u64).with_style(
         ProgressStyle::with_template("{bar:30} {pos}/{len} steps, {elapsed} elapsed, ~{eta} left  {msg}")
             .expect("valid template"),
@@ -244,6 +267,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             problem.g0.view(),
             &controls[done..],
             &options,
+            max_step,
             start,
             &mut |k, p, state| {
                 let r = &p.report;
@@ -307,6 +331,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         "adhesive_range": problem.adhesive().then_some(range),
         "adhesive_range_per_cell": problem.adhesive().then_some(range / domain.dx.max(domain.dy)),
         "tabor_parameter": tabor,
+        "max_step": max_step,
         "warnings": problem.warnings,
         "steps": cycle.len(),
         "pull_off_force": summary.pull_off_force,

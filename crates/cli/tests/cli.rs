@@ -605,6 +605,35 @@ fn sweep_refuses_bad_paths_and_warns_about_coarse_grids() {
         d.join("c").to_str().unwrap(),
     ]);
     assert!(stderr(&o).contains("process-zone"), "{}", stderr(&o));
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "dmt-sphere",
+        "--max-step",
+        "0",
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--max-step"), "{}", stderr(&o));
+}
+
+#[test]
+fn long_sweep_steps_are_split_into_substeps_of_the_range() {
+    // dmt-sphere's z0 is 1 nm: a 3 nm step takes two substeps first.
+    let d = dir("substeps");
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "dmt-sphere",
+        "--approaches=-2e-9,1e-9",
+        "--no-png",
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("note: 2 substeps"), "{}", stderr(&o));
+    assert_eq!(json(&d.join("summary.json"))["max_step"], 1e-9);
 }
 
 #[test]

@@ -118,24 +118,30 @@ impl Problem<'_> {
     /// gap: the Euclidean projection of the step onto the constraints. `c` comes from Newton
     /// on the convex, piecewise-linear mean (exact after finitely many steps). Also leaves
     /// `gap - g0` in the scratch field, for [`Problem::evaluate`]. With `hold`, cells of `from`
-    /// in contact stay there and only the others shift (a warm start's first guess).
+    /// with a gap at most `hold` [m] stay where they are and only the others shift (a warm
+    /// start's first guess).
     fn step_and_project(
         &mut self,
         from: &Array2<f64>,
         d: &Array2<f64>,
         step: f64,
         gap: &mut Array2<f64>,
-        hold: bool,
+        hold: Option<f64>,
     ) {
         let (nx, n) = (self.nx, (self.nx * self.ny) as f64);
         let (fs, ds) = (from.as_slice().expect("layout"), d.as_slice().expect("layout"));
+        // Holding every cell would leave nothing to restore the mean gap with.
+        let hold = hold.filter(|&h| fs.iter().any(|&f| f > h));
+        let held = |f: f64| hold.is_some_and(|h| f <= h);
         let mut c = 0.0;
         for _ in 0..if self.load.is_some() { 0 } else { 100 } {
             let [sum, free] = row_sums(self.ny, |j| {
                 let (f, d) = (&fs[j * nx..][..nx], &ds[j * nx..][..nx]);
                 f.iter().zip(d).fold([0.0, 0.0], |[s, k], (&f, &d)| {
                     let v = f + step * d + c;
-                    if v > 0.0 && !(hold && f <= 0.0) {
+                    if held(f) {
+                        [s + f, k]
+                    } else if v > 0.0 {
                         [s + v, k + 1.0]
                     } else {
                         [s, k]
@@ -163,11 +169,7 @@ impl Problem<'_> {
             .and(d)
             .and(&self.g0)
             .par_for_each(|g, u, &f, &d, &g0| {
-                *g = if hold && f <= 0.0 {
-                    0.0
-                } else {
-                    (f + step * d + c).max(0.0)
-                };
+                *g = if held(f) { f } else { (f + step * d + c).max(0.0) };
                 *u = *g - g0;
             });
     }
@@ -386,10 +388,12 @@ pub(super) fn solve(
         }
     };
     let mut x = Point::new(Array2::zeros(shape));
-    // A warm start keeps its contact: moving the counterface by less than the law's range
-    // should not tear cells off (a uniform shift would, and the descent would then settle in
-    // the detached state's basin rather than follow the attached branch).
-    problem.step_and_project(&first, &first, 0.0, &mut x.gap, matches!(start, Start::Warm(_)));
+    // A warm start keeps its attached cells (gap within the law's range) in place and moves
+    // only the rest: a uniform shift would tear the attached rim off at once (or press cells
+    // into attraction on loading), and the descent would settle in that state's basin rather
+    // than follow the branch; from the held guess the descent itself decides what peels off.
+    let hold = matches!(start, Start::Warm(_)).then(|| law.range());
+    problem.step_and_project(&first, &first, 0.0, &mut x.gap, hold);
     drop(first);
     problem.evaluate(&mut x)?;
     let mut direction = Array2::zeros(shape);
@@ -458,7 +462,7 @@ pub(super) fn solve(
         let mut accepted = false;
         let mut cut = false;
         for _ in 0..MAX_CUTS {
-            problem.step_and_project(&x.gap, &direction, step, &mut trial.gap, false);
+            problem.step_and_project(&x.gap, &direction, step, &mut trial.gap, None);
             problem.evaluate(&mut trial)?;
             let rise = trial.total_energy() - energy;
             if rise <= slack {
