@@ -124,13 +124,12 @@ pub fn sweep(
     let mut state = start;
     let mut points = Vec::with_capacity(path.len());
     for (k, &control) in path.iter().enumerate() {
-        let mut taken = 0;
+        let between = substeps(previous, control, max_step);
         let mut unconverged_substeps = 0;
         let mut spent = (0, 0, 0, 0.0);
-        for sub in substeps(previous, control, max_step) {
+        for &sub in &between {
             let from = state.as_ref().map_or(Start::Loading, Start::Warm);
             let (next, report) = solve_adhesive(op, law, g0, sub, options, from)?;
-            taken += 1;
             unconverged_substeps += usize::from(!report.converged());
             spent.0 += report.outer_iterations;
             spent.1 += report.inner_iterations;
@@ -148,7 +147,7 @@ pub fn sweep(
             control,
             branch: branch[k],
             report,
-            substeps: taken,
+            substeps: between.len(),
             unconverged_substeps,
         };
         let go_on = on_step(k, &point, &next);
