@@ -313,4 +313,36 @@ mod tests {
         assert_eq!(s.pull_off_force, Some(-0.8));
         assert_eq!(s.pull_off_approach, Some(-1.0));
     }
+
+    #[test]
+    fn long_steps_split_into_equal_substeps_no_longer_than_the_limit() {
+        use Control::{Approach, CentralGap, MeanPressure};
+        let values = |v: Vec<Control>| -> Vec<f64> {
+            v.into_iter()
+                .map(|c| match c {
+                    Approach(a) | CentralGap(a) => a,
+                    _ => f64::NAN,
+                })
+                .collect()
+        };
+        // 1 -> 0 in steps of at most 0.3: four parts of 0.25, three intermediate controls.
+        assert_eq!(
+            values(substeps(Some(Approach(1.0)), Approach(0.0), Some(0.3))),
+            [0.75, 0.5, 0.25]
+        );
+        assert_eq!(
+            values(substeps(Some(CentralGap(0.0)), CentralGap(0.5), Some(0.25))),
+            [0.25]
+        );
+        // Short steps, no previous control, no limit, a bad limit, load control or a change of
+        // kind: nothing in between.
+        assert!(substeps(Some(Approach(0.0)), Approach(0.2), Some(0.3)).is_empty());
+        assert!(substeps(Some(Approach(0.0)), Approach(0.0), Some(0.3)).is_empty());
+        assert!(substeps(None, Approach(1.0), Some(0.3)).is_empty());
+        assert!(substeps(Some(Approach(0.0)), Approach(1.0), None).is_empty());
+        assert!(substeps(Some(Approach(0.0)), Approach(1.0), Some(0.0)).is_empty());
+        assert!(substeps(Some(Approach(0.0)), Approach(1.0), Some(f64::NAN)).is_empty());
+        assert!(substeps(Some(MeanPressure(0.0)), MeanPressure(1.0), Some(0.3)).is_empty());
+        assert!(substeps(Some(CentralGap(1.0)), Approach(0.0), Some(0.3)).is_empty());
+    }
 }
