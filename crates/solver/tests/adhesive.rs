@@ -8,8 +8,8 @@ use ndarray::Array2;
 use solver::adhesive::{OuterLoop, Start};
 use solver::geometry::{SphereProfile, flat_on_rough, sphere};
 use solver::{
-    AdhesiveOptions, AdhesiveState, Branch, ContactOptions, Control, CyclePoint, Termination, approach_cycle,
-    solve, solve_adhesive, summarize, sweep,
+    AdhesiveOptions, AdhesiveState, Branch, ContactOptions, Control, CyclePoint, SweepPoint, Termination,
+    approach_cycle, solve, solve_adhesive, summarize, sweep,
 };
 use std::f64::consts::PI;
 use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec, generate};
@@ -387,31 +387,42 @@ fn energy_descent_under_load_control_balances_and_pulls_off() {
     });
 }
 
+/// The rough 64^2 surface under an exponential law of range 1 nm (against an RMS height of
+/// 20 nm: asperities snap into contact and stick on the way back), cycled by energy descent
+/// from a mean gap of 80 nm (the highest peak 10 ranges away) to 15 nm and back in `steps`
+/// steps each way, split into substeps no longer than `max_step`.
+fn rough_energy_cycle(
+    steps: usize,
+    max_step: Option<f64>,
+    tolerance: f64,
+) -> (Vec<Control>, Vec<SweepPoint>) {
+    let (op, g0) = rough(64);
+    let law = ExponentialLaw::new(5e-3, 1e-9).unwrap();
+    let mean = g0.mean().unwrap();
+    let path = approach_cycle(mean - 8e-8, mean - 1.5e-8, steps);
+    let options = AdhesiveOptions {
+        outer_loop: OuterLoop::EnergyDescent,
+        tolerance,
+        ..AdhesiveOptions::default()
+    };
+    let points = sweep(
+        &op,
+        &law,
+        g0.view(),
+        &path,
+        &options,
+        max_step,
+        None,
+        &mut |_, _, _| true,
+    )
+    .unwrap();
+    (path, points)
+}
+
 #[test]
 fn an_energy_descent_cycle_shows_adhesive_hysteresis() {
     pool().install(|| {
-        let (op, g0) = rough(64);
-        // A short range (1 nm, against an RMS height of 20 nm): asperities snap into contact
-        // and stick on the way back.
-        let law = ExponentialLaw::new(5e-3, 1e-9).unwrap();
-        let mean = g0.mean().unwrap();
-        // From a mean gap of 80 nm (the highest peak 10 ranges away) to 15 nm and back.
-        let path = approach_cycle(mean - 8e-8, mean - 1.5e-8, 10);
-        let options = AdhesiveOptions {
-            outer_loop: OuterLoop::EnergyDescent,
-            ..AdhesiveOptions::default()
-        };
-        let points = sweep(
-            &op,
-            &law,
-            g0.view(),
-            &path,
-            &options,
-            None,
-            None,
-            &mut |_, _, _| true,
-        )
-        .unwrap();
+        let (path, points) = rough_energy_cycle(10, None, AdhesiveOptions::default().tolerance);
         assert!(points.iter().all(|p| p.report.converged()));
         let cycle: Vec<CyclePoint> = points.iter().map(CyclePoint::from).collect();
         let summary = summarize(&cycle);
@@ -447,27 +458,8 @@ fn an_energy_descent_cycle_shows_adhesive_hysteresis() {
 #[test]
 fn a_cycle_in_long_steps_with_substeps_is_the_quasi_static_cycle() {
     pool().install(|| {
-        let (op, g0) = rough(64);
-        let law = ExponentialLaw::new(5e-3, 1e-9).unwrap();
-        let mean = g0.mean().unwrap();
-        let options = AdhesiveOptions {
-            outer_loop: OuterLoop::EnergyDescent,
-            tolerance: 1e-8,
-            ..AdhesiveOptions::default()
-        };
         let cycle = |steps: usize, max_step: Option<f64>| {
-            let path = approach_cycle(mean - 8e-8, mean - 1.5e-8, steps);
-            let points = sweep(
-                &op,
-                &law,
-                g0.view(),
-                &path,
-                &options,
-                max_step,
-                None,
-                &mut |_, _, _| true,
-            )
-            .unwrap();
+            let (_, points) = rough_energy_cycle(steps, max_step, 1e-8);
             assert!(
                 points
                     .iter()
