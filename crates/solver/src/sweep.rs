@@ -117,8 +117,13 @@ pub fn sweep(
         ));
     }
     let branch = branches(path);
+    // Where the start state stands, for splitting the first step too.
     let mut previous = match (&start, path.first()) {
         (Some(s), Some(Control::Approach(_))) => Some(Control::Approach(s.contact.approach)),
+        (Some(s), Some(Control::CentralGap(_))) => {
+            let (ny, nx) = s.contact.gap.dim();
+            Some(Control::CentralGap(s.contact.gap[[ny / 2, nx / 2]]))
+        }
         _ => None,
     };
     let mut state = start;
