@@ -91,8 +91,11 @@ pub fn branches(path: &[Control]) -> Vec<Branch> {
 /// than it is split into equal substeps no longer than it, each solved and warm-started in
 /// turn, and only the last is returned. Without it a long unloading step jumps across the
 /// attached states the surfaces would pass through and can land on a less attached branch
-/// (seen on the contact-mechanics challenge with steps of 145 `z0`). A few ranges of the
-/// law (`z0`) is fine enough; load-controlled steps are never split.
+/// (seen on the contact-mechanics challenge with steps of 120 `z0`). How fine is fine enough
+/// depends on the problem: there substeps of 10 `z0` gave an adhesive cycle within 0.4 % of
+/// substeps of one `z0`, while on a sphere at Tabor parameter 3 on 64^2 cells a step of
+/// 0.25 `z0` left a ring of cells cycling in and out of contact and 0.125 `z0` converged.
+/// Load-controlled steps are never split.
 ///
 /// # Errors
 /// As [`solve_adhesive`]; a `max_step` that is not positive and finite.
