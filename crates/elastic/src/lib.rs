@@ -9,7 +9,8 @@
 //! - [`Free`]: Love's exact influence coefficients for rectangular cells, applied as a linear
 //!   convolution on a zero-padded grid (DC-FFT); the displacement vanishes at infinity.
 //!
-//! Both are [`Compliance`] operators ([`PeriodicStiffness`] inverts the periodic one):
+//! Both are [`Compliance`] operators ([`PeriodicStiffness`] inverts the periodic one,
+//! [`FreeStiffness`] the free one on its padded grid):
 //! planned once, then applied many times to caller-owned buffers with a caller-owned
 //! [`Workspace`] (no field-sized allocation per application), in parallel, with results that do not depend on the number of threads at all.
 //! Arrays have shape `(ny, nx)`.
@@ -37,7 +38,7 @@ mod operators;
 
 pub use error::{ElasticError, Result};
 pub use material::{Material, composite_modulus};
-pub use operators::{Free, Periodic, PeriodicStiffness, Workspace};
+pub use operators::{Free, FreeStiffness, Periodic, PeriodicStiffness, Workspace};
 
 use ndarray::{ArrayView2, ArrayViewMut2, Zip};
 

@@ -132,27 +132,7 @@ impl Free {
     pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
-        let Domain { nx, ny, dx, dy, .. } = domain;
-        let (mx, my) = (2 * nx, 2 * ny);
-        // Influence of cell (0, 0) on the cell at offset (i, j): even in both, so compute a
-        // quadrant and wrap. Offset n (the padding's Nyquist) never reaches a kept output; it
-        // takes the value at +n so that the kernel stays even and its spectrum real.
-        let quadrant: Vec<f64> = (0..(ny + 1) * (nx + 1))
-            .into_par_iter()
-            .map(|k| {
-                let (j, i) = (k / (nx + 1), k % (nx + 1));
-                cell_influence(i as f64 * dx, j as f64 * dy, 0.5 * dx, 0.5 * dy, e_star)
-            })
-            .collect();
-        let fold = |k: usize, n: usize| if k <= n { k } else { 2 * n - k };
-        let wrapped_row = |j: usize, out: &mut [f64]| {
-            let q = &quadrant[fold(j, ny) * (nx + 1)..][..nx + 1];
-            out.iter_mut().enumerate().for_each(|(i, o)| *o = q[fold(i, nx)]);
-        };
-        let mut conv = Convolution::without_kernel(mx, my, (ny, nx), (ny, nx));
-        let kernel = conv.real_spectrum(wrapped_row, &mut conv.make_workspace());
-        drop(quadrant);
-        conv.set_kernel(kernel);
+        let (conv, _) = free_convolution(&domain, e_star, (domain.ny, domain.nx));
         Ok(Free {
             domain: Domain {
                 periodic: false,
@@ -161,6 +141,137 @@ impl Free {
             e_star,
             conv,
         })
+    }
+}
+
+/// The DC-FFT convolution of the free half-space from `(ny, nx)` pressures to `output`
+/// displacements (at most the padded `(2ny, 2nx)`), and the unscaled real spectrum of its
+/// wrapped kernel.
+fn free_convolution(domain: &Domain, e_star: f64, output: (usize, usize)) -> (Convolution, Array2<f64>) {
+    let Domain { nx, ny, dx, dy, .. } = *domain;
+    let (mx, my) = (2 * nx, 2 * ny);
+    // Influence of cell (0, 0) on the cell at offset (i, j): even in both, so compute a
+    // quadrant and wrap. Offset n (the padding's Nyquist) never reaches a kept output; it
+    // takes the value at +n so that the kernel stays even and its spectrum real.
+    let quadrant: Vec<f64> = (0..(ny + 1) * (nx + 1))
+        .into_par_iter()
+        .map(|k| {
+            let (j, i) = (k / (nx + 1), k % (nx + 1));
+            cell_influence(i as f64 * dx, j as f64 * dy, 0.5 * dx, 0.5 * dy, e_star)
+        })
+        .collect();
+    let fold = |k: usize, n: usize| if k <= n { k } else { 2 * n - k };
+    let wrapped_row = |j: usize, out: &mut [f64]| {
+        let q = &quadrant[fold(j, ny) * (nx + 1)..][..nx + 1];
+        out.iter_mut().enumerate().for_each(|(i, o)| *o = q[fold(i, nx)]);
+    };
+    let mut conv = Convolution::without_kernel(mx, my, (ny, nx), output);
+    let kernel = conv.real_spectrum(wrapped_row, &mut conv.make_workspace());
+    conv.set_kernel(kernel.clone());
+    (conv, kernel)
+}
+
+/// The free half-space's stiffness on its padded grid, for solvers whose unknown is the
+/// displacement: the inverse of the `2nx` by `2ny` circulant compliance whose first `(ny, nx)`
+/// block is [`Free`]. A displacement `U` [m] of the whole padded grid is held by the pressure
+/// `S U` [Pa] on the whole padded grid; where `S U` vanishes outside the first block, `U`'s
+/// first block is exactly the free displacement under `S U`'s first block (the padding
+/// keeps the periodic images from reaching it), so minimising over `U` with no pressure
+/// allowed in the padding solves the free problem. Fields have shape `(2ny, 2nx)`; the
+/// spectrum of the wrapped Love kernel is positive (checked), with a condition number of
+/// about `4 n`.
+pub struct FreeStiffness {
+    domain: Domain,
+    e_star: f64,
+    stiffness: Convolution,
+    compliance: Convolution,
+}
+
+impl FreeStiffness {
+    /// The operator for the free `domain` and composite modulus `e_star` [Pa].
+    ///
+    /// # Errors
+    /// A bad domain or modulus, or a kernel spectrum that is not positive (not seen on any
+    /// grid: the wrapped kernel of Love's coefficients is positive definite).
+    pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
+        let e_star = check_modulus(e_star)?;
+        domain.validate()?;
+        let padded = (2 * domain.ny, 2 * domain.nx);
+        let (compliance, kernel) = free_convolution(&domain, e_star, padded);
+        let smallest = kernel.iter().fold(f64::INFINITY, |m, &k| m.min(k));
+        if !(smallest > 0.0) {
+            return Err(ElasticError::InvalidParameter {
+                name: "smallest compliance eigenvalue",
+                value: smallest,
+                reason: "the padded free kernel is not positive definite on this grid",
+            });
+        }
+        let mut stiffness = Convolution::without_kernel(padded.1, padded.0, padded, padded);
+        stiffness.set_kernel(kernel.mapv(|k| 1.0 / k));
+        Ok(FreeStiffness {
+            domain: Domain {
+                periodic: false,
+                ..domain
+            },
+            e_star,
+            stiffness,
+            compliance,
+        })
+    }
+
+    /// The free domain, whose fields are the first `(ny, nx)` block of the padded ones.
+    pub fn domain(&self) -> &Domain {
+        &self.domain
+    }
+
+    /// Composite modulus E* [Pa].
+    pub fn e_star(&self) -> f64 {
+        self.e_star
+    }
+
+    /// Shape `(2ny, 2nx)` of the padded fields.
+    pub fn padded_shape(&self) -> (usize, usize) {
+        (2 * self.domain.ny, 2 * self.domain.nx)
+    }
+
+    /// Buffers for [`FreeStiffness::apply`] and [`FreeStiffness::displacement`].
+    pub fn make_workspace(&self) -> Workspace {
+        Workspace(self.stiffness.make_workspace())
+    }
+
+    /// Writes the padded pressure [Pa] that holds the padded surface at `displacement` [m].
+    ///
+    /// # Errors
+    /// [`ElasticError::ShapeMismatch`] if a field is not `(2ny, 2nx)`.
+    pub fn apply(
+        &self,
+        displacement: ArrayView2<f64>,
+        pressure: ArrayViewMut2<f64>,
+        ws: &mut Workspace,
+    ) -> Result<()> {
+        let shape = self.padded_shape();
+        check("displacement", shape, displacement.dim())?;
+        check("pressure", shape, pressure.dim())?;
+        self.stiffness.apply(displacement, pressure, &mut ws.0);
+        Ok(())
+    }
+
+    /// Writes the padded displacement [m] under `pressure` [Pa] on the `(ny, nx)` domain (none
+    /// in the padding): the inverse of [`FreeStiffness::apply`], whose first block is [`Free`]'s
+    /// displacement. For starting a minimisation from a known pressure.
+    ///
+    /// # Errors
+    /// [`ElasticError::ShapeMismatch`] if a field has the wrong shape.
+    pub fn displacement(
+        &self,
+        pressure: ArrayView2<f64>,
+        displacement: ArrayViewMut2<f64>,
+        ws: &mut Workspace,
+    ) -> Result<()> {
+        check("pressure", self.domain.shape(), pressure.dim())?;
+        check("displacement", self.padded_shape(), displacement.dim())?;
+        self.compliance.apply(pressure, displacement, &mut ws.0);
+        Ok(())
     }
 }
 

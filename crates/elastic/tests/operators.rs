@@ -2,7 +2,8 @@
 
 use elastic::love::rectangle_displacement;
 use elastic::{
-    Compliance, Domain, ElasticError, Free, Material, Periodic, PeriodicStiffness, composite_modulus,
+    Compliance, Domain, ElasticError, Free, FreeStiffness, Material, Periodic, PeriodicStiffness,
+    composite_modulus,
 };
 use ndarray::Array2;
 use proptest::prelude::*;
@@ -289,6 +290,48 @@ fn the_periodic_stiffness_inverts_the_compliance_on_zero_mean_fields() {
         )
         .unwrap();
     assert!(back.iter().all(|v| v.abs() < 1e-12 * E * 1e-6 / 1e-6));
+}
+
+#[test]
+fn the_free_stiffness_inverts_the_padded_compliance_whose_first_block_is_the_free_one() {
+    let dom = domain(24, 20, 1e-6, false);
+    let (op, stiff) = (Free::new(dom, E).unwrap(), FreeStiffness::new(dom, E).unwrap());
+    assert_eq!(stiff.padded_shape(), (40, 48));
+    let mut ws = stiff.make_workspace();
+    let p = random_field(20, 24, 3);
+    let mut padded = Array2::zeros((40, 48));
+    stiff.displacement(p.view(), padded.view_mut(), &mut ws).unwrap();
+    // The first block is the free displacement; the padding moves too (a free surface).
+    let u = apply(&op, &p);
+    let block = padded.slice(ndarray::s![..20, ..24]);
+    let scale = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let err = (&block - &u).iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(err < 1e-12 * scale, "first block - free = {err:e} of {scale:e}");
+    assert!(
+        padded
+            .slice(ndarray::s![20.., ..])
+            .iter()
+            .any(|v| v.abs() > 1e-3 * scale)
+    );
+    // The stiffness gives the pressure back, with none in the padding.
+    let mut back = Array2::zeros((40, 48));
+    stiff.apply(padded.view(), back.view_mut(), &mut ws).unwrap();
+    let p_scale = p.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let err = Array2::from_shape_fn((40, 48), |(j, i)| {
+        let want = if j < 20 && i < 24 { p[(j, i)] } else { 0.0 };
+        (back[(j, i)] - want).abs()
+    })
+    .iter()
+    .fold(0.0f64, |m, &v| m.max(v));
+    assert!(
+        err < 1e-10 * p_scale,
+        "stiffness(displacement(p)) - p = {err:e} of {p_scale:e}"
+    );
+    // Positive definite: a rigid shift of the padded grid is held by a positive pressure.
+    stiff
+        .apply(Array2::from_elem((40, 48), 1e-9).view(), back.view_mut(), &mut ws)
+        .unwrap();
+    assert!(back.iter().all(|&v| v > 0.0));
 }
 
 #[test]

@@ -1,5 +1,5 @@
-//! Energy descent: periodic adhesive contact under a local potential law as one
-//! bound-constrained minimisation over the gap, with no outer loop (the constrained nonlinear
+//! Energy descent: adhesive contact under a local potential law as one bound-constrained
+//! minimisation over the gap (or the displacement), with no outer loop (the constrained nonlinear
 //! conjugate gradients of Bugnicourt et al., Tribol. Lett. 66:29, 2018, which
 //! ContactMechanics/Adhesion also uses).
 //!
@@ -20,6 +20,13 @@
 //! where a fixed-point iteration on the adhesive pressure can also land on the unstable
 //! branch between.
 //!
+//! On a free domain (approach control only) the unknown is the surface displacement `U` of the
+//! padded `2nx` by `2ny` grid of the DC-FFT ([`elastic::FreeStiffness`]), with
+//! `E(U) = (1/2) <U, S U> / N + mean(V(g))` and `g = g0 - delta + U` on the domain's block (the
+//! first `(ny, nx)` cells), where the law acts and the wall stands: the gradient `S U - p(g)` is
+//! driven to the contact pressure there and to zero in the padding, where no pressure may act,
+//! so the block's displacement is the free one. No mean constraint: the projection is a clip.
+//!
 //! Two operator applications per iteration (the direction and the trial gap), against one per
 //! inner iteration times many inner iterations per outer one in the dual loop.
 
@@ -28,9 +35,9 @@ use crate::error::{Result, SolverError, invalid};
 use crate::options::Control;
 use crate::report::Termination;
 use crate::state::ContactState;
-use elastic::{Compliance, PeriodicStiffness};
+use elastic::{Compliance, FreeStiffness, PeriodicStiffness};
 use ljadhesion::{AdhesionLaw, LocalPotential};
-use ndarray::{Array2, ArrayView2, Zip};
+use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip, s};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -47,8 +54,9 @@ fn row_sums<const K: usize>(ny: usize, row: impl Fn(usize) -> [f64; K] + Sync) -
     })
 }
 
-/// One admissible gap and what the solver needs of it.
+/// One admissible point and what the solver needs of it. Fields have the unknown's shape.
 struct Point {
+    /// The unknown: the gap [m] on the domain's block, the displacement [m] in the padding.
     gap: Array2<f64>,
     /// `S (g - g0)` [Pa].
     elastic: Array2<f64>,
@@ -63,7 +71,7 @@ struct Point {
     energy: (f64, f64),
     /// The gradient's sum over the cells off the wall, and their number.
     free: (f64, f64),
-    /// The smallest gap [m].
+    /// The smallest gap [m] (on the domain's block).
     min_gap: f64,
 }
 
@@ -98,28 +106,51 @@ struct GradientSums {
     against_old: f64,
 }
 
+/// The stiffness of the unknown's grid.
+enum Stiffness {
+    Periodic(PeriodicStiffness),
+    Free(FreeStiffness),
+}
+
+impl Stiffness {
+    fn apply(&self, u: ArrayView2<f64>, p: ArrayViewMut2<f64>, ws: &mut elastic::Workspace) -> Result<()> {
+        match self {
+            Stiffness::Periodic(s) => s.apply(u, p, ws),
+            Stiffness::Free(s) => s.apply(u, p, ws),
+        }?;
+        Ok(())
+    }
+}
+
 struct Problem<'a> {
-    stiffness: PeriodicStiffness,
+    stiffness: Stiffness,
     ws: elastic::Workspace,
     potential: &'a dyn LocalPotential,
-    g0: ArrayView2<'a, f64>,
+    /// The unknown less the surface displacement [m] (up to its mean, periodic): `g0` periodic;
+    /// `g0 - delta` on the domain's block and zero in the padding, free.
+    base: Array2<f64>,
+    /// Columns and rows of the unknown: `(nx, ny)` periodic, `(2nx, 2ny)` free.
+    mx: usize,
+    my: usize,
+    /// Columns and rows of the domain's block, where the unknown is the gap.
     nx: usize,
     ny: usize,
-    /// The prescribed mean gap [m] (approach control).
-    mean_gap: f64,
-    /// The prescribed mean pressure [Pa] (load control: the mean gap is free).
+    /// The prescribed mean gap [m] (periodic approach control; free domains have none).
+    mean_gap: Option<f64>,
+    /// The prescribed mean pressure [Pa] (periodic load control: the mean gap is free).
     load: Option<f64>,
     scratch: Array2<f64>,
     calls: usize,
 }
 
 impl Problem<'_> {
-    /// Writes `max(from + step d + c, 0)` into `gap`, with the shift `c` that restores the mean
-    /// gap: the Euclidean projection of the step onto the constraints. `c` comes from Newton
-    /// on the convex, piecewise-linear mean (exact after finitely many steps). Also leaves
-    /// `gap - g0` in the scratch field, for [`Problem::evaluate`]. With `hold`, cells of `from`
-    /// with a gap at most `hold` [m] stay where they are and only the others shift (a warm
-    /// start's first guess).
+    /// Writes `max(from + step d + c, 0)` into `gap` (on the domain's block; no bound in the
+    /// padding), with the shift `c` that restores a prescribed mean gap (else 0): the
+    /// Euclidean projection of the step onto the constraints. `c` comes from Newton on the
+    /// convex, piecewise-linear mean (exact after finitely many steps). Also leaves
+    /// `gap - base` in the scratch field, for [`Problem::evaluate`]. With `hold` (periodic),
+    /// cells of `from` with a gap at most `hold` [m] stay where they are and only the others
+    /// shift (a warm start's first guess).
     fn step_and_project(
         &mut self,
         from: &Array2<f64>,
@@ -128,13 +159,15 @@ impl Problem<'_> {
         gap: &mut Array2<f64>,
         hold: Option<f64>,
     ) {
-        let (nx, n) = (self.nx, (self.nx * self.ny) as f64);
+        let (mx, nx, ny, n) = (self.mx, self.nx, self.ny, (self.nx * self.ny) as f64);
         let (fs, ds) = (from.as_slice().expect("layout"), d.as_slice().expect("layout"));
+        let mean_gap = self.mean_gap.unwrap_or(0.0);
         // Holding every cell would leave nothing to restore the mean gap with.
-        let hold = hold.filter(|&h| fs.iter().any(|&f| f > h));
+        let hold = hold.filter(|&h| self.mean_gap.is_some() && fs.iter().any(|&f| f > h));
         let held = |f: f64| hold.is_some_and(|h| f <= h);
         let mut c = 0.0;
-        for _ in 0..if self.load.is_some() { 0 } else { 100 } {
+        // A prescribed mean gap is periodic: the unknown is the gap everywhere.
+        for _ in 0..if self.mean_gap.is_some() { 100 } else { 0 } {
             let [sum, free] = row_sums(self.ny, |j| {
                 let (f, d) = (&fs[j * nx..][..nx], &ds[j * nx..][..nx]);
                 f.iter().zip(d).fold([0.0, 0.0], |[s, k], (&f, &d)| {
@@ -154,30 +187,41 @@ impl Problem<'_> {
                     .iter()
                     .zip(ds)
                     .fold(f64::NEG_INFINITY, |m, (&f, &d)| m.max(f + step * d));
-                c = self.mean_gap - top;
+                c = mean_gap - top;
                 continue;
             }
-            let excess = sum / n - self.mean_gap;
-            if excess.abs() <= 1e-15 * self.mean_gap {
+            let excess = sum / n - mean_gap;
+            if excess.abs() <= 1e-15 * mean_gap {
                 break;
             }
             c -= excess * n / free;
         }
-        Zip::from(gap)
-            .and(&mut self.scratch)
-            .and(from)
-            .and(d)
-            .and(&self.g0)
-            .par_for_each(|g, u, &f, &d, &g0| {
-                *g = if held(f) { f } else { (f + step * d + c).max(0.0) };
-                *u = *g - g0;
+        let bs = self.base.as_slice().expect("layout");
+        gap.as_slice_mut()
+            .expect("layout")
+            .par_chunks_mut(mx)
+            .zip(self.scratch.as_slice_mut().expect("layout").par_chunks_mut(mx))
+            .enumerate()
+            .for_each(|(j, (gr, ur))| {
+                for i in 0..mx {
+                    let k = j * mx + i;
+                    let (f, inside) = (fs[k], j < ny && i < nx);
+                    gr[i] = if !inside {
+                        f + step * ds[k]
+                    } else if held(f) {
+                        f
+                    } else {
+                        (f + step * ds[k] + c).max(0.0)
+                    };
+                    ur[i] = gr[i] - bs[k];
+                }
             });
     }
 
     /// Fills `at`'s fields, energy and raw gradient from its admissible gap, just made by
     /// [`Problem::step_and_project`].
     fn evaluate(&mut self, at: &mut Point) -> Result<()> {
-        let nx = self.nx;
+        let (mx, nx, ny) = (self.mx, self.nx, self.ny);
         self.stiffness
             .apply(self.scratch.view(), at.elastic.view_mut(), &mut self.ws)?;
         self.calls += 1;
@@ -190,29 +234,34 @@ impl Problem<'_> {
             .law
             .as_slice_mut()
             .expect("layout")
-            .par_chunks_mut(nx)
-            .zip(at.curvature.as_slice_mut().expect("layout").par_chunks_mut(nx))
-            .zip(at.gradient.as_slice_mut().expect("layout").par_chunks_mut(nx))
+            .par_chunks_mut(mx)
+            .zip(at.curvature.as_slice_mut().expect("layout").par_chunks_mut(mx))
+            .zip(at.gradient.as_slice_mut().expect("layout").par_chunks_mut(mx))
             .enumerate()
             .map(|(j, ((lr, cr), rr))| {
                 // Elastic energy, interaction energy and the load's potential, free gradient
                 // and count, non-finite gaps, smallest gap.
                 let mut sums = [0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY];
-                for i in 0..nx {
-                    let k = j * nx + i;
+                for i in 0..mx {
+                    let k = j * mx + i;
                     let g = gs[k];
+                    sums[0] += ds[k] * es[k];
+                    if !g.is_finite() {
+                        sums[4] += 1.0;
+                    }
+                    if j >= ny || i >= nx {
+                        // The padding: elasticity alone.
+                        (lr[i], cr[i], rr[i]) = (0.0, 0.0, es[k]);
+                        continue;
+                    }
                     let (v, p, c) = potential.evaluate(g);
                     (lr[i], cr[i]) = (p, c);
                     rr[i] = es[k] - p + load;
-                    sums[0] += ds[k] * es[k];
                     sums[1] += v + load * g;
                     sums[5] = sums[5].min(g);
                     if g > 0.0 {
                         sums[2] += rr[i];
                         sums[3] += 1.0;
-                    }
-                    if !g.is_finite() {
-                        sums[4] += 1.0;
                     }
                 }
                 sums
@@ -229,8 +278,8 @@ impl Problem<'_> {
             let k = gs.iter().position(|g| !g.is_finite()).unwrap_or(0);
             return Err(SolverError::NonFinite {
                 what: "gap",
-                row: k / nx,
-                col: k % nx,
+                row: k / mx,
+                col: k % mx,
                 value: gs[k],
             });
         }
@@ -244,10 +293,11 @@ impl Problem<'_> {
     /// Projects `at`'s raw gradient in place: less the mean-pressure multiplier (its mean over
     /// the cells off the wall), zero where a cell on the wall is pushed into it (that is its
     /// contact pressure), and with zero mean over the cells that move, so that the mean gap
-    /// stays. Returns its sums against `old`.
+    /// stays (the multiplier and the mean only where the mean gap is prescribed). Returns its
+    /// sums against `old`.
     fn project_gradient(&self, at: &mut Point, old: &Array2<f64>) -> GradientSums {
-        let nx = self.nx;
-        let lambda = if self.load.is_none() && at.free.1 > 0.0 {
+        let (mx, nx, ny) = (self.mx, self.nx, self.ny);
+        let lambda = if self.mean_gap.is_some() && at.free.1 > 0.0 {
             at.free.0 / at.free.1
         } else {
             0.0
@@ -256,13 +306,17 @@ impl Problem<'_> {
         let [sum, moving] = {
             let rs = at.gradient.as_slice_mut().expect("layout");
             let parts: Vec<[f64; 2]> = rs
-                .par_chunks_mut(nx)
+                .par_chunks_mut(mx)
                 .enumerate()
                 .map(|(j, row)| {
                     let mut sums = [0.0; 2];
-                    for (r, &g) in row.iter_mut().zip(&gs[j * nx..][..nx]) {
+                    for (i, (r, &g)) in row.iter_mut().zip(&gs[j * mx..][..mx]).enumerate() {
                         let v = *r - lambda;
-                        *r = if g <= 0.0 && v >= 0.0 { 0.0 } else { v };
+                        *r = if on_wall(j, i, g, nx, ny) && v >= 0.0 {
+                            0.0
+                        } else {
+                            v
+                        };
                         if *r != 0.0 {
                             sums[0] += *r;
                             sums[1] += 1.0;
@@ -273,7 +327,7 @@ impl Problem<'_> {
                 .collect();
             parts.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
         };
-        let shift = if self.load.is_none() && moving > 0.0 {
+        let shift = if self.mean_gap.is_some() && moving > 0.0 {
             sum / moving
         } else {
             0.0
@@ -283,11 +337,11 @@ impl Problem<'_> {
             .gradient
             .as_slice_mut()
             .expect("layout")
-            .par_chunks_mut(nx)
+            .par_chunks_mut(mx)
             .enumerate()
             .map(|(j, row)| {
                 let mut sums = [0.0f64; 3];
-                for (r, &o) in row.iter_mut().zip(&os[j * nx..][..nx]) {
+                for (r, &o) in row.iter_mut().zip(&os[j * mx..][..mx]) {
                     if *r != 0.0 {
                         *r -= shift;
                     }
@@ -310,8 +364,14 @@ impl Problem<'_> {
     }
 }
 
-/// Solves under approach control (`Control::Approach`) or load control (`Control::Force`,
-/// `Control::MeanPressure`) on the periodic operator `op`; see the module docs.
+/// Whether cell `(j, i)` of the unknown, at `g`, is on the wall: the unknown is the gap (the
+/// domain's `(ny, nx)` block) and it is closed.
+fn on_wall(j: usize, i: usize, g: f64, nx: usize, ny: usize) -> bool {
+    g <= 0.0 && j < ny && i < nx
+}
+
+/// Solves under approach control (`Control::Approach`) or, periodic only, load control
+/// (`Control::Force`, `Control::MeanPressure`) on the operator `op`; see the module docs.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn solve(
     op: &dyn Compliance,
@@ -343,65 +403,115 @@ pub(super) fn solve(
         Control::CentralGap(_) => unreachable!("refused by the caller"),
     };
     let mean_gap = g0.mean().unwrap_or(0.0) - delta;
-    if load.is_none() && mean_gap <= 0.0 {
+    if domain.periodic && load.is_none() && mean_gap <= 0.0 {
         return Err(invalid(
             "approach",
             delta,
             "reaches the mean initial gap: a periodic surface is in full contact before that",
         ));
     }
-    let stiffness = PeriodicStiffness::new(domain, op.e_star())?;
-    let mut problem = Problem {
-        ws: stiffness.make_workspace(),
-        stiffness,
-        potential,
-        g0,
-        nx,
-        ny,
-        mean_gap,
-        load,
-        scratch: Array2::zeros(shape),
-        calls: 0,
-    };
-    let first = match start {
-        // Under load control the rigid shift has no elastic stiffness, and a first step from
-        // a point contact would snap far more of the surface in than a quasi-static approach
-        // does: start from the non-adhesive contact at the same (compressive) load instead.
-        Start::Loading => match load {
-            Some(p) if p > 0.0 => {
-                crate::cg::solve(op, g0, Control::MeanPressure(p), &options.inner, None)?
-                    .0
-                    .gap
+    if let Start::Warm(s) = start
+        && s.contact.gap.dim() != shape
+    {
+        return Err(SolverError::ShapeMismatch {
+            what: "warm-start gap",
+            expected: shape,
+            got: s.contact.gap.dim(),
+        });
+    }
+    let (mut problem, first, hold) = if domain.periodic {
+        let stiffness = PeriodicStiffness::new(domain, op.e_star())?;
+        let first = match start {
+            // Under load control the rigid shift has no elastic stiffness, and a first step
+            // from a point contact would snap far more of the surface in than a quasi-static
+            // approach does: start from the non-adhesive contact at the same (compressive)
+            // load instead.
+            Start::Loading => match load {
+                Some(p) if p > 0.0 => {
+                    crate::cg::solve(op, g0, Control::MeanPressure(p), &options.inner, None)?
+                        .0
+                        .gap
+                }
+                _ => g0.mapv(|g| g - delta),
+            },
+            Start::Unloading => Array2::zeros(shape),
+            Start::Warm(s) => s.contact.gap.clone(),
+        };
+        let problem = Problem {
+            ws: stiffness.make_workspace(),
+            stiffness: Stiffness::Periodic(stiffness),
+            potential,
+            base: g0.to_owned(),
+            mx: nx,
+            my: ny,
+            nx,
+            ny,
+            mean_gap: load.is_none().then_some(mean_gap),
+            load,
+            scratch: Array2::zeros(shape),
+            calls: 0,
+        };
+        // A warm start keeps its attached cells (gap within the law's range) in place and
+        // moves only the rest: a uniform shift would tear the attached rim off at once (or
+        // press cells into attraction on loading), and the descent would settle in that
+        // state's basin rather than follow the branch; from the held guess the descent itself
+        // decides what peels off.
+        let hold = matches!(start, Start::Warm(_)).then(|| law.range());
+        (problem, first, hold)
+    } else {
+        let stiffness = FreeStiffness::new(domain, op.e_star())?;
+        let padded = stiffness.padded_shape();
+        let mut ws = stiffness.make_workspace();
+        let mut base = Array2::zeros(padded);
+        base.slice_mut(s![..ny, ..nx]).assign(&g0.mapv(|g| g - delta));
+        // The first guess: the base (no displacement) from scratch; a warm start keeps the old
+        // displacement, with its attached cells held at their old gaps (as on periodic grids).
+        let mut first = Array2::zeros(padded);
+        match start {
+            Start::Loading => first.assign(&base),
+            Start::Unloading => {}
+            Start::Warm(s) => {
+                let total = &s.contact.pressure + &s.adhesive_pressure;
+                stiffness.displacement(total.view(), first.view_mut(), &mut ws)?;
+                first += &base;
+                let range = law.range();
+                Zip::from(first.slice_mut(s![..ny, ..nx]))
+                    .and(&s.contact.gap)
+                    .for_each(|f, &old| {
+                        if old <= range {
+                            *f = old;
+                        }
+                    });
             }
-            _ => g0.mapv(|g| g - delta),
-        },
-        Start::Unloading => Array2::zeros(shape),
-        Start::Warm(s) => {
-            if s.contact.gap.dim() != shape {
-                return Err(SolverError::ShapeMismatch {
-                    what: "warm-start gap",
-                    expected: shape,
-                    got: s.contact.gap.dim(),
-                });
-            }
-            s.contact.gap.clone()
         }
+        let problem = Problem {
+            ws,
+            stiffness: Stiffness::Free(stiffness),
+            potential,
+            base,
+            mx: padded.1,
+            my: padded.0,
+            nx,
+            ny,
+            mean_gap: None,
+            load: None,
+            scratch: Array2::zeros(padded),
+            calls: 0,
+        };
+        (problem, first, None)
     };
-    let mut x = Point::new(Array2::zeros(shape));
-    // A warm start keeps its attached cells (gap within the law's range) in place and moves
-    // only the rest: a uniform shift would tear the attached rim off at once (or press cells
-    // into attraction on loading), and the descent would settle in that state's basin rather
-    // than follow the branch; from the held guess the descent itself decides what peels off.
-    let hold = matches!(start, Start::Warm(_)).then(|| law.range());
+    let unknown = first.dim();
+    let mut x = Point::new(Array2::zeros(unknown));
     problem.step_and_project(&first, &first, 0.0, &mut x.gap, hold);
     drop(first);
     problem.evaluate(&mut x)?;
-    let mut direction = Array2::zeros(shape);
+    let mut direction = Array2::zeros(unknown);
     let mut sums = problem.project_gradient(&mut x, &direction);
     direction.zip_mut_with(&x.gradient, |d, &r| *d = -r);
     let mut slope = -sums.squared;
-    let mut trial = Point::new(Array2::zeros(shape));
-    let mut s_direction = Array2::zeros(shape);
+    let mut trial = Point::new(Array2::zeros(unknown));
+    let mut s_direction = Array2::zeros(unknown);
+    let (mx, my) = (problem.mx, problem.my);
 
     let scale = super::cell_compliance(&domain, op.e_star()) / law.range();
     let mut history = Vec::new();
@@ -433,9 +543,9 @@ pub(super) fn solve(
             s_direction.as_slice().expect("layout"),
             x.curvature.as_slice().expect("layout"),
         );
-        let [elastic_curv, law_curv, law_pos] = row_sums(ny, |j| {
+        let [elastic_curv, law_curv, law_pos] = row_sums(my, |j| {
             let mut sums = [0.0; 3];
-            for k in j * nx..(j + 1) * nx {
+            for k in j * mx..(j + 1) * mx {
                 let d2 = ds[k] * ds[k];
                 sums[0] += ds[k] * ss[k];
                 sums[1] += cs[k] * d2;
@@ -492,13 +602,18 @@ pub(super) fn solve(
         let parts: Vec<f64> = direction
             .as_slice_mut()
             .expect("layout")
-            .par_chunks_mut(nx)
-            .zip(x.gradient.as_slice().expect("layout").par_chunks(nx))
-            .zip(x.gap.as_slice().expect("layout").par_chunks(nx))
-            .map(|((dr, rr), gr)| {
+            .par_chunks_mut(mx)
+            .zip(x.gradient.as_slice().expect("layout").par_chunks(mx))
+            .zip(x.gap.as_slice().expect("layout").par_chunks(mx))
+            .enumerate()
+            .map(|(j, ((dr, rr), gr))| {
                 let mut slope = 0.0;
-                for ((d, &r), &g) in dr.iter_mut().zip(rr).zip(gr) {
-                    *d = if g <= 0.0 && r == 0.0 { 0.0 } else { -r + beta * *d };
+                for (i, ((d, &r), &g)) in dr.iter_mut().zip(rr).zip(gr).enumerate() {
+                    *d = if on_wall(j, i, g, nx, ny) && r == 0.0 {
+                        0.0
+                    } else {
+                        -r + beta * *d
+                    };
                     slope += r * *d;
                 }
                 slope
@@ -511,16 +626,22 @@ pub(super) fn solve(
             slope = -sums.squared;
         }
     }
-    // The mean pressure: prescribed, or minus the multiplier of the mean gap.
+    // The mean pressure: prescribed, or minus the multiplier of the mean gap (free: none).
     let mean_pressure = load.unwrap_or(-sums.lambda);
-
+    let block = s![..ny, ..nx];
+    let (gap, elastic, law_pressure) = if domain.periodic {
+        (x.gap, x.elastic, x.law)
+    } else {
+        let take = |a: &Array2<f64>| a.slice(block).to_owned();
+        (take(&x.gap), take(&x.elastic), take(&x.law))
+    };
     // Contact pressure where the gap is closed: the gradient's elastic and adhesive part plus
     // the mean pressure.
     let mut pressure = Array2::zeros(shape);
     Zip::from(&mut pressure)
-        .and(&x.gap)
-        .and(&x.elastic)
-        .and(&x.law)
+        .and(&gap)
+        .and(&elastic)
+        .and(&law_pressure)
         .par_for_each(|p, &g, &e, &l| {
             *p = if g <= 0.0 {
                 (e - l + mean_pressure).max(0.0)
@@ -528,17 +649,19 @@ pub(super) fn solve(
                 0.0
             }
         });
-    let mut displacement = &x.gap - &g0;
-    let mean = displacement.mean().unwrap_or(0.0);
-    displacement.mapv_inplace(|u| u - mean);
-    // On a periodic domain the mean displacement is zero.
+    // Periodic: the mean displacement is zero. Free: the base is `g0 - delta`.
+    let mut displacement = &gap - &problem.base.slice(block);
+    if domain.periodic {
+        let mean = displacement.mean().unwrap_or(0.0);
+        displacement.mapv_inplace(|u| u - mean);
+    }
     let approach = match load {
         None => delta,
-        Some(_) => g0.mean().unwrap_or(0.0) - x.gap.mean().unwrap_or(0.0),
+        Some(_) => g0.mean().unwrap_or(0.0) - gap.mean().unwrap_or(0.0),
     };
     let contact = ContactState {
         pressure,
-        gap: x.gap,
+        gap,
         displacement,
         approach,
     };
@@ -546,7 +669,7 @@ pub(super) fn solve(
         &domain,
         law,
         contact,
-        x.law,
+        law_pressure,
         (0, iterations, problem.calls),
         history,
         1.0,

@@ -8,9 +8,9 @@
 //! towards the law evaluated on the new gaps, `p_a <- p_a + beta (law(g) - p_a)`
 //! ([`OuterLoop::DualLoop`], the paper's scheme), or mixes the last few iterates
 //! ([`OuterLoop::Accelerated`], Anderson mixing), which reaches the same fixed point in far
-//! fewer outer iterations. On periodic domains under approach or load control, laws with a local
-//! potential (point, exponential) can also be solved with no outer loop at all, by descending
-//! the total energy ([`OuterLoop::EnergyDescent`], module `energy`).
+//! fewer outer iterations. Laws with a local potential (point, exponential) can also be solved
+//! with no outer loop at all, by descending the total energy ([`OuterLoop::EnergyDescent`],
+//! module `energy`), under approach control, or load control on periodic domains.
 //!
 //! Convergence (the paper's criterion, made scale-free): the mean over the grid of
 //! `|law(g) - p_a|` times the compliance of one cell (the displacement of a cell under unit
@@ -50,8 +50,8 @@ pub enum OuterLoop {
     /// Anderson mixing of the last [`AdhesiveOptions::history`] iterates (the default).
     Accelerated,
     /// No outer loop: constrained conjugate gradients on the total energy over the gap, for
-    /// laws with a [`ljadhesion::LocalPotential`] on periodic domains, under approach or load
-    /// control. Its iterations are reported as inner iterations (no outer ones); the tolerance applies
+    /// laws with a [`ljadhesion::LocalPotential`], under approach control, or load control on
+    /// periodic domains. Its iterations are reported as inner iterations (no outer ones); the tolerance applies
     /// to the largest force imbalance of a cell times the cell's compliance, over the law's
     /// range (the module docs' measure, taken at its worst cell instead of on average).
     EnergyDescent,
@@ -486,9 +486,11 @@ fn energy_descent_law<'a>(
             law.name()
         )));
     };
-    if !domain.periodic {
+    if !domain.periodic && !matches!(control, Control::Approach(_)) {
         return Err(SolverError::Unsupported(
-            "energy descent needs a periodic domain (use `accelerated` on free ones)".into(),
+            "energy descent on a free domain takes the approach only (use `accelerated` for loads \
+             and central gaps)"
+                .into(),
         ));
     }
     if let Control::CentralGap(g) = control {
