@@ -46,15 +46,15 @@ pub enum LawKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum OuterKind {
-    /// `energy` where it is the tested default (point or exponential law, periodic domain,
-    /// approach or mean-gap control), `accelerated` elsewhere.
+    /// `energy` where it is the tested default (point or exponential law, approach or mean-gap
+    /// control), `accelerated` elsewhere.
     Auto,
     /// The paper's relaxation of the adhesive pressure.
     DualLoop,
     /// Anderson mixing of the adhesive pressure (fewer outer iterations, same solution).
     Accelerated,
-    /// No outer loop: conjugate gradients on the total energy (point or exponential law,
-    /// periodic domain; approach, mean-gap or load control; fastest there).
+    /// No outer loop: conjugate gradients on the total energy (point or exponential law;
+    /// approach or mean-gap control, or load control on periodic domains; fastest there).
     Energy,
 }
 
@@ -268,7 +268,6 @@ impl Case {
     /// The adhesive solver's settings for solves under controls like `control`.
     pub fn adhesive_options(&self, control: Control) -> AdhesiveOptions {
         let energy_applies = matches!(self.law, Some(LawKind::Point | LawKind::Exponential))
-            && self.domain != Some(DomainKind::Free)
             && matches!(control, Control::Approach(_));
         AdhesiveOptions {
             outer_loop: match self.solver {

@@ -114,7 +114,8 @@ pub struct SweepArgs {
 }
 
 const HEADER: &str = "step,approach,load,mean_pressure,contact_area_fraction,attractive_area_fraction,\
-attached_area_fraction,central_gap,branch,outer_iterations,inner_iterations,converged,residual,wall_time_s";
+attached_area_fraction,central_gap,branch,outer_iterations,inner_iterations,converged,residual,wall_time_s,\
+retries";
 
 /// One row of `curve.csv`, as much as the summary and the plot need.
 struct Row {
@@ -272,7 +273,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             &mut |k, p, state| {
                 let r = &p.report;
                 let line = format!(
-                    "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3}\n",
+                    "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3},{}\n",
                     done + k,
                     r.approach,
                     r.load,
@@ -286,7 +287,8 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
                     r.inner_iterations,
                     r.converged(),
                     r.residual,
-                    r.wall_time_s
+                    r.wall_time_s,
+                    p.retries
                 );
                 let saved = write_state(&state_dir, state)
                     .and_then(|_| csv.write_all(line.as_bytes()).map_err(Into::into))

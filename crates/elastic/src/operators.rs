@@ -198,10 +198,9 @@ impl FreeStiffness {
         domain.validate()?;
         let padded = (2 * domain.ny, 2 * domain.nx);
         let (compliance, kernel) = free_convolution(&domain, e_star, padded);
-        let smallest = kernel.iter().fold(f64::INFINITY, |m, &k| m.min(k));
-        if !(smallest > 0.0) {
+        if let Some(&smallest) = kernel.iter().find(|&&k| k.is_nan() || k <= 0.0) {
             return Err(ElasticError::InvalidParameter {
-                name: "smallest compliance eigenvalue",
+                name: "compliance eigenvalue",
                 value: smallest,
                 reason: "the padded free kernel is not positive definite on this grid",
             });

@@ -29,4 +29,6 @@ pub use error::{Result, SolverError};
 pub use options::{ContactOptions, Control};
 pub use report::{ContactReport, Termination};
 pub use state::ContactState;
-pub use sweep::{Branch, CyclePoint, CycleSummary, SweepPoint, approach_cycle, substeps, summarize, sweep};
+pub use sweep::{
+    Branch, CyclePoint, CycleSummary, RETRIES, SweepPoint, approach_cycle, substeps, summarize, sweep,
+};

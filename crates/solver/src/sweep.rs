@@ -3,7 +3,7 @@
 //! follow their own branches; and what a sweep shows (pull-off, jumps, hysteresis).
 
 use crate::adhesive::{AdhesiveOptions, AdhesiveReport, AdhesiveState, Start, solve_adhesive};
-use crate::error::{Result, invalid};
+use crate::error::{Result, SolverError, invalid};
 use crate::options::Control;
 use elastic::Compliance;
 use ljadhesion::AdhesionLaw;
@@ -38,11 +38,18 @@ pub struct SweepPoint {
     /// The solve's report. When the step was split (see [`sweep`]), its iteration counts and
     /// wall time include the substeps'.
     pub report: AdhesiveReport,
-    /// Intermediate solves taken before this control (0 when the step was not split).
+    /// Intermediate solves taken before this control (0 when the step was not split), in the
+    /// last attempt.
     pub substeps: usize,
     /// How many of those intermediate solves missed their tolerance.
     pub unconverged_substeps: usize,
+    /// Times the step was solved again in finer substeps because it did not converge (see
+    /// [`sweep`]); 0 when the first attempt converged.
+    pub retries: usize,
 }
+
+/// Times [`sweep`] halves the substeps of a step that does not converge.
+pub const RETRIES: usize = 3;
 
 /// The approaches `from -> to` in `steps` equal steps and back again (`2 steps + 1` values) [m].
 pub fn approach_cycle(from: f64, to: f64, steps: usize) -> Vec<Control> {
@@ -84,8 +91,15 @@ pub fn branches(path: &[Control]) -> Vec<Branch> {
 
 /// Solves every control of `path` in order (each warm-started from the previous step; the
 /// first from `start`), calling `on_step(index, point, state)` after each one; `on_step`
-/// returns `false` to stop early. Returns the solved points. A step that does not converge is
-/// reported (in its [`AdhesiveReport::termination`]) and the sweep goes on from it.
+/// returns `false` to stop early. Returns the solved points.
+///
+/// A step of approach or central gap that does not converge is solved again from the state
+/// before it, in twice as many substeps, up to [`RETRIES`] times (down to an eighth): near a
+/// jump a long step can leave a ring of cells cycling in and out of contact for ever, which
+/// shorter steps, each warm-started closer to its answer, avoid. The failed attempts'
+/// iterations and time are counted in the step's report. A step that still does not converge
+/// (or a load step, which is not split) is reported (in its [`AdhesiveReport::termination`])
+/// and the sweep goes on from it.
 ///
 /// `max_step` [m] keeps the sweep quasi-static: a step of approach (or of central gap) longer
 /// than it is split into equal substeps no longer than it, each solved and warm-started in
@@ -132,31 +146,50 @@ pub fn sweep(
     let mut state = start;
     let mut points = Vec::with_capacity(path.len());
     for (k, &control) in path.iter().enumerate() {
-        let between = substeps(previous, control, max_step);
-        let mut unconverged_substeps = 0;
+        let mut limit = max_step;
         let mut spent = (0, 0, 0, 0.0);
-        for &sub in &between {
-            let from = state.as_ref().map_or(Start::Loading, Start::Warm);
-            let (next, report) = solve_adhesive(op, law, g0, sub, options, from)?;
-            unconverged_substeps += usize::from(!report.converged());
-            spent.0 += report.outer_iterations;
-            spent.1 += report.inner_iterations;
-            spent.2 += report.operator_calls;
-            spent.3 += report.wall_time_s;
-            state = Some(next);
-        }
-        let from = state.as_ref().map_or(Start::Loading, Start::Warm);
-        let (next, mut report) = solve_adhesive(op, law, g0, control, options, from)?;
-        report.outer_iterations += spent.0;
-        report.inner_iterations += spent.1;
-        report.operator_calls += spent.2;
-        report.wall_time_s += spent.3;
+        let mut retries = 0;
+        let (next, mut report, between, unconverged_substeps) = loop {
+            let between = substeps(previous, control, limit);
+            let mut unconverged_substeps = 0;
+            let mut current: Option<AdhesiveState> = None;
+            let mut solve = |sub: Control, current: &Option<AdhesiveState>| {
+                let from = current
+                    .as_ref()
+                    .or(state.as_ref())
+                    .map_or(Start::Loading, Start::Warm);
+                let (next, report) = solve_adhesive(op, law, g0, sub, options, from)?;
+                spent.0 += report.outer_iterations;
+                spent.1 += report.inner_iterations;
+                spent.2 += report.operator_calls;
+                spent.3 += report.wall_time_s;
+                Ok::<_, SolverError>((next, report))
+            };
+            for &sub in &between {
+                let (next, report) = solve(sub, &current)?;
+                unconverged_substeps += usize::from(!report.converged());
+                current = Some(next);
+            }
+            let (next, report) = solve(control, &current)?;
+            // Halve the substeps of a step that did not converge, from the state before it.
+            let length = previous.and_then(|p| step_length(p, control)).unwrap_or(0.0);
+            if report.converged() || retries == RETRIES || length <= 0.0 {
+                break (next, report, between, unconverged_substeps);
+            }
+            retries += 1;
+            limit = Some(length / (2 * (between.len() + 1)) as f64);
+        };
+        report.outer_iterations = spent.0;
+        report.inner_iterations = spent.1;
+        report.operator_calls = spent.2;
+        report.wall_time_s = spent.3;
         let point = SweepPoint {
             control,
             branch: branch[k],
             report,
             substeps: between.len(),
             unconverged_substeps,
+            retries,
         };
         let go_on = on_step(k, &point, &next);
         points.push(point);
@@ -167,6 +200,16 @@ pub fn sweep(
         }
     }
     Ok(points)
+}
+
+/// The length of the step `previous -> next` [m] when both are approaches or both central gaps.
+fn step_length(previous: Control, next: Control) -> Option<f64> {
+    match (previous, next) {
+        (Control::Approach(a), Control::Approach(b)) | (Control::CentralGap(a), Control::CentralGap(b)) => {
+            Some((b - a).abs())
+        }
+        _ => None,
+    }
 }
 
 /// The controls strictly between `previous` and `next` that split the step into equal parts

@@ -269,7 +269,12 @@ fn rough_adhesive_contact_balances_and_enlarges_the_area() {
 /// The largest deviation of an adhesive solution from its equations, in units of the law's
 /// range: gaps against `g0 - delta + K (p_c + p_a)` (zero in contact), the adhesive pressure
 /// against the law times the cell compliance; and whether complementarity holds.
-fn equilibrium_error(op: &Periodic, law: &dyn AdhesionLaw, g0: &Array2<f64>, state: &AdhesiveState) -> f64 {
+fn equilibrium_error(
+    op: &dyn Compliance,
+    law: &dyn AdhesionLaw,
+    g0: &Array2<f64>,
+    state: &AdhesiveState,
+) -> f64 {
     let domain = *op.domain();
     let mut u = Array2::zeros(g0.dim());
     op.apply(
@@ -282,7 +287,7 @@ fn equilibrium_error(op: &Periodic, law: &dyn AdhesionLaw, g0: &Array2<f64>, sta
     let cells = Cells {
         dx: domain.dx,
         dy: domain.dy,
-        periodic: true,
+        periodic: domain.periodic,
     };
     law.pressure_field(state.contact.gap.view(), &cells, law_p.view_mut())
         .unwrap();
@@ -507,6 +512,53 @@ fn a_cycle_in_long_steps_with_substeps_is_the_quasi_static_cycle() {
 }
 
 #[test]
+fn a_step_that_orbits_is_retried_in_shorter_substeps() {
+    // At mu = 3 on 64^2 cells a step of 0.5 z0 from the touching state leaves a ring of cells
+    // cycling in and out of contact: the outer loop does not converge (20000 iterations; a
+    // lower limit here, which it misses as well). The sweep then solves the step again in halves,
+    // then quarters, from the state before it, and converges on the state a finely stepped
+    // path reaches.
+    pool().install(|| {
+        let (op, g0, law, w0) = sphere_case(3.0, 64, 100.0);
+        let options = AdhesiveOptions {
+            max_outer_iterations: 2000,
+            ..AdhesiveOptions::default()
+        };
+        let run = |path: &[Control], max_step| {
+            sweep(
+                &op,
+                &law,
+                g0.view(),
+                path,
+                &options,
+                max_step,
+                None,
+                &mut |_, _, _| true,
+            )
+            .unwrap()
+        };
+        let path = approaches([0.0, 0.5].into_iter());
+        let long = run(&path, None);
+        let fine = run(&path, Some(0.1 * Z0));
+        for (l, f) in long.iter().zip(&fine) {
+            println!(
+                "a/z0 {:4.2}: retries {} substeps {} load {:.6}, fine path {:.6} pi R w0",
+                l.report.approach / Z0,
+                l.retries,
+                l.substeps,
+                l.report.load / (PI * R * w0),
+                f.report.load / (PI * R * w0)
+            );
+            assert!(l.report.converged() && f.report.converged());
+            assert!((l.report.load - f.report.load).abs() < 1e-4 * PI * R * w0);
+            assert_eq!(l.report.contact_area_fraction, f.report.contact_area_fraction);
+        }
+        assert!(long[1].retries > 0 && long[1].substeps > 0);
+        assert_eq!(fine[1].retries, 0);
+    });
+}
+
+#[test]
 fn load_control_past_pull_off_says_so() {
     pool().install(|| {
         let (op, g0, law, w0) = sphere_case(0.1, 64, 80.0);
@@ -547,24 +599,17 @@ fn bad_input_is_refused() {
             ..AdhesiveOptions::default()
         }
     ));
-    // The energy descent needs a local potential, a periodic domain and approach control.
+    // The energy descent needs a local potential, and approach control on free domains.
     let energy = AdhesiveOptions {
         outer_loop: OuterLoop::EnergyDescent,
         ..AdhesiveOptions::default()
     };
     assert!(bad(Control::Approach(0.0), energy));
     let point = PointLaw(law.0);
-    assert!(
-        solve_adhesive(
-            &op,
-            &point,
-            g0.view(),
-            Control::Approach(0.0),
-            &energy,
-            Start::Loading
-        )
-        .is_err()
-    );
+    let on_sphere = |control| solve_adhesive(&op, &point, g0.view(), control, &energy, Start::Loading);
+    assert!(on_sphere(Control::Approach(0.0)).is_ok());
+    assert!(on_sphere(Control::Force(1e-9)).is_err());
+    assert!(on_sphere(Control::CentralGap(1e-9)).is_err());
     let (rough_op, rough_g0) = rough(32);
     let mean = rough_g0.mean().unwrap();
     let on_rough = |control| {
@@ -746,4 +791,144 @@ fn central_gap_control_traces_the_unstable_branch() {
         assert!(k > 0 && k < alphas.len() - 1, "{alphas:?}");
         assert!(alphas[alphas.len() - 1] < top - 0.05, "{alphas:?}");
     });
+}
+
+#[test]
+fn energy_descent_on_a_free_sphere_agrees_with_the_accelerated_loop() {
+    // The free energy descent minimises over the displacement of the padded grid: its gaps
+    // must satisfy the free operator's equations, and its cycle must be the dual loop's
+    // (mu = 1, point law: jump in, contact, back out past the pull-off).
+    pool().install(|| {
+        let (op, g0, law, w0) = sphere_case(1.0, 64, 60.0);
+        let point = PointLaw(law.0);
+        let path = approaches([-2.0, -1.0, 0.0, 1.0, 0.0, -1.0, -1.5].into_iter());
+        let cycle = |outer_loop| {
+            let options = AdhesiveOptions {
+                outer_loop,
+                ..AdhesiveOptions::default()
+            };
+            let mut worst = 0.0f64;
+            let points = sweep(
+                &op,
+                &point,
+                g0.view(),
+                &path,
+                &options,
+                None,
+                None,
+                &mut |_, _, state| {
+                    worst = worst.max(equilibrium_error(&op, &point, &g0, state));
+                    true
+                },
+            )
+            .unwrap();
+            (points, worst)
+        };
+        let ((energy, energy_error), (accelerated, _)) =
+            (cycle(OuterLoop::EnergyDescent), cycle(OuterLoop::Accelerated));
+        println!("energy descent: equations met to {energy_error:e} of the range");
+        assert!(energy_error < 1e-5);
+        for (e, a) in energy.iter().zip(&accelerated) {
+            println!(
+                "a/z0 {:5.2} W/(pi R w0): energy {:9.6} ({} its), accelerated {:9.6}; area {:.4}",
+                e.report.approach / Z0,
+                e.report.load / (PI * R * w0),
+                e.report.inner_iterations,
+                a.report.load / (PI * R * w0),
+                e.report.contact_area_fraction
+            );
+            assert!(e.report.converged() && a.report.converged());
+            assert_eq!(e.report.outer_iterations, 0);
+            assert!((e.report.load - a.report.load).abs() < 1e-4 * PI * R * w0);
+            assert_eq!(e.report.contact_area_fraction, a.report.contact_area_fraction);
+        }
+        // Contact, and a jump: the cycle is not trivially out of contact.
+        assert!(energy[3].report.contact_area_fraction > 0.3);
+        assert!(energy[0].report.contact_area_fraction == 0.0);
+    });
+}
+
+/// A cycle of the sphere at mu = 10, point law, by the energy descent on a free grid: the
+/// points, w0 and the largest error in the equations (in ranges).
+fn high_tabor_cycle(n: usize, half_width: f64, path: &[Control]) -> (Vec<SweepPoint>, f64, f64) {
+    let (op, g0, law, w0) = sphere_case(10.0, n, half_width);
+    let point = PointLaw(law.0);
+    let options = AdhesiveOptions {
+        outer_loop: OuterLoop::EnergyDescent,
+        ..AdhesiveOptions::default()
+    };
+    let mut worst = 0.0f64;
+    let points = sweep(
+        &op,
+        &point,
+        g0.view(),
+        path,
+        &options,
+        None,
+        None,
+        &mut |_, _, state| {
+            worst = worst.max(equilibrium_error(&op, &point, &g0, state));
+            true
+        },
+    )
+    .unwrap();
+    (points, w0, worst)
+}
+
+#[test]
+fn a_high_tabor_sphere_converges_at_every_step_with_the_energy_descent() {
+    // mu = 10 is where the dual loop's fixed point fails on free grids (the jump-in of a 256^2
+    // grid did not finish in 15 min): the law is far stiffer than a cell, so cells are
+    // bistable. A descent converges there on any grid; how far the pull-off is from JKR's
+    // 1.5 pi R w0 is a matter of resolution (README's mesh table), not checked here.
+    pool().install(|| {
+        let mut path = approaches((0..=17).map(|k| -12.0 + 2.0 * k as f64));
+        path.extend(approaches((1..=26).map(|k| 22.0 - 2.5 * k as f64)));
+        let (points, w0, worst) = high_tabor_cycle(64, 200.0, &path);
+        let summary = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
+        for p in &points {
+            println!(
+                "{:9} a/z0 {:6.2} W/(pi R w0) {:8.4} area {:.4} its {}",
+                p.branch.name(),
+                p.report.approach / Z0,
+                p.report.load / (PI * R * w0),
+                p.report.contact_area_fraction,
+                p.report.inner_iterations
+            );
+        }
+        println!("equations met to {worst:e} of the range");
+        assert!(summary.all_converged);
+        // The tolerance (1e-6) bounds each cell's force imbalance; a gap adds up the
+        // imbalances of all cells through the compliance, here to a few times more.
+        assert!(worst < 2e-5);
+        assert!(summary.jump_in_approach.is_some() && summary.jump_out_approach.is_some());
+        assert!(summary.hysteresis_energy > 0.0);
+        // Attached beyond JKR's pull-off (a coarse grid traps the edge), never less.
+        assert!(-summary.pull_off_force.unwrap() / (PI * R * w0) > 1.5);
+    });
+}
+
+/// Mesh refinement of the pull-off at mu = 10 (the table in README; run with
+/// `MESH=128,256,512 cargo test --release -p solver --test adhesive high_tabor_mesh_study --
+/// --ignored --nocapture`; 512^2 takes about 40 minutes).
+#[test]
+#[ignore = "a study: prints the mu = 10 mesh-refinement table quoted in README"]
+fn high_tabor_mesh_study() {
+    let mesh = std::env::var("MESH").unwrap_or_else(|_| "128,256".into());
+    let mut path = approaches((0..=24).map(|k| -2.0 + k as f64));
+    path.extend(approaches((1..=30).map(|k| 22.0 - 1.5 * k as f64)));
+    println!("| cells | cell/z0 | pull-off / (pi R w0) | iterations per step | time |");
+    for n in mesh.split(',').map(|v| v.trim().parse::<usize>().unwrap()) {
+        let started = std::time::Instant::now();
+        let (points, w0, _) = high_tabor_cycle(n, 300.0, &path);
+        let s = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
+        let its = points.iter().map(|p| p.report.inner_iterations).sum::<usize>() / points.len();
+        println!(
+            "| {n} | {:.2} | {:.3} | {its} | {:.0} s |{}",
+            600.0 / n as f64,
+            -s.pull_off_force.unwrap() / (PI * R * w0),
+            started.elapsed().as_secs_f64(),
+            if s.all_converged { "" } else { " not all converged" }
+        );
+    }
 }

@@ -58,7 +58,7 @@ fn row_sums<const K: usize>(ny: usize, row: impl Fn(usize) -> [f64; K] + Sync) -
 struct Point {
     /// The unknown: the gap [m] on the domain's block, the displacement [m] in the padding.
     gap: Array2<f64>,
-    /// `S (g - g0)` [Pa].
+    /// `S (gap - base)` [Pa]: the pressure that holds the surface's displacement.
     elastic: Array2<f64>,
     /// `p(g)` [Pa].
     law: Array2<f64>,
