@@ -2,7 +2,7 @@
 //! gaps) solved in order, each step warm-started from the last, so that loading and unloading
 //! follow their own branches; and what a sweep shows (pull-off, jumps, hysteresis).
 
-use crate::adhesive::{AdhesiveOptions, AdhesiveReport, AdhesiveState, Start, solve_adhesive};
+use crate::adhesive::{AdhesiveOptions, AdhesiveReport, AdhesiveState, OuterLoop, Start, solve_adhesive};
 use crate::error::{Result, SolverError, invalid};
 use crate::options::Control;
 use elastic::Compliance;
@@ -96,8 +96,10 @@ pub fn branches(path: &[Control]) -> Vec<Branch> {
 /// A step of approach or central gap that does not converge is solved again from the state
 /// before it, in twice as many substeps, up to [`RETRIES`] times (down to an eighth): near a
 /// jump a long step can leave a ring of cells cycling in and out of contact for ever, which
-/// shorter steps, each warm-started closer to its answer, avoid. The failed attempts'
-/// iterations and time are counted in the step's report. A step that still does not converge
+/// shorter steps, each warm-started closer to its answer, avoid. The solves of a retry share
+/// one iteration limit ([`AdhesiveOptions::max_outer_iterations`]), so a step costs at most
+/// `1 + RETRIES` limits. The failed attempts' iterations and time are counted in the step's
+/// report. A step that still does not converge
 /// (or a load step, which is not split) is reported (in its [`AdhesiveReport::termination`])
 /// and the sweep goes on from it.
 ///
@@ -153,12 +155,24 @@ pub fn sweep(
             let between = substeps(previous, control, limit);
             let mut unconverged_substeps = 0;
             let mut current: Option<AdhesiveState> = None;
+            // A retry's solves share one iteration limit, so that a step no substeps can save
+            // costs at most `1 + RETRIES` limits.
+            let mut budget = options.max_outer_iterations;
             let mut solve = |sub: Control, current: &Option<AdhesiveState>| {
                 let from = current
                     .as_ref()
                     .or(state.as_ref())
                     .map_or(Start::Loading, Start::Warm);
-                let (next, report) = solve_adhesive(op, law, g0, sub, options, from)?;
+                let limited = AdhesiveOptions {
+                    max_outer_iterations: budget,
+                    ..*options
+                };
+                let used = if retries == 0 { options } else { &limited };
+                let (next, report) = solve_adhesive(op, law, g0, sub, used, from)?;
+                budget = budget.saturating_sub(match options.outer_loop {
+                    OuterLoop::EnergyDescent => report.inner_iterations,
+                    _ => report.outer_iterations,
+                });
                 spent.0 += report.outer_iterations;
                 spent.1 += report.inner_iterations;
                 spent.2 += report.operator_calls;
