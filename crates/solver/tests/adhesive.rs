@@ -793,6 +793,32 @@ fn central_gap_control_traces_the_unstable_branch() {
     });
 }
 
+/// A sweep and the largest error of its states in their equations (in ranges).
+fn checked_sweep(
+    op: &dyn Compliance,
+    law: &dyn AdhesionLaw,
+    g0: &Array2<f64>,
+    path: &[Control],
+    options: &AdhesiveOptions,
+) -> (Vec<SweepPoint>, f64) {
+    let mut worst = 0.0f64;
+    let points = sweep(
+        op,
+        law,
+        g0.view(),
+        path,
+        options,
+        None,
+        None,
+        &mut |_, _, state| {
+            worst = worst.max(equilibrium_error(op, law, g0, state));
+            true
+        },
+    )
+    .unwrap();
+    (points, worst)
+}
+
 #[test]
 fn energy_descent_on_a_free_sphere_agrees_with_the_accelerated_loop() {
     // The free energy descent minimises over the displacement of the padded grid: its gaps
@@ -807,22 +833,7 @@ fn energy_descent_on_a_free_sphere_agrees_with_the_accelerated_loop() {
                 outer_loop,
                 ..AdhesiveOptions::default()
             };
-            let mut worst = 0.0f64;
-            let points = sweep(
-                &op,
-                &point,
-                g0.view(),
-                &path,
-                &options,
-                None,
-                None,
-                &mut |_, _, state| {
-                    worst = worst.max(equilibrium_error(&op, &point, &g0, state));
-                    true
-                },
-            )
-            .unwrap();
-            (points, worst)
+            checked_sweep(&op, &point, &g0, &path, &options)
         };
         let ((energy, energy_error), (accelerated, _)) =
             (cycle(OuterLoop::EnergyDescent), cycle(OuterLoop::Accelerated));
@@ -857,21 +868,7 @@ fn high_tabor_cycle(n: usize, half_width: f64, path: &[Control]) -> (Vec<SweepPo
         outer_loop: OuterLoop::EnergyDescent,
         ..AdhesiveOptions::default()
     };
-    let mut worst = 0.0f64;
-    let points = sweep(
-        &op,
-        &point,
-        g0.view(),
-        path,
-        &options,
-        None,
-        None,
-        &mut |_, _, state| {
-            worst = worst.max(equilibrium_error(&op, &point, &g0, state));
-            true
-        },
-    )
-    .unwrap();
+    let (points, worst) = checked_sweep(&op, &point, &g0, path, &options);
     (points, w0, worst)
 }
 
