@@ -132,7 +132,7 @@ impl Free {
     pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
-        let (conv, _) = free_convolution(&domain, e_star, (domain.ny, domain.nx));
+        let conv = free_convolution(&domain, e_star, (domain.ny, domain.nx));
         Ok(Free {
             domain: Domain {
                 periodic: false,
@@ -145,9 +145,8 @@ impl Free {
 }
 
 /// The DC-FFT convolution of the free half-space from `(ny, nx)` pressures to `output`
-/// displacements (at most the padded `(2ny, 2nx)`), and the unscaled real spectrum of its
-/// wrapped kernel.
-fn free_convolution(domain: &Domain, e_star: f64, output: (usize, usize)) -> (Convolution, Array2<f64>) {
+/// displacements (at most the padded `(2ny, 2nx)`).
+fn free_convolution(domain: &Domain, e_star: f64, output: (usize, usize)) -> Convolution {
     let Domain { nx, ny, dx, dy, .. } = *domain;
     let (mx, my) = (2 * nx, 2 * ny);
     // Influence of cell (0, 0) on the cell at offset (i, j): even in both, so compute a
@@ -167,8 +166,9 @@ fn free_convolution(domain: &Domain, e_star: f64, output: (usize, usize)) -> (Co
     };
     let mut conv = Convolution::without_kernel(mx, my, (ny, nx), output);
     let kernel = conv.real_spectrum(wrapped_row, &mut conv.make_workspace());
-    conv.set_kernel(kernel.clone());
-    (conv, kernel)
+    drop(quadrant);
+    conv.set_kernel(kernel);
+    conv
 }
 
 /// The free half-space's stiffness on its padded grid, for solvers whose unknown is the
@@ -197,7 +197,10 @@ impl FreeStiffness {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
         let padded = (2 * domain.ny, 2 * domain.nx);
-        let (compliance, kernel) = free_convolution(&domain, e_star, padded);
+        let compliance = free_convolution(&domain, e_star, padded);
+        // The compliance's multiplier is stored divided by `mx my`; the stiffness's unscaled one
+        // is its reciprocal.
+        let kernel = compliance.kernel();
         if let Some(&smallest) = kernel.iter().find(|&&k| k.is_nan() || k <= 0.0) {
             return Err(ElasticError::InvalidParameter {
                 name: "compliance eigenvalue",
@@ -206,7 +209,8 @@ impl FreeStiffness {
             });
         }
         let mut stiffness = Convolution::without_kernel(padded.1, padded.0, padded, padded);
-        stiffness.set_kernel(kernel.mapv(|k| 1.0 / k));
+        let scale = (padded.0 * padded.1) as f64;
+        stiffness.set_kernel(kernel.mapv(|k| 1.0 / (k * scale)));
         Ok(FreeStiffness {
             domain: Domain {
                 periodic: false,
