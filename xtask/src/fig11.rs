@@ -6,9 +6,10 @@ use anyhow::Result;
 
 pub fn run(ctx: &Context) -> Result<FigureReport> {
     let p = plan(ctx);
-    let wanted: Vec<(u32, f64, f64)> = p.mus[0]
-        .iter()
-        .flat_map(|&mu| p.rqs.iter().map(move |&rq| (mu, rq, 4.0)))
+    let wanted: Vec<(u32, f64, f64)> = p
+        .mus_run(11)
+        .into_iter()
+        .flat_map(|mu| p.rqs.iter().map(move |&rq| (mu, rq, 4.0)))
         .collect();
     let pts = points(ctx, "Fig. 11", &wanted)?;
     let fig = PullOffFigure {

@@ -7,9 +7,10 @@ use anyhow::Result;
 
 pub fn run(ctx: &Context) -> Result<FigureReport> {
     let p = plan(ctx);
-    let wanted: Vec<(u32, f64, f64)> = p.mus[1]
-        .iter()
-        .flat_map(|&mu| p.cutoffs.iter().map(move |&c| (mu, 2.0, c)))
+    let wanted: Vec<(u32, f64, f64)> = p
+        .mus_run(12)
+        .into_iter()
+        .flat_map(|mu| p.cutoffs.iter().map(move |&c| (mu, 2.0, c)))
         .collect();
     let pts = points(ctx, "Fig. 12", &wanted)?;
     let fig = PullOffFigure {
@@ -42,7 +43,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
     // The same seed at every cutoff shares its long wavelengths, which set the pull-off: the
     // trend of each realisation is free of the scatter between realisations.
     for (k, &seed) in p.seeds.iter().enumerate() {
-        for &mu in &p.mus[1] {
+        for mu in p.mus_run(12) {
             let mut c: Vec<(f64, f64)> = pts
                 .iter()
                 .filter(|pt| pt.mu == mu)

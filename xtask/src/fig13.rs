@@ -9,9 +9,9 @@ use std::f64::consts::PI;
 /// The rough points of Figs. 13-14 (Fig. 11's roughnesses, mu = 2, 5, 7).
 pub fn wanted(ctx: &Context) -> Vec<(u32, f64, f64)> {
     let p = plan(ctx);
-    p.mus[2]
-        .iter()
-        .flat_map(|&mu| p.rqs.iter().filter(|&&rq| rq > 0.0).map(move |&rq| (mu, rq, 4.0)))
+    p.mus_run(13)
+        .into_iter()
+        .flat_map(|mu| p.rqs.iter().filter(|&&rq| rq > 0.0).map(move |&rq| (mu, rq, 4.0)))
         .collect()
 }
 
