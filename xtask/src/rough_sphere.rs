@@ -231,10 +231,17 @@ pub fn mean_std(v: &[f64]) -> (f64, f64) {
     (m, s)
 }
 
+/// The smallest grid, a power of two from 32 on, whose cells are no larger than `mu`'s process
+/// zone.
+pub fn needed_n(mu: u32) -> usize {
+    let probe = Job::smooth(mu, 1, 0.0);
+    let needed = (probe.length() / process_zone(mu)).ceil() as usize;
+    needed.next_power_of_two().max(32)
+}
+
 /// Settings shared by Figs. 11-14.
-#[derive(Clone)]
 pub struct Plan {
-    /// Largest grid (cells per side); below it, the smallest cheap size whose cells resolve
+    /// Largest grid (cells per side); below it, the smallest power of two whose cells resolve
     /// the process zone ([`Plan::n_for`]). Full mode: 256, which resolves mu = 2 and 5; mu = 7
     /// needs 512 (7.6 min a run alone here, about 3 h for Figs. 12-14) and is not run.
     pub max_n: usize,
@@ -289,23 +296,12 @@ impl Plan {
     }
 
     fn resolves(&self, mu: u32) -> bool {
-        let n = self.n_for(mu);
-        Job::smooth(mu, n, self.tolerance).length() / n as f64 <= process_zone(mu)
+        needed_n(mu) <= self.max_n
     }
 
-    /// The grid for `mu`: the smallest size whose cells are no larger than the process zone,
-    /// from 32 up to `max_n`, among powers of two and, from 192 on (where a run takes minutes),
-    /// three times a power of two (also cheap transforms).
+    /// The grid for `mu`: [`needed_n`] up to `max_n`.
     pub fn n_for(&self, mu: u32) -> usize {
-        let probe = Job::smooth(mu, 1, self.tolerance);
-        let needed = (probe.length() / process_zone(mu)).ceil() as usize;
-        let p = needed.next_power_of_two();
-        let n = if 3 * p / 4 >= needed.max(192) {
-            3 * p / 4
-        } else {
-            p
-        };
-        n.clamp(32, self.max_n)
+        needed_n(mu).min(self.max_n)
     }
 
     /// How well each of `mus` is resolved, for the reports.
@@ -508,13 +504,7 @@ impl PullOffFigure<'_> {
             .mus_of(self.number)
             .iter()
             .filter(|mu| !mus.contains(mu))
-            .map(|&mu| {
-                let probe = Plan {
-                    max_n: usize::MAX,
-                    ..plan.clone()
-                };
-                format!("μ = {mu} (needs {0}² cells)", probe.n_for(mu))
-            })
+            .map(|&mu| format!("μ = {mu} (needs {}² cells)", needed_n(mu)))
             .collect();
         if !skipped.is_empty() {
             report.computed.push(format!(
@@ -578,23 +568,25 @@ mod tests {
     #[test]
     fn grids_resolve_the_process_zone_up_to_the_cap() {
         let plan = Plan {
-            max_n: 4096,
+            max_n: 256,
             seeds: vec![1],
             rqs: vec![],
             cutoffs: vec![],
             tolerance: 1e-5,
-            mus: [vec![], vec![], vec![]],
+            mus: [vec![2, 5], vec![5, 7], vec![2, 5, 7]],
         };
         for mu in [2, 5, 7] {
-            let n = plan.n_for(mu);
+            let n = needed_n(mu);
             let j = Job::smooth(mu, n, 1e-5);
             assert!(j.length() / n as f64 <= process_zone(mu), "{mu}");
-            let smaller = if n.is_power_of_two() { 3 * n / 4 } else { 2 * n / 3 };
             assert!(
-                smaller < 192 || j.length() / smaller as f64 > process_zone(mu),
+                j.length() / (n / 2) as f64 > process_zone(mu),
                 "{mu}: {n} is not the smallest"
             );
-            assert!(j.length() / (n / 2) as f64 > process_zone(mu), "{mu}: {n}");
         }
+        assert_eq!(plan.n_for(5), 256);
+        assert_eq!(plan.n_for(7), 256);
+        assert_eq!(plan.mus_run(12), vec![5]);
+        assert_eq!(plan.mus_run(13), vec![2, 5]);
     }
 }
