@@ -1,7 +1,7 @@
 //! Fig. 12: pull-off force against the RMS gradient at a fixed RMS roughness (Rq = 2 z0),
 //! Tabor parameters 5 and 7; the gradient is varied through the short-wavelength cutoff.
 
-use crate::rough_sphere::{PullOffFigure, falling, plan, points};
+use crate::rough_sphere::{PullOffFigure, curve_of, falling, plan, points};
 use crate::{Context, FigureReport};
 use anyhow::Result;
 
@@ -42,17 +42,12 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
     }
     // The same seed at every cutoff shares its long wavelengths, which set the pull-off: the
     // trend of each realisation is free of the scatter between realisations.
-    for (k, &seed) in p.seeds.iter().enumerate() {
-        for mu in p.mus_run(12) {
-            let mut c: Vec<(f64, f64)> = pts
-                .iter()
-                .filter(|pt| pt.mu == mu)
-                .map(|pt| {
-                    let o = &pt.outcomes[k];
-                    (o.rms_gradient, o.pull_off / pt.job.force_unit())
-                })
-                .collect();
-            c.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (mu, _) in &curves {
+        for (k, seed) in p.seeds.iter().enumerate() {
+            let c = curve_of(&pts, *mu, |pt| {
+                let o = &pt.outcomes[k];
+                (o.rms_gradient, o.pull_off / pt.job.force_unit())
+            });
             report.agreement.push(format!(
                 "μ = {mu}, seed {seed} alone: pull-off {} from the smallest ḡ to the largest; falling with ḡ: {}.",
                 c.iter().map(|(_, f)| format!("{f:.3}")).collect::<Vec<_>>().join(", "),

@@ -1,7 +1,7 @@
 //! Fig. 14: pull-off force against Ciavarella's variable Rq^2 E*/(lambda_L w0) (Eq. 16) for
 //! Tabor parameters 2, 5 and 7, with his stickiness threshold.
 
-use crate::rough_sphere::{MODULUS, PullOffFigure, crossing, points, work_of_adhesion};
+use crate::rough_sphere::{MODULUS, PullOffFigure, crossing, curve_of, points, work_of_adhesion};
 use crate::style::{Curve, GREY, Mark};
 use crate::{Context, FigureReport};
 use anyhow::Result;
@@ -50,12 +50,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
     let in_rq: Vec<String> = curves
         .iter()
         .map(|(mu, _)| {
-            let mut c: Vec<(f64, f64)> = pts
-                .iter()
-                .filter(|p| p.mu == *mu)
-                .map(|p| (p.mean(|o| o.rq) * 1e9, p.pull_off().0))
-                .collect();
-            c.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let c = curve_of(&pts, *mu, |p| (p.mean(|o| o.rq) * 1e9, p.pull_off().0));
             match crossing(&c, 0.75) {
                 Some(x) => format!("μ = {mu}: {x:.2} nm"),
                 None => format!("μ = {mu}: not reached"),

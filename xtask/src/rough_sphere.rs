@@ -4,8 +4,9 @@
 //! pressure depends on its neighbours' gaps), so only the dual loop solves it, and at mu = 5
 //! on 128^2 cells that takes 1000-1200 outer iterations per z0 of approach (20-40 min a run);
 //! the point law is solved by the free energy descent in about a minute, and on resolved grids
-//! the two laws' pull-offs differ by 0.3 % (README's mesh table). The pull-off force is the most negative load of a displacement-controlled
-//! unloading from a fixed preload, found by coarse steps and refined around the minimum.
+//! the two laws' pull-offs differ by 0.3 % (README's mesh table). The pull-off force is the
+//! most negative load of a displacement-controlled unloading from a fixed preload, found by
+//! coarse steps and refined around the minimum.
 
 use anyhow::Result;
 use roughcontact::case::{Case, DomainKind, LawKind};
@@ -399,6 +400,13 @@ pub fn crossing(curve: &[(f64, f64)], level: f64) -> Option<f64> {
 pub fn falling(curve: &[(f64, f64)], slack: f64) -> bool {
     curve.windows(2).all(|w| w[1].1 <= w[0].1 + slack)
         && curve.last().map(|l| l.1) < curve.first().map(|f| f.1)
+}
+
+/// The points of Tabor parameter `mu` as `(x, y) = f(point)`, sorted by x.
+pub fn curve_of(points: &[Point], mu: u32, f: impl Fn(&Point) -> (f64, f64)) -> Vec<(f64, f64)> {
+    let mut c: Vec<(f64, f64)> = points.iter().filter(|p| p.mu == mu).map(f).collect();
+    c.sort_by(|a, b| a.0.total_cmp(&b.0));
+    c
 }
 
 /// A Tabor parameter's curve `(x, mean pull-off / (pi R w0))`, sorted by x.
