@@ -145,8 +145,9 @@ struct Problem<'a> {
 
 impl Problem<'_> {
     /// Writes `max(from + step d + c, 0)` into `gap` (on the domain's block; no bound in the
-    /// padding), with the shift `c` that restores a prescribed mean gap (else 0): the
-    /// Euclidean projection of the step onto the constraints. `c` comes from Newton on the
+    /// padding), with the shift `c` that restores a prescribed mean gap (else 0), except on
+    /// cells of `from` on the wall that `d` leaves there, which stay: the projection of the
+    /// step onto the constraints within the current face. `c` comes from Newton on the
     /// convex, piecewise-linear mean (exact after finitely many steps). Also leaves
     /// `gap - base` in the scratch field, for [`Problem::evaluate`]. With `hold` (periodic),
     /// cells of `from` with a gap at most `hold` [m] stay where they are and only the others
@@ -164,7 +165,12 @@ impl Problem<'_> {
         let mean_gap = self.mean_gap.unwrap_or(0.0);
         // Holding every cell would leave nothing to restore the mean gap with.
         let hold = hold.filter(|&h| self.mean_gap.is_some() && fs.iter().any(|&f| f > h));
-        let held = |f: f64| hold.is_some_and(|h| f <= h);
+        // Cells on the wall that the direction does not lift stay on it: the shift restores
+        // the mean with the others. (Shifting them too, the exact Euclidean projection, lifts
+        // the whole contact set by a round-off gap whenever the shift is positive; their
+        // contact pressures then enter the next direction, which presses them back into the
+        // wall, and the step is cut again and again.)
+        let held = |f: f64, d: f64| hold.is_some_and(|h| f <= h) || (f <= 0.0 && d == 0.0);
         let mut c = 0.0;
         // A prescribed mean gap is periodic: the unknown is the gap everywhere.
         for _ in 0..if self.mean_gap.is_some() { 100 } else { 0 } {
@@ -172,7 +178,7 @@ impl Problem<'_> {
                 let (f, d) = (&fs[j * nx..][..nx], &ds[j * nx..][..nx]);
                 f.iter().zip(d).fold([0.0, 0.0], |[s, k], (&f, &d)| {
                     let v = f + step * d + c;
-                    if held(f) {
+                    if held(f, d) {
                         [s + f, k]
                     } else if v > 0.0 {
                         [s + v, k + 1.0]
@@ -208,7 +214,7 @@ impl Problem<'_> {
                     let (f, inside) = (fs[k], j < ny && i < nx);
                     gr[i] = if !inside {
                         f + step * ds[k]
-                    } else if held(f) {
+                    } else if held(f, ds[k]) {
                         f
                     } else {
                         (f + step * ds[k] + c).max(0.0)
