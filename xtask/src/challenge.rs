@@ -50,6 +50,10 @@ pub struct Run {
     pub case: Case,
     /// Reduced pressures p/(E* g_bar), increasing.
     pub reduced: Vec<f64>,
+    /// Reduced pressures of the unloading branch that follows, decreasing, each warm-started
+    /// from the last (adhesive runs only: without adhesion the solution is unique).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub unloading: Vec<f64>,
     /// Reduced pressure at which to keep the gap along the mid cross-section.
     pub profile_at: Option<f64>,
 }
@@ -69,6 +73,9 @@ pub struct LoadPoint {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Outcome {
     pub points: Vec<LoadPoint>,
+    /// The unloading branch (empty unless asked for).
+    #[serde(default)]
+    pub unloading: Vec<LoadPoint>,
     /// Gap [m] along the mid cross-section x = L/2 (column nx/2), against y.
     pub profile: Vec<f64>,
     /// Measured RMS gradient and local radius (inverse RMS curvature) [m] of the surface.
@@ -94,35 +101,42 @@ impl Run {
             }
         };
         let mean = |a: &ndarray::Array2<f64>| a.iter().sum::<f64>() / a.len() as f64;
+        let mut unloading = Vec::new();
         if p.adhesive() {
             let options = case.adhesive_options(Control::MeanPressure(0.0));
             let mut state: Option<AdhesiveState> = None;
-            for &r in &self.reduced {
-                let control = Control::MeanPressure(r * p.e_star * rms_gradient);
-                let start = match &state {
-                    Some(s) => Start::Warm(s),
-                    None => Start::Loading,
-                };
-                let (s, rep) = solve_adhesive(
-                    p.op.as_ref(),
-                    p.law.as_ref(),
-                    p.g0.view(),
-                    control,
-                    &options,
-                    start,
-                )
-                .with_context(|| format!("p/(E* g) = {r}"))?;
-                keep(r, &s.contact.gap);
-                points.push(LoadPoint {
-                    reduced: r,
-                    mean_pressure: rep.mean_pressure,
-                    contact_area_fraction: rep.contact_area_fraction,
-                    mean_gap: mean(&s.contact.gap),
-                    converged: rep.converged(),
-                    iterations: rep.outer_iterations,
-                    wall_time_s: rep.wall_time_s,
-                });
-                state = Some(s);
+            for (loading, loads) in [(true, &self.reduced), (false, &self.unloading)] {
+                for &r in loads {
+                    let control = Control::MeanPressure(r * p.e_star * rms_gradient);
+                    let start = match &state {
+                        Some(s) => Start::Warm(s),
+                        None => Start::Loading,
+                    };
+                    let (s, rep) = solve_adhesive(
+                        p.op.as_ref(),
+                        p.law.as_ref(),
+                        p.g0.view(),
+                        control,
+                        &options,
+                        start,
+                    )
+                    .with_context(|| format!("p/(E* g) = {r}"))?;
+                    // The profile is the loading branch's.
+                    if loading {
+                        keep(r, &s.contact.gap);
+                    }
+                    let branch = if loading { &mut points } else { &mut unloading };
+                    branch.push(LoadPoint {
+                        reduced: r,
+                        mean_pressure: rep.mean_pressure,
+                        contact_area_fraction: rep.contact_area_fraction,
+                        mean_gap: mean(&s.contact.gap),
+                        converged: rep.converged(),
+                        iterations: rep.outer_iterations,
+                        wall_time_s: rep.wall_time_s,
+                    });
+                    state = Some(s);
+                }
             }
         } else {
             let options = case.contact_options();
@@ -146,6 +160,7 @@ impl Run {
         }
         Ok(Outcome {
             points,
+            unloading,
             profile,
             rms_gradient,
             local_radius,
@@ -162,6 +177,12 @@ pub fn adhesive(mut case: Case, w0: f64) -> Case {
     case.work_of_adhesion = Some(w0);
     case.range = Some(RANGE);
     case
+}
+
+/// The adhesive process-zone length `E* w0 / sigma0^2` [m] of the exponential law of work `w0`
+/// (peak stress `sigma0 = w0 / rho`).
+pub fn process_zone(w0: f64) -> f64 {
+    MODULUS * RANGE * RANGE / w0
 }
 
 /// Müser's Tabor-like parameter of the exponential law, `(R w0^2 / (E*^2 rho^3))^(1/3)`, with

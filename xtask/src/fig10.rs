@@ -27,6 +27,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             runs.push(Run {
                 case,
                 reduced: reduced.clone(),
+                unloading: Vec::new(),
                 profile_at: None,
             });
         }
