@@ -64,7 +64,8 @@ pub fn computed(ctx: &Context, o: &challenge::Outcome) -> Vec<String> {
         "E* = 25 MPa; adhesion by the challenge's own law, σ(g) = -(w0/ρ) exp(-g/ρ) with w0 = 50 mJ/m², \
          ρ = 2.071 nm and a hard wall (the paper used Lennard-Jones with z0 = 2.071 nm; that law does not \
          converge on grids this coarse, see README); Tabor-like parameter here {:.1}. Load control, \
-         increasing loads, warm-started; tolerances 1e-8 (no adhesion) and 1e-6 ρ (adhesion).",
+         increasing loads, warm-started, then (adhesion) back down through the same loads; tolerances 1e-8 \
+         (no adhesion) and 1e-6 ρ (adhesion).",
         challenge::tabor(o.local_radius, challenge::WORK)
     ));
     v.extend(o.warnings.iter().map(|w| format!("Solver warning: {w}")));
