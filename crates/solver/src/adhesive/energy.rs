@@ -395,15 +395,15 @@ impl Problem<'_> {
             .enumerate()
             .map(|(j, zr)| {
                 let mut sums = [0.0; 2];
-                for i in 0..mx {
+                for (i, z) in zr.iter_mut().enumerate() {
                     let k = j * mx + i;
-                    zr[i] = if rs[k] != 0.0 {
+                    *z = if rs[k] != 0.0 {
                         (rs[k] - mu) * weight(j, i, k)
                     } else {
                         0.0
                     };
-                    sums[0] += zr[i] * rs[k];
-                    sums[1] += zr[i] * os[k];
+                    sums[0] += *z * rs[k];
+                    sums[1] += *z * os[k];
                 }
                 sums
             })
