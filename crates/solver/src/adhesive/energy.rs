@@ -14,7 +14,7 @@
 //! Each iteration takes the conjugate direction of the projected gradient (Polak-Ribiere,
 //! restarted when it is not a descent direction or a step was cut), preconditioned by the
 //! diagonal of the curvature `S_ii + max(V'', 0)`: just above the wall the Lennard-Jones law
-//! is 10-30 times stiffer than a cell, and those cells otherwise set the pace (3-4 times fewer
+//! is 10-30 times stiffer than a cell, and those cells otherwise set the pace (3-6 times fewer
 //! iterations on adhesive spheres; the exponential law, never stiffening, is unchanged). Then
 //! it takes a step from the exact curvature `S + V''` along it (only its positive part when
 //! the law makes it negative) and projects onto the constraints; a step that would raise the
