@@ -65,8 +65,9 @@ fn agrees_with_tamaas(outer_loop: OuterLoop) {
     assert!(report.converged());
     if outer_loop == OuterLoop::EnergyDescent {
         // One application for the direction and one for the trial gap per iteration, and one
-        // for the preconditioner: no step cut. (Restoring the mean gap used to lift the whole contact set off the wall by a
-        // round-off gap; the next direction pressed it back in and 19 cuts followed here.)
+        // for the preconditioner: no step cut. (Restoring the mean gap used to lift the whole
+        // contact set off the wall by a round-off gap; the next direction pressed it back in
+        // and 19 cuts followed here.)
         assert!(
             report.operator_calls <= 2 * report.inner_iterations + 2,
             "{} operator calls in {} iterations",
