@@ -87,7 +87,9 @@ pub struct Outcome {
 }
 
 impl Run {
-    pub fn solve(&self) -> Result<Outcome> {
+    /// Solves every load in turn; with `log`, one line per finished load on stderr (a 1024^2
+    /// adhesive run takes an hour).
+    pub fn solve(&self, log: bool) -> Result<Outcome> {
         let (rms_gradient, local_radius, rms_height, cell) = crate::surface_statistics(&self.case)?;
         let mut case = self.case.clone();
         case.fill_defaults();
@@ -124,6 +126,18 @@ impl Run {
                     // The profile is the loading branch's.
                     if loading {
                         keep(r, &s.contact.gap);
+                    }
+                    if log {
+                        eprintln!(
+                            "challenge {nx}^2 adhesive, {} p/(E* g) = {r}: contact {:.4}, {} outer and {} inner \
+                             iterations, {:.0} s, {:?}",
+                            if loading { "loading" } else { "unloading" },
+                            rep.contact_area_fraction,
+                            rep.outer_iterations,
+                            rep.inner_iterations,
+                            rep.wall_time_s,
+                            rep.termination
+                        );
                     }
                     let branch = if loading { &mut points } else { &mut unloading };
                     branch.push(LoadPoint {
