@@ -989,7 +989,11 @@ fn challenge_dual_loop_study() {
     let mean_gap = |st: &AdhesiveState| st.contact.gap.mean().unwrap();
     let contact = |st: &AdhesiveState| st.contact.pressure.mapv(|p| p > 0.0);
     let flipped = |a: &AdhesiveState, b: &AdhesiveState| {
-        contact(a).iter().zip(contact(b).iter()).filter(|(x, y)| x != y).count()
+        contact(a)
+            .iter()
+            .zip(contact(b).iter())
+            .filter(|(x, y)| x != y)
+            .count()
     };
     let largest = |a: &AdhesiveState, b: &AdhesiveState| {
         (&a.adhesive_pressure - &b.adhesive_pressure)
@@ -1026,8 +1030,16 @@ fn challenge_dual_loop_study() {
     assert!((mean_gap(&fast) - mean_gap(&slow)).abs() < 0.05 * law.range());
     // Each accepts the other's state: the same fixed point of the same equations.
     for (name, outer_loop, other) in [
-        ("dual loop from the accelerated solution", OuterLoop::DualLoop, &fast),
-        ("accelerated from the dual loop's solution", OuterLoop::Accelerated, &slow),
+        (
+            "dual loop from the accelerated solution",
+            OuterLoop::DualLoop,
+            &fast,
+        ),
+        (
+            "accelerated from the dual loop's solution",
+            OuterLoop::Accelerated,
+            &slow,
+        ),
     ] {
         let (again, r) = solve_with(outer_loop, Start::Warm(other));
         println!(
