@@ -294,9 +294,15 @@ impl Chart {
             }
             let mark = c.mark.clone();
             anno.label(c.label.clone()).legend(move |(x, y)| match mark {
-                Mark::Line | Mark::Dashed => {
-                    PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(2)).into_dyn()
-                }
+                Mark::Line => PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(2)).into_dyn(),
+                // Two dashes, as the curve draws them (8 px on, 5 off).
+                Mark::Dashed => plotters::element::DashedPathElement::new(
+                    vec![(x, y), (x + 21, y)],
+                    8,
+                    5,
+                    color.stroke_width(2),
+                )
+                .into_dyn(),
                 Mark::Circles => Circle::new((x + 11, y), 4, color.stroke_width(2)).into_dyn(),
                 _ => Circle::new((x + 11, y), 4, color.filled()).into_dyn(),
             });
