@@ -168,23 +168,31 @@ fn dual_loop_and_accelerated_loop_agree() {
 fn rough(n: usize) -> (Periodic, Array2<f64>) {
     let l = 1e-5;
     let grid = Grid::square(n, l).unwrap();
-    let spec = SurfaceSpec {
-        grid,
-        psd: Psd::self_affine(0.8, l / 4.0, 4.0 * grid.dx()),
-        normalization: Normalization::RmsHeight(2e-8),
-        amplitudes: Amplitudes::Exact,
-        seed: 7,
-    };
+    flat_on_periodic(
+        SurfaceSpec {
+            grid,
+            psd: Psd::self_affine(0.8, l / 4.0, 4.0 * grid.dx()),
+            normalization: Normalization::RmsHeight(2e-8),
+            amplitudes: Amplitudes::Exact,
+            seed: 7,
+        },
+        1e8,
+    )
+}
+
+/// A rigid flat on the periodic surface `spec` generates, over an elastic half-space of
+/// modulus `e_star` [Pa]: the operator and the undeformed gap.
+fn flat_on_periodic(spec: SurfaceSpec, e_star: f64) -> (Periodic, Array2<f64>) {
     let h = generate(&spec).unwrap().heights;
     let domain = Domain {
-        nx: n,
-        ny: n,
-        dx: grid.dx(),
-        dy: grid.dy(),
+        nx: spec.grid.nx,
+        ny: spec.grid.ny,
+        dx: spec.grid.dx(),
+        dy: spec.grid.dy(),
         periodic: true,
     };
     (
-        Periodic::new(domain, 1e8).unwrap(),
+        Periodic::new(domain, e_star).unwrap(),
         flat_on_rough(h.view()).unwrap(),
     )
 }
@@ -938,28 +946,18 @@ fn high_tabor_mesh_study() {
 /// H = 0.8, roll-off 20 um, cutoff four cells, RMS gradient 1, seed 1) on `n^2` cells, with its
 /// modulus (25 MPa) and exponential adhesion (50 mJ/m^2, 2.071 nm).
 fn challenge(n: usize) -> (Periodic, Array2<f64>, ExponentialLaw) {
-    let l = 1e-4;
-    let grid = Grid::square(n, l).unwrap();
-    let spec = SurfaceSpec {
-        grid,
-        psd: Psd::self_affine(0.8, 2e-5, (1e-7f64).max(4.0 * grid.dx())),
-        normalization: Normalization::RmsGradient(1.0),
-        amplitudes: Amplitudes::Exact,
-        seed: 1,
-    };
-    let h = generate(&spec).unwrap().heights;
-    let domain = Domain {
-        nx: n,
-        ny: n,
-        dx: grid.dx(),
-        dy: grid.dy(),
-        periodic: true,
-    };
-    (
-        Periodic::new(domain, 25e6).unwrap(),
-        flat_on_rough(h.view()).unwrap(),
-        ExponentialLaw::new(0.05, 2.071e-9).unwrap(),
-    )
+    let grid = Grid::square(n, 1e-4).unwrap();
+    let (op, g0) = flat_on_periodic(
+        SurfaceSpec {
+            grid,
+            psd: Psd::self_affine(0.8, 2e-5, (1e-7f64).max(4.0 * grid.dx())),
+            normalization: Normalization::RmsGradient(1.0),
+            amplitudes: Amplitudes::Exact,
+            seed: 1,
+        },
+        25e6,
+    );
+    (op, g0, ExponentialLaw::new(0.05, 2.071e-9).unwrap())
 }
 
 /// `N=1024 cargo test --release -p solver --test adhesive challenge_dual_loop_study --
