@@ -82,6 +82,22 @@ mod tests {
     }
 
     #[test]
+    fn stored_floats_come_back_bit_for_bit() {
+        // A figure redrawn from the cache must be byte-identical to the one computed.
+        let dir = std::env::temp_dir().join(format!("xtask-cache-bits-{}", std::process::id()));
+        let cache = Cache::new(dir.clone(), false).unwrap();
+        let values: Vec<f64> = (1..200)
+            .map(|k| (k as f64 * 0.37).sin() * 10f64.powi(k % 40 - 20))
+            .collect();
+        let _: Vec<f64> = cache.get_or("t", &1, || Ok(values.clone())).unwrap();
+        let back: Vec<f64> = cache.get_or("t", &1, || panic!("not reused")).unwrap();
+        for (a, b) in values.iter().zip(&back) {
+            assert_eq!(a.to_bits(), b.to_bits(), "{a:e} came back as {b:e}");
+        }
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
     fn the_hash_is_fnv1a() {
         // Reference values of 64-bit FNV-1a.
         assert_eq!(fnv1a(""), 0xcbf29ce484222325);
