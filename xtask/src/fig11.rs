@@ -1,15 +1,15 @@
 //! Fig. 11: pull-off force of rough spheres against the RMS roughness, Tabor parameters 2 and 5.
 
-use crate::rough_sphere::{PullOffFigure, falling, plan, points};
+use crate::rough_sphere::{PullOffFigure, Spec, falling, plan, points};
 use crate::{Context, FigureReport};
 use anyhow::Result;
 
 pub fn run(ctx: &Context) -> Result<FigureReport> {
     let p = plan(ctx);
-    let wanted: Vec<(u32, f64, f64)> = p
+    let wanted: Vec<Spec> = p
         .mus_run(11)
         .into_iter()
-        .flat_map(|mu| p.rqs.iter().map(move |&rq| (mu, rq, 4.0)))
+        .flat_map(|mu| p.rqs.iter().map(move |&rq| Spec::new(mu, rq)))
         .collect();
     let pts = points(ctx, "Fig. 11", &wanted)?;
     let fig = PullOffFigure {
@@ -19,6 +19,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_name: "rq_nm",
         x_log: false,
         legend: crate::style::Legend::UpperRight,
+        roughness_column: ("cutoff_cells", |s| s.cutoff_cells),
     };
     let (mut report, curves) = fig.draw(ctx, &pts, |pt| pt.mean(|o| o.rq) * 1e9, Vec::new())?;
     for (mu, c) in &curves {

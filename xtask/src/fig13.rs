@@ -1,17 +1,22 @@
 //! Fig. 13: pull-off force against the modified Johnson parameter alpha* (Eq. 15) for Tabor
 //! parameters 2, 5 and 7.
 
-use crate::rough_sphere::{MODULUS, PullOffFigure, Z0, plan, points, work_of_adhesion};
+use crate::rough_sphere::{MODULUS, PullOffFigure, Spec, Z0, plan, points, work_of_adhesion};
 use crate::{Context, FigureReport};
 use anyhow::Result;
 use std::f64::consts::PI;
 
 /// The rough points of Figs. 13-14 (Fig. 11's roughnesses, mu = 2, 5, 7).
-pub fn wanted(ctx: &Context) -> Vec<(u32, f64, f64)> {
+pub fn wanted(ctx: &Context) -> Vec<Spec> {
     let p = plan(ctx);
     p.mus_run(13)
         .into_iter()
-        .flat_map(|mu| p.rqs.iter().filter(|&&rq| rq > 0.0).map(move |&rq| (mu, rq, 4.0)))
+        .flat_map(|mu| {
+            p.rqs
+                .iter()
+                .filter(|&&rq| rq > 0.0)
+                .map(move |&rq| Spec::new(mu, rq))
+        })
         .collect()
 }
 
@@ -24,11 +29,12 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_name: "johnson_parameter",
         x_log: true,
         legend: crate::style::Legend::LowerRight,
+        roughness_column: ("cutoff_cells", |s| s.cutoff_cells),
     };
     let johnson = |pt: &crate::rough_sphere::Point| {
         let o = &pt.outcomes[0];
         theory::rough::johnson_parameter(
-            work_of_adhesion(pt.mu),
+            work_of_adhesion(pt.spec.mu),
             MODULUS,
             pt.mean(|o| o.rq),
             2.0 * PI / o.length,

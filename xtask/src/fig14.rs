@@ -15,13 +15,14 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_name: "ciavarella_variable",
         x_log: true,
         legend: crate::style::Legend::UpperRight,
+        roughness_column: ("cutoff_cells", |s| s.cutoff_cells),
     };
     let x = |pt: &crate::rough_sphere::Point| {
         theory::rough::ciavarella_variable(
             pt.mean(|o| o.rq),
             MODULUS,
             pt.outcomes[0].length,
-            work_of_adhesion(pt.mu),
+            work_of_adhesion(pt.spec.mu),
         )
     };
     let hi = pts.iter().map(|p| p.pull_off().0).fold(0.0, f64::max);

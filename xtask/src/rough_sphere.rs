@@ -51,10 +51,22 @@ pub struct Job {
     pub rq: f64,
     /// Short-wavelength cutoff [cells].
     pub cutoff_cells: f64,
+    /// Roll-off wavelength [box sides]. Left out of the serialised job at the usual half box,
+    /// so that runs cached before it existed keep their keys.
+    #[serde(default = "half_box", skip_serializing_if = "is_half_box")]
+    pub rolloff: f64,
     pub seed: u64,
     pub n: usize,
     /// Outer tolerance (mean gap error [z0]).
     pub tolerance: f64,
+}
+
+fn half_box() -> f64 {
+    0.5
+}
+
+fn is_half_box(rolloff: &f64) -> bool {
+    *rolloff == 0.5
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -79,6 +91,7 @@ impl Job {
             mu,
             rq: 0.0,
             cutoff_cells: 0.0,
+            rolloff: half_box(),
             seed: 0,
             n,
             tolerance,
@@ -126,7 +139,7 @@ impl Job {
         if self.rq > 0.0 {
             c.rms_height = Some(self.rq * Z0);
             c.hurst = Some(0.8);
-            c.rolloff_wavelength = Some(l / 2.0);
+            c.rolloff_wavelength = Some(self.rolloff * l);
             c.cutoff_wavelength = Some(self.cutoff_cells * l / self.n as f64);
             c.seed = Some(self.seed);
         }
@@ -249,8 +262,8 @@ pub struct Plan {
     pub seeds: Vec<u64>,
     /// RMS roughnesses [z0] of Figs. 11, 13, 14.
     pub rqs: Vec<f64>,
-    /// Cutoffs [cells] of Fig. 12 (at Rq = 2 z0).
-    pub cutoffs: Vec<f64>,
+    /// Roll-off wavelengths [box sides] of Fig. 12 (at Rq = 2 z0).
+    pub rolloffs: Vec<f64>,
     /// Outer tolerance [z0]: 1e-5 (the paper's 1e-6 stalls on some steps of these bistable
     /// problems and moves the pull-off by less than 1e-4 relative where both converge).
     pub tolerance: f64,
@@ -265,7 +278,7 @@ pub fn plan(ctx: &crate::Context) -> Plan {
         max_n: ctx.pick(64, 512),
         seeds: ctx.pick(vec![1, 2], vec![1, 2, 3]),
         rqs: ctx.pick(vec![0.0, 1.0, 2.0, 4.0, 8.0], vec![0.0, 1.0, 2.0, 4.0, 8.0]),
-        cutoffs: ctx.pick(vec![4.0, 8.0, 16.0], vec![4.0, 8.0, 12.0, 16.0]),
+        rolloffs: ctx.pick(vec![0.5, 0.25, 0.125], vec![0.5, 0.25, 0.125, 0.0625]),
         tolerance: 1e-5,
         mus: ctx.pick(
             [vec![2], vec![2], vec![2]],
@@ -323,27 +336,58 @@ impl Plan {
     }
 }
 
-/// The jobs of one (mu, Rq, cutoff) point: one per seed (one only when smooth).
-pub fn realisations(plan: &Plan, mu: u32, rq: f64, cutoff_cells: f64) -> Vec<Job> {
-    let seeds: &[u64] = if rq > 0.0 { &plan.seeds } else { &[0] };
-    seeds
-        .iter()
-        .map(|&seed| Job {
+/// What a point of a pull-off figure asks for: a Tabor parameter and a roughness, realised
+/// over the plan's seeds.
+#[derive(Clone, Copy, Debug)]
+pub struct Spec {
+    /// Nominal Tabor parameter (2, 5, 7).
+    pub mu: u32,
+    /// RMS roughness [z0]; 0 for the smooth sphere.
+    pub rq: f64,
+    /// Short-wavelength cutoff [cells].
+    pub cutoff_cells: f64,
+    /// Roll-off wavelength [box sides].
+    pub rolloff: f64,
+}
+
+impl Spec {
+    /// Roughness `rq` [z0] cut off at 4 cells and rolled off at half the box (Figs. 11, 13, 14).
+    pub fn new(mu: u32, rq: f64) -> Spec {
+        Spec {
             mu,
             rq,
-            cutoff_cells: if rq > 0.0 { cutoff_cells } else { 0.0 },
-            seed,
-            n: plan.n_for(mu),
-            tolerance: plan.tolerance,
+            cutoff_cells: 4.0,
+            rolloff: half_box(),
+        }
+    }
+}
+
+/// The jobs of one point: one per seed (one only when smooth).
+pub fn realisations(plan: &Plan, spec: Spec) -> Vec<Job> {
+    let rough = spec.rq > 0.0;
+    let seeds: &[u64] = if rough { &plan.seeds } else { &[0] };
+    seeds
+        .iter()
+        .map(|&seed| {
+            let smooth = Job::smooth(spec.mu, plan.n_for(spec.mu), plan.tolerance);
+            if rough {
+                Job {
+                    rq: spec.rq,
+                    cutoff_cells: spec.cutoff_cells,
+                    rolloff: spec.rolloff,
+                    seed,
+                    ..smooth
+                }
+            } else {
+                smooth
+            }
         })
         .collect()
 }
 
 /// A point of a pull-off figure: its jobs' outcomes.
 pub struct Point {
-    pub mu: u32,
-    pub rq: f64,
-    pub cutoff_cells: f64,
+    pub spec: Spec,
     pub outcomes: Vec<Outcome>,
     pub job: Job,
 }
@@ -364,22 +408,17 @@ impl Point {
     }
 }
 
-/// Runs every (mu, Rq, cutoff) point in parallel through the cache.
-pub fn points(ctx: &crate::Context, what: &str, wanted: &[(u32, f64, f64)]) -> Result<Vec<Point>> {
+/// Runs every point in parallel through the cache.
+pub fn points(ctx: &crate::Context, what: &str, wanted: &[Spec]) -> Result<Vec<Point>> {
     let plan = plan(ctx);
-    let groups: Vec<Vec<Job>> = wanted
-        .iter()
-        .map(|&(mu, rq, c)| realisations(&plan, mu, rq, c))
-        .collect();
+    let groups: Vec<Vec<Job>> = wanted.iter().map(|&s| realisations(&plan, s)).collect();
     let jobs: Vec<Job> = groups.iter().flatten().copied().collect();
     let mut outcomes = ctx.run(what, "rough-sphere", &jobs, |j| j.solve())?.into_iter();
     Ok(wanted
         .iter()
         .zip(&groups)
-        .map(|(&(mu, rq, cutoff_cells), g)| Point {
-            mu,
-            rq,
-            cutoff_cells,
+        .map(|(&spec, g)| Point {
+            spec,
             outcomes: outcomes.by_ref().take(g.len()).collect(),
             job: g[0],
         })
@@ -404,7 +443,7 @@ pub fn falling(curve: &[(f64, f64)], slack: f64) -> bool {
 
 /// The points of Tabor parameter `mu` as `(x, y) = f(point)`, sorted by x.
 pub fn curve_of(points: &[Point], mu: u32, f: impl Fn(&Point) -> (f64, f64)) -> Vec<(f64, f64)> {
-    let mut c: Vec<(f64, f64)> = points.iter().filter(|p| p.mu == mu).map(f).collect();
+    let mut c: Vec<(f64, f64)> = points.iter().filter(|p| p.spec.mu == mu).map(f).collect();
     c.sort_by(|a, b| a.0.total_cmp(&b.0));
     c
 }
@@ -421,6 +460,8 @@ pub struct PullOffFigure<'a> {
     pub x_name: &'a str,
     pub x_log: bool,
     pub legend: crate::style::Legend,
+    /// The table's column after Rq: the roughness parameter the figure varies besides Rq.
+    pub roughness_column: (&'a str, fn(&Spec) -> f64),
 }
 
 impl PullOffFigure<'_> {
@@ -440,7 +481,7 @@ impl PullOffFigure<'_> {
             &[
                 "mu",
                 "rq_nominal_z0",
-                "cutoff_cells",
+                self.roughness_column.0,
                 self.x_name,
                 "pull_off_over_pi_r_w0",
                 "std",
@@ -452,13 +493,13 @@ impl PullOffFigure<'_> {
         chart.x_log = self.x_log;
         chart.legend = self.legend;
         chart.curves = extra;
-        let mut mus: Vec<u32> = points.iter().map(|p| p.mu).collect();
+        let mut mus: Vec<u32> = points.iter().map(|p| p.spec.mu).collect();
         mus.dedup();
         let mut curves = Vec::new();
         for (i, &mu) in mus.iter().enumerate() {
             let mut pts: Vec<(f64, f64, f64)> = points
                 .iter()
-                .filter(|p| p.mu == mu)
+                .filter(|p| p.spec.mu == mu)
                 .map(|p| {
                     let (m, s) = p.pull_off();
                     (x(p), m, s)
@@ -483,9 +524,9 @@ impl PullOffFigure<'_> {
         for p in points {
             let (m, s) = p.pull_off();
             table.push(vec![
-                p.mu as f64,
-                p.rq,
-                p.cutoff_cells,
+                p.spec.mu as f64,
+                p.spec.rq,
+                (self.roughness_column.1)(&p.spec),
                 x(p),
                 m,
                 s,
@@ -499,9 +540,9 @@ impl PullOffFigure<'_> {
         report.tables.push(table);
         let plan = plan(ctx);
         report.computed.push(format!(
-            "Rigid sphere R* = 100 µm with self-affine roughness (H = 0.8, roll-off at half the box, Rq and \
-             short cutoff as on the axis) on a free grid of side 3.5 JKR zero-load contact radii a0, E* = 50 GPa, \
-             z0 = 0.3 nm, Lennard-Jones point law solved by the energy descent (the paper's surface law has no \
+            "Rigid sphere R* = 100 µm with self-affine roughness (H = 0.8, roll-off at half the box and short \
+             cutoff at 4 cells unless said otherwise, Rq as on the axis) on a free grid of side 3.5 JKR zero-load \
+             contact radii a0, E* = 50 GPa, z0 = 0.3 nm, Lennard-Jones point law solved by the energy descent (the paper's surface law has no \
              energy, and its dual loop needs 20-40 min a run at μ = 5: see README), tolerance {:e} z0; {} seeds \
              per rough point (error bars: ± one standard deviation).",
             plan.tolerance,
@@ -578,7 +619,7 @@ mod tests {
             max_n: 256,
             seeds: vec![1],
             rqs: vec![],
-            cutoffs: vec![],
+            rolloffs: vec![],
             tolerance: 1e-5,
             mus: [vec![2, 5], vec![5, 7], vec![2, 5, 7]],
         };
