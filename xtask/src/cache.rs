@@ -10,7 +10,7 @@ use serde_json::Value;
 use std::path::PathBuf;
 
 /// Part of every key: results of older code are not reused.
-pub const VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "/figures-3");
+pub const VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "/figures-2");
 
 pub struct Cache {
     dir: PathBuf,

@@ -51,12 +51,22 @@ pub struct Job {
     pub rq: f64,
     /// Short-wavelength cutoff [cells].
     pub cutoff_cells: f64,
-    /// Roll-off wavelength [box sides].
+    /// Roll-off wavelength [box sides]. Left out of the serialised job at the usual half box,
+    /// so that runs cached before it existed keep their keys.
+    #[serde(default = "half_box", skip_serializing_if = "is_half_box")]
     pub rolloff: f64,
     pub seed: u64,
     pub n: usize,
     /// Outer tolerance (mean gap error [z0]).
     pub tolerance: f64,
+}
+
+fn half_box() -> f64 {
+    0.5
+}
+
+fn is_half_box(rolloff: &f64) -> bool {
+    *rolloff == 0.5
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -81,7 +91,7 @@ impl Job {
             mu,
             rq: 0.0,
             cutoff_cells: 0.0,
-            rolloff: 0.5,
+            rolloff: half_box(),
             seed: 0,
             n,
             tolerance,
@@ -347,7 +357,7 @@ impl Spec {
             mu,
             rq,
             cutoff_cells: 4.0,
-            rolloff: 0.5,
+            rolloff: half_box(),
         }
     }
 }
