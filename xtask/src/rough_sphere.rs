@@ -366,10 +366,10 @@ impl Spec {
 pub fn realisations(plan: &Plan, spec: Spec) -> Vec<Job> {
     let rough = spec.rq > 0.0;
     let seeds: &[u64] = if rough { &plan.seeds } else { &[0] };
+    let smooth = Job::smooth(spec.mu, plan.n_for(spec.mu), plan.tolerance);
     seeds
         .iter()
         .map(|&seed| {
-            let smooth = Job::smooth(spec.mu, plan.n_for(spec.mu), plan.tolerance);
             if rough {
                 Job {
                     rq: spec.rq,
@@ -542,9 +542,9 @@ impl PullOffFigure<'_> {
         report.computed.push(format!(
             "Rigid sphere R* = 100 µm with self-affine roughness (H = 0.8, roll-off at half the box and short \
              cutoff at 4 cells unless said otherwise, Rq as on the axis) on a free grid of side 3.5 JKR zero-load \
-             contact radii a0, E* = 50 GPa, z0 = 0.3 nm, Lennard-Jones point law solved by the energy descent (the paper's surface law has no \
-             energy, and its dual loop needs 20-40 min a run at μ = 5: see README), tolerance {:e} z0; {} seeds \
-             per rough point (error bars: ± one standard deviation).",
+             contact radii a0, E* = 50 GPa, z0 = 0.3 nm, Lennard-Jones point law solved by the energy descent \
+             (the paper's surface law has no energy, and its dual loop needs 20-40 min a run at μ = 5: see \
+             README), tolerance {:e} z0; {} seeds per rough point (error bars: ± one standard deviation).",
             plan.tolerance,
             plan.seeds.len(),
         ));
