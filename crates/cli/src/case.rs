@@ -56,6 +56,9 @@ pub enum OuterKind {
     /// No outer loop: conjugate gradients on the total energy (point or exponential law;
     /// approach or mean-gap control, or load control on periodic domains; fastest there).
     Energy,
+    /// No outer loop, any law (surface included): Newton-Krylov on the cells' force balance
+    /// (approach or mean-gap control).
+    Newton,
 }
 
 /// A contact case: every flag is also a key of the TOML case file (`--config`), with the same
@@ -274,6 +277,7 @@ impl Case {
                 Some(OuterKind::DualLoop) => OuterLoop::DualLoop,
                 Some(OuterKind::Energy) => OuterLoop::EnergyDescent,
                 Some(OuterKind::Accelerated) => OuterLoop::Accelerated,
+                Some(OuterKind::Newton) => OuterLoop::Newton,
                 None | Some(OuterKind::Auto) if energy_applies => OuterLoop::EnergyDescent,
                 None | Some(OuterKind::Auto) => OuterLoop::Accelerated,
             },

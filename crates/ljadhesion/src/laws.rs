@@ -59,6 +59,26 @@ impl AdhesionLaw for PointLaw {
     }
 }
 
+/// The point law's potential, for the laws that average it over a cell.
+macro_rules! flat_point_potential {
+    ($law:ty) => {
+        /// The point law's potential: this law on flat gap fields ([`AdhesionLaw::flat_potential`]).
+        impl LocalPotential for $law {
+            fn energy(&self, gap: f64) -> f64 {
+                PointLaw(self.0).energy(gap)
+            }
+            fn pressure(&self, gap: f64) -> f64 {
+                PointLaw(self.0).pressure(gap)
+            }
+            fn curvature(&self, gap: f64) -> f64 {
+                PointLaw(self.0).curvature(gap)
+            }
+        }
+    };
+}
+flat_point_potential!(LineLaw);
+flat_point_potential!(SurfaceLaw);
+
 /// `V(g) = -Phi(g + z0)`: `-w0` in contact, convex up to the peak pull at `z = 3^(1/6) z0`.
 impl LocalPotential for PointLaw {
     fn energy(&self, gap: f64) -> f64 {
@@ -85,6 +105,9 @@ impl AdhesionLaw for LineLaw {
         )
     }
     lennard_jones_scales!("line");
+    fn flat_potential(&self) -> Option<&dyn LocalPotential> {
+        Some(self)
+    }
 }
 
 impl AdhesionLaw for SurfaceLaw {
@@ -107,6 +130,9 @@ impl AdhesionLaw for SurfaceLaw {
     // The stiffness bound is that of the mean pressure; the area factor `S` multiplies it
     // where the gap is steep.
     lennard_jones_scales!("surface");
+    fn flat_potential(&self) -> Option<&dyn LocalPotential> {
+        Some(self)
+    }
 }
 
 /// The exponential law of the contact-mechanics challenge, with a hard wall:

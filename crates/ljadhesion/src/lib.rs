@@ -87,6 +87,14 @@ pub trait AdhesionLaw: Sync + Send {
     fn local_potential(&self) -> Option<&dyn LocalPotential> {
         None
     }
+
+    /// The potential of the local law this one becomes on flat gap fields, where a cell's
+    /// neighbours share its gap: the point law for the line and surface laws, the law itself
+    /// for those with a [`AdhesionLaw::local_potential`]. Solvers use its energy to predict a
+    /// state far from the current one (across a jump), which the law itself then corrects.
+    fn flat_potential(&self) -> Option<&dyn LocalPotential> {
+        self.local_potential()
+    }
 }
 
 /// A law given by an interaction energy per area `V(g)` [J/m^2] of each cell's own gap `g >= 0`

@@ -867,6 +867,143 @@ fn energy_descent_on_a_free_sphere_agrees_with_the_accelerated_loop() {
     });
 }
 
+#[test]
+fn newton_and_the_energy_descent_agree_on_a_free_sphere() {
+    // Two methods with nothing in common but the equations: Newton-Krylov on the force balance
+    // and the descent of the energy (point law, which has both; mu = 1, jump in and back out).
+    pool().install(|| {
+        let (op, g0, law, w0) = sphere_case(1.0, 64, 60.0);
+        let point = PointLaw(law.0);
+        let path = approaches([-2.0, -1.0, 0.0, 1.0, 0.0, -1.0, -1.5].into_iter());
+        let cycle = |outer_loop| {
+            let options = AdhesiveOptions {
+                outer_loop,
+                ..AdhesiveOptions::default()
+            };
+            checked_sweep(&op, &point, &g0, &path, &options)
+        };
+        let ((newton, newton_error), (energy, _)) =
+            (cycle(OuterLoop::Newton), cycle(OuterLoop::EnergyDescent));
+        println!("Newton: equations met to {newton_error:e} of the range");
+        assert!(newton_error < 1e-5);
+        for (n, e) in newton.iter().zip(&energy) {
+            println!(
+                "a/z0 {:5.2} W/(pi R w0): Newton {:9.6} ({} steps, {} Krylov), energy {:9.6}; area {:.4}",
+                n.report.approach / Z0,
+                n.report.load / (PI * R * w0),
+                n.report.outer_iterations,
+                n.report.inner_iterations,
+                e.report.load / (PI * R * w0),
+                n.report.contact_area_fraction
+            );
+            assert!(n.report.converged() && e.report.converged());
+            assert!((n.report.load - e.report.load).abs() < 1e-4 * PI * R * w0);
+            assert_eq!(n.report.contact_area_fraction, e.report.contact_area_fraction);
+        }
+        assert!(newton[3].report.contact_area_fraction > 0.3);
+        assert!(newton[0].report.contact_area_fraction == 0.0);
+    });
+}
+
+#[test]
+fn newton_solves_the_surface_law_as_the_accelerated_loop_does() {
+    // The paper's surface law has no energy: Newton against the accelerated dual loop, on a
+    // sphere cycle at mu = 3 (jump in, contact, back out) and on rough periodic contact at a
+    // prescribed mean gap.
+    pool().install(|| {
+        let (op, g0, law, w0) = sphere_case(3.0, 64, 60.0);
+        let path = approaches([-4.0, -2.0, -1.0, 0.0, 1.0, 0.0, -1.0, -2.0, -3.0].into_iter());
+        let newton_options = AdhesiveOptions {
+            outer_loop: OuterLoop::Newton,
+            tolerance: 1e-7,
+            ..AdhesiveOptions::default()
+        };
+        let mut states = Vec::new();
+        let points = sweep(
+            &op,
+            &law,
+            g0.view(),
+            &path,
+            &newton_options,
+            None,
+            None,
+            &mut |_, _, state| {
+                states.push(state.clone());
+                true
+            },
+        )
+        .unwrap();
+        // The accelerated loop does not finish the jump in here (80000 outer iterations);
+        // Newton does, and each of its states is a fixed point of the paper's loop: started
+        // there, the loop stays.
+        let accelerated = AdhesiveOptions::default();
+        for (point, state) in points.iter().zip(&states) {
+            let n = &point.report;
+            let (_, a) = solve_adhesive(&op, &law, g0.view(), point.control, &accelerated, Start::Warm(state)).unwrap();
+            println!(
+                "a/z0 {:5.2} W/(pi R w0): Newton {:9.6} ({} steps, {} Krylov), equations {:.1e}; \
+                 accelerated from there {:9.6} ({} outer); area {:.4}",
+                n.approach / Z0,
+                n.load / (PI * R * w0),
+                n.outer_iterations,
+                n.inner_iterations,
+                equilibrium_error(&op, &law, &g0, state),
+                a.load / (PI * R * w0),
+                a.outer_iterations,
+                n.contact_area_fraction
+            );
+            assert!(n.converged() && a.converged());
+            assert!(equilibrium_error(&op, &law, &g0, state) < 1e-5);
+            assert!((n.load - a.load).abs() < 1e-5 * PI * R * w0);
+            assert_eq!(n.contact_area_fraction, a.contact_area_fraction);
+        }
+        assert!(points[0].report.contact_area_fraction == 0.0);
+        assert!(points[4].report.contact_area_fraction > 0.1);
+
+        let (op, g0) = rough(64);
+        let domain = *op.domain();
+        let law = SurfaceLaw(LennardJones::new(5e-3, 2.0 * domain.dx).unwrap());
+        let approach = g0.mean().unwrap() - 3e-8;
+        let solve_with = |outer_loop, tolerance| {
+            let options = AdhesiveOptions {
+                outer_loop,
+                tolerance,
+                ..AdhesiveOptions::default()
+            };
+            solve_adhesive(
+                &op,
+                &law,
+                g0.view(),
+                Control::Approach(approach),
+                &options,
+                Start::Loading,
+            )
+            .unwrap()
+        };
+        let (newton, n_report) = solve_with(OuterLoop::Newton, 1e-8);
+        let (accelerated, a_report) = solve_with(OuterLoop::Accelerated, 1e-9);
+        println!(
+            "rough: Newton {} steps, {} Krylov, {} calls; accelerated {} outer, {} calls; loads {:.9e} / {:.9e} N",
+            n_report.outer_iterations,
+            n_report.inner_iterations,
+            n_report.operator_calls,
+            a_report.outer_iterations,
+            a_report.operator_calls,
+            n_report.load,
+            a_report.load
+        );
+        assert!(n_report.converged() && a_report.converged());
+        assert!(equilibrium_error(&op, &law, &g0, &newton) < 1e-6);
+        assert!((newton.contact.gap.mean().unwrap() / 3e-8 - 1.0).abs() < 1e-12);
+        assert!((n_report.load / a_report.load - 1.0).abs() < 1e-5);
+        assert_eq!(
+            newton.contact.pressure.mapv(|p| p > 0.0),
+            accelerated.contact.pressure.mapv(|p| p > 0.0)
+        );
+        assert!(n_report.contact_area_fraction > 0.01);
+    });
+}
+
 /// A cycle of the sphere at mu = 10, point law, by the energy descent on a free grid: the
 /// points, w0 and the largest error in the equations (in ranges).
 fn high_tabor_cycle(n: usize, half_width: f64, path: &[Control]) -> (Vec<SweepPoint>, f64, f64) {

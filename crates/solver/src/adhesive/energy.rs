@@ -38,8 +38,8 @@ use crate::error::{Result, SolverError, invalid};
 use crate::options::Control;
 use crate::report::Termination;
 use crate::state::ContactState;
-use elastic::{Compliance, FreeStiffness, PeriodicStiffness};
-use ljadhesion::{AdhesionLaw, LocalPotential};
+use elastic::{Compliance, Domain, FreeStiffness, PeriodicStiffness};
+use ljadhesion::{AdhesionLaw, Cells, LocalPotential};
 use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip, s};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -58,17 +58,17 @@ fn row_sums<const K: usize>(ny: usize, row: impl Fn(usize) -> [f64; K] + Sync) -
 }
 
 /// One admissible point and what the solver needs of it. Fields have the unknown's shape.
-struct Point {
+pub(super) struct Point {
     /// The unknown: the gap [m] on the domain's block, the displacement [m] in the padding.
-    gap: Array2<f64>,
+    pub(super) gap: Array2<f64>,
     /// `S (gap - base)` [Pa]: the pressure that holds the surface's displacement.
-    elastic: Array2<f64>,
+    pub(super) elastic: Array2<f64>,
     /// `p(g)` [Pa].
-    law: Array2<f64>,
+    pub(super) law: Array2<f64>,
     /// `V''(g)` [Pa/m].
-    curvature: Array2<f64>,
+    pub(super) curvature: Array2<f64>,
     /// The gradient `S (g - g0) - p(g)` [Pa], then projected ([`Problem::project_gradient`]).
-    gradient: Array2<f64>,
+    pub(super) gradient: Array2<f64>,
     /// Elastic energy, and interaction energy plus the load's potential `p_mean mean(g)`, per
     /// area [J/m^2].
     energy: (f64, f64),
@@ -79,7 +79,7 @@ struct Point {
 }
 
 impl Point {
-    fn new(gap: Array2<f64>) -> Point {
+    pub(super) fn new(gap: Array2<f64>) -> Point {
         let shape = gap.dim();
         Point {
             gap,
@@ -99,21 +99,26 @@ impl Point {
 }
 
 /// What the solver needs of a projected gradient `rho`.
-struct GradientSums {
+pub(super) struct GradientSums {
     /// The mean-pressure multiplier [Pa].
-    lambda: f64,
+    pub(super) lambda: f64,
     /// `max |rho|` [Pa].
-    max: f64,
+    pub(super) max: f64,
 }
 
 /// The stiffness of the unknown's grid.
-enum Stiffness {
+pub(super) enum Stiffness {
     Periodic(PeriodicStiffness),
     Free(FreeStiffness),
 }
 
 impl Stiffness {
-    fn apply(&self, u: ArrayView2<f64>, p: ArrayViewMut2<f64>, ws: &mut elastic::Workspace) -> Result<()> {
+    pub(super) fn apply(
+        &self,
+        u: ArrayView2<f64>,
+        p: ArrayViewMut2<f64>,
+        ws: &mut elastic::Workspace,
+    ) -> Result<()> {
         match self {
             Stiffness::Periodic(s) => s.apply(u, p, ws),
             Stiffness::Free(s) => s.apply(u, p, ws),
@@ -122,27 +127,34 @@ impl Stiffness {
     }
 }
 
-struct Problem<'a> {
-    stiffness: Stiffness,
-    ws: elastic::Workspace,
-    potential: &'a dyn LocalPotential,
+pub(super) struct Problem<'a> {
+    pub(super) stiffness: Stiffness,
+    pub(super) ws: elastic::Workspace,
+    /// The law's local potential: the energy is defined (descent); without one, only the
+    /// law's pressure field and a probed stiffness are evaluated (Newton).
+    potential: Option<&'a dyn LocalPotential>,
+    pub(super) law: &'a dyn AdhesionLaw,
+    pub(super) cells: Cells,
+    domain: Domain,
+    /// The block's gap shifted by a probe, and the law's pressure there (general laws).
+    probe: (Array2<f64>, Array2<f64>),
     /// The unknown less the surface displacement [m] (up to its mean, periodic): `g0` periodic;
     /// `g0 - delta` on the domain's block and zero in the padding, free.
     base: Array2<f64>,
     /// Columns and rows of the unknown: `(nx, ny)` periodic, `(2nx, 2ny)` free.
-    mx: usize,
-    my: usize,
+    pub(super) mx: usize,
+    pub(super) my: usize,
     /// Columns and rows of the domain's block, where the unknown is the gap.
-    nx: usize,
-    ny: usize,
+    pub(super) nx: usize,
+    pub(super) ny: usize,
     /// The prescribed mean gap [m] (periodic approach control; free domains have none).
-    mean_gap: Option<f64>,
+    pub(super) mean_gap: Option<f64>,
     /// The prescribed mean pressure [Pa] (periodic load control: the mean gap is free).
     load: Option<f64>,
     scratch: Array2<f64>,
-    calls: usize,
+    pub(super) calls: usize,
     /// The stiffness's diagonal `S_ii` [Pa/m] (the same for every cell).
-    diagonal: f64,
+    pub(super) diagonal: f64,
 }
 
 impl Problem<'_> {
@@ -154,7 +166,7 @@ impl Problem<'_> {
     /// `gap - base` in the scratch field, for [`Problem::evaluate`]. With `hold` (periodic),
     /// cells of `from` with a gap at most `hold` [m] stay where they are and only the others
     /// shift (a warm start's first guess).
-    fn step_and_project(
+    pub(super) fn step_and_project(
         &mut self,
         from: &Array2<f64>,
         d: &Array2<f64>,
@@ -228,12 +240,15 @@ impl Problem<'_> {
 
     /// Fills `at`'s fields, energy and raw gradient from its admissible gap, just made by
     /// [`Problem::step_and_project`].
-    fn evaluate(&mut self, at: &mut Point) -> Result<()> {
+    pub(super) fn evaluate(&mut self, at: &mut Point) -> Result<()> {
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
         self.stiffness
             .apply(self.scratch.view(), at.elastic.view_mut(), &mut self.ws)?;
         self.calls += 1;
         let potential = self.potential;
+        if potential.is_none() {
+            self.law_on_block(at)?;
+        }
         let load = self.load.unwrap_or(0.0);
         let gs = at.gap.as_slice().expect("layout");
         let ds = self.scratch.as_slice().expect("layout");
@@ -262,7 +277,10 @@ impl Problem<'_> {
                         (lr[i], cr[i], rr[i]) = (0.0, 0.0, es[k]);
                         continue;
                     }
-                    let (v, p, c) = potential.evaluate(g);
+                    let (v, p, c) = match potential {
+                        Some(potential) => potential.evaluate(g),
+                        None => (0.0, lr[i], cr[i]),
+                    };
                     (lr[i], cr[i]) = (p, c);
                     rr[i] = es[k] - p + load;
                     sums[1] += v + load * g;
@@ -298,11 +316,34 @@ impl Problem<'_> {
         Ok(())
     }
 
+    /// Writes the law's pressure at `at`'s gaps on the domain's block into `at.law`, and its
+    /// stiffness `-dp/dg` [Pa/m] there, from a probe at gaps larger by a thousandth of the
+    /// range, into `at.curvature`: a law without a local potential may depend on the
+    /// neighbours' gaps (the surface law), so the field is evaluated as a whole.
+    fn law_on_block(&mut self, at: &mut Point) -> Result<()> {
+        let block = s![..self.ny, ..self.nx];
+        let gap = at.gap.slice(block);
+        self.law
+            .pressure_field(gap, &self.cells, at.law.slice_mut(block))?;
+        let probe = 1e-3 * self.law.range();
+        let (shifted, shifted_law) = &mut self.probe;
+        Zip::from(&mut *shifted)
+            .and(&gap)
+            .par_for_each(|s, &g| *s = g + probe);
+        self.law
+            .pressure_field(shifted.view(), &self.cells, shifted_law.view_mut())?;
+        Zip::from(at.curvature.slice_mut(block))
+            .and(&at.law.slice(block))
+            .and(&*shifted_law)
+            .par_for_each(|c, &lo, &hi| *c = (lo - hi) / probe);
+        Ok(())
+    }
+
     /// Projects `at`'s raw gradient in place: less the mean-pressure multiplier (its mean over
     /// the cells off the wall), zero where a cell on the wall is pushed into it (that is its
     /// contact pressure), and with zero mean over the cells that move, so that the mean gap
     /// stays (the multiplier and the mean only where the mean gap is prescribed).
-    fn project_gradient(&self, at: &mut Point) -> GradientSums {
+    pub(super) fn project_gradient(&self, at: &mut Point) -> GradientSums {
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
         let lambda = if self.mean_gap.is_some() && at.free.1 > 0.0 {
             at.free.0 / at.free.1
@@ -414,24 +455,33 @@ impl Problem<'_> {
 
 /// Whether cell `(j, i)` of the unknown, at `g`, is on the wall: the unknown is the gap (the
 /// domain's `(ny, nx)` block) and it is closed.
-fn on_wall(j: usize, i: usize, g: f64, nx: usize, ny: usize) -> bool {
+pub(super) fn on_wall(j: usize, i: usize, g: f64, nx: usize, ny: usize) -> bool {
     g <= 0.0 && j < ny && i < nx
 }
 
-/// Solves under approach control (`Control::Approach`) or, periodic only, load control
-/// (`Control::Force`, `Control::MeanPressure`) on the operator `op`; see the module docs.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn solve(
+/// A problem over the gap, set up from a solve's arguments, at its first admissible point.
+pub(super) struct Setup<'a> {
+    pub(super) problem: Problem<'a>,
+    /// The first admissible point, evaluated (its gradient not yet projected).
+    pub(super) x: Point,
+    /// The approach [m] (approach control; else 0).
+    pub(super) delta: f64,
+    /// The mean pressure [Pa] (load control; else `None`).
+    pub(super) load: Option<f64>,
+}
+
+/// Sets up the problem over the gap (or the padded displacement, free) under approach control
+/// (`Control::Approach`) or, periodic only, load control (`Control::Force`,
+/// `Control::MeanPressure`), with the law's `potential` if it has one; see the module docs.
+pub(super) fn setup<'a>(
     op: &dyn Compliance,
-    law: &dyn AdhesionLaw,
-    potential: &dyn LocalPotential,
+    law: &'a dyn AdhesionLaw,
+    potential: Option<&'a dyn LocalPotential>,
     g0: ArrayView2<f64>,
     control: Control,
     options: &AdhesiveOptions,
     start: Start,
-    observer: &mut dyn FnMut(usize, f64),
-) -> Result<(AdhesiveState, AdhesiveReport)> {
-    let started = Instant::now();
+) -> Result<Setup<'a>> {
     let domain = *op.domain();
     let shape = domain.shape();
     let (ny, nx) = shape;
@@ -444,6 +494,11 @@ pub(super) fn solve(
         });
     }
     let n = (nx * ny) as f64;
+    let cells = Cells {
+        dx: domain.dx,
+        dy: domain.dy,
+        periodic: domain.periodic,
+    };
     let (delta, load) = match control {
         Control::Approach(d) => (d, None),
         Control::MeanPressure(p) => (0.0, Some(p)),
@@ -489,6 +544,10 @@ pub(super) fn solve(
             ws: stiffness.make_workspace(),
             stiffness: Stiffness::Periodic(stiffness),
             potential,
+            law,
+            cells,
+            domain,
+            probe: (Array2::zeros(shape), Array2::zeros(shape)),
             base: g0.to_owned(),
             mx: nx,
             my: ny,
@@ -537,6 +596,10 @@ pub(super) fn solve(
             ws,
             stiffness: Stiffness::Free(stiffness),
             potential,
+            law,
+            cells,
+            domain,
+            probe: (Array2::zeros(shape), Array2::zeros(shape)),
             base,
             mx: padded.1,
             my: padded.0,
@@ -566,6 +629,36 @@ pub(super) fn solve(
     problem.step_and_project(&first, &first, 0.0, &mut x.gap, hold);
     drop(first);
     problem.evaluate(&mut x)?;
+    Ok(Setup {
+        problem,
+        x,
+        delta,
+        load,
+    })
+}
+
+/// Solves under approach control or, periodic only, load control by the descent of the
+/// module docs.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn solve(
+    op: &dyn Compliance,
+    law: &dyn AdhesionLaw,
+    potential: &dyn LocalPotential,
+    g0: ArrayView2<f64>,
+    control: Control,
+    options: &AdhesiveOptions,
+    start: Start,
+    observer: &mut dyn FnMut(usize, f64),
+) -> Result<(AdhesiveState, AdhesiveReport)> {
+    let started = Instant::now();
+    let domain = *op.domain();
+    let Setup {
+        mut problem,
+        mut x,
+        delta,
+        load,
+    } = setup(op, law, Some(potential), g0, control, options, start)?;
+    let unknown = x.gap.dim();
     let mut direction = Array2::zeros(unknown);
     let mut sums = problem.project_gradient(&mut x);
     let mut z = Array2::zeros(unknown);
@@ -574,7 +667,7 @@ pub(super) fn solve(
     let mut slope = -zr;
     let mut trial = Point::new(Array2::zeros(unknown));
     let mut s_direction = Array2::zeros(unknown);
-    let (mx, my) = (problem.mx, problem.my);
+    let (mx, my, nx, ny) = (problem.mx, problem.my, problem.nx, problem.ny);
 
     let scale = super::cell_compliance(&domain, op.e_star()) / law.range();
     let mut history = Vec::new();
@@ -692,6 +785,36 @@ pub(super) fn solve(
             slope = -zr;
         }
     }
+    Ok(finish(
+        &problem,
+        x,
+        &sums,
+        (delta, load),
+        g0,
+        (0, iterations),
+        history,
+        termination,
+        started,
+    ))
+}
+
+/// The state and report at the solution `x`, whose gradient `sums` describe (see [`setup`]
+/// for `delta` and `load`).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn finish(
+    problem: &Problem,
+    x: Point,
+    sums: &GradientSums,
+    (delta, load): (f64, Option<f64>),
+    g0: ArrayView2<f64>,
+    (outer, inner): (usize, usize),
+    history: Vec<f64>,
+    termination: Termination,
+    started: Instant,
+) -> (AdhesiveState, AdhesiveReport) {
+    let domain = problem.domain;
+    let shape = domain.shape();
+    let (ny, nx) = shape;
     // The mean pressure: prescribed, or minus the multiplier of the mean gap (free: none).
     let mean_pressure = load.unwrap_or(-sums.lambda);
     let block = s![..ny, ..nx];
@@ -731,15 +854,15 @@ pub(super) fn solve(
         displacement,
         approach,
     };
-    Ok(assemble(
+    assemble(
         &domain,
-        law,
+        problem.law,
         contact,
         law_pressure,
-        (0, iterations, problem.calls),
+        (outer, inner, problem.calls),
         history,
         1.0,
         termination,
         started,
-    ))
+    )
 }

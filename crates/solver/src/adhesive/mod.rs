@@ -20,6 +20,7 @@
 
 mod anderson;
 mod energy;
+mod newton;
 
 use crate::cg::{Scratch, solve_in};
 use crate::error::{Result, SolverError, invalid};
@@ -55,6 +56,11 @@ pub enum OuterLoop {
     /// to the largest force imbalance of a cell times the cell's compliance, over the law's
     /// range (the module docs' measure, taken at its worst cell instead of on average).
     EnergyDescent,
+    /// No outer loop either, for any law (the surface law included): Newton-Krylov on the
+    /// cells' force balance over the gap, globalised by pseudo-transient continuation (module
+    /// `newton`), under approach control. Newton steps are reported as outer iterations, Krylov
+    /// iterations as inner ones; the tolerance is the energy descent's worst-cell measure.
+    Newton,
 }
 
 /// Settings of the adhesive solver, independent of the problem.
@@ -269,6 +275,16 @@ pub fn solve_adhesive_observed(
         let potential = energy_descent_law(&domain, law, control)?;
         return energy::solve(op, law, potential, g0, control, options, start, observer);
     }
+    if options.outer_loop == OuterLoop::Newton {
+        if !matches!(control, Control::Approach(_)) {
+            return Err(SolverError::Unsupported(
+                "the Newton solver takes the approach only (use `accelerated` for loads and central \
+                 gaps)"
+                    .into(),
+            ));
+        }
+        return newton::solve(op, law, g0, control, options, start, observer);
+    }
     let cell = domain.cell_area();
     let n = (domain.nx * domain.ny) as f64;
     let cells = Cells {
@@ -317,7 +333,7 @@ pub fn solve_adhesive_observed(
     let beta_max = 1.0;
     let beta_min = 0.05 * beta;
     let mut mixer = Anderson::new(match options.outer_loop {
-        OuterLoop::DualLoop | OuterLoop::EnergyDescent => 0,
+        OuterLoop::DualLoop | OuterLoop::EnergyDescent | OuterLoop::Newton => 0,
         OuterLoop::Accelerated => options.history,
     });
     let mut history: Vec<f64> = Vec::new();

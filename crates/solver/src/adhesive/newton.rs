@@ -1,0 +1,479 @@
+//! Newton-Krylov: adhesive contact under any law, the surface law included, as one nonlinear
+//! complementarity problem over the gap, with no outer loop on the adhesive pressure.
+//!
+//! The unknown and its constraints are those of the energy descent (module `energy`): the gap
+//! with its mean prescribed on a periodic domain, the padded displacement on a free one. The
+//! equations are the cell force balance `r = S (g - g0) - p(g) = 0` where the gap is open and
+//! `r >= 0` (the contact pressure) where it is closed; `p` is the law's pressure field, which
+//! for the surface and line laws depends on a cell's neighbours and is the gradient of no
+//! energy, so that no descent applies. Each iteration solves the linearised balance on the
+//! cells not held by the wall, `(D / dt + S - dp/dg) d = -r`, by restarted GMRES (the law's
+//! derivative applied as a directional difference of the whole field, exactly as the law is
+//! evaluated), right-preconditioned by the diagonal `D = S_ii + max(-dp_i/dg_i, 0)`, and takes
+//! the step projected onto `g >= 0` (pseudo-transient continuation, Kelley & Keyes, SIAM J.
+//! Numer. Anal. 35, 1998). The pseudo-time step `dt` grows as the residual falls (switched
+//! evolution relaxation), so the iteration becomes Newton's near a solution and converges in a
+//! few steps; while far from one (a jump into or out of contact) small steps follow the
+//! relaxation `D dg/dt = -r`, which settles on stable states, and a step that would raise the
+//! residual is retried with a quarter of the pseudo-time step.
+//!
+//! Convergence: the largest force imbalance of a cell times its compliance, over the law's
+//! range (the energy descent's measure), below the tolerance.
+
+use super::energy::{self, GradientSums, Point, Problem, Setup, on_wall};
+use super::{AdhesiveOptions, AdhesiveReport, AdhesiveState, Start};
+use crate::error::Result;
+use crate::options::Control;
+use crate::report::Termination;
+use elastic::Compliance;
+use ljadhesion::AdhesionLaw;
+use ndarray::{Array2, ArrayView2, Zip, s};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Krylov vectors kept before GMRES restarts.
+const RESTART: usize = 30;
+/// Krylov iterations per Newton step at most.
+const MAX_KRYLOV: usize = 300;
+/// The first pseudo-time step, in units of each cell's relaxation time `1 / D`.
+const FIRST_DT: f64 = 1e6;
+/// The largest pseudo-time step (effectively Newton's).
+const MAX_DT: f64 = 1e12;
+/// The smallest pseudo-time step: a tenth of a cell's relaxation time.
+const MIN_DT: f64 = 0.1;
+/// A step may raise the residual by this factor (the relaxation can have to climb out of a
+/// well of the residual that holds no solution, past the fold of a branch); a larger rise
+/// is retried with a tenth of the pseudo-time step, down to [`MIN_DT`], where it is taken.
+const GROWTH: f64 = 4.0;
+/// The largest move of a gap in one step, in ranges of the law.
+const MAX_MOVE: f64 = 2.0;
+/// Newton steps without a 10 % improvement of the best residual that count as a stall.
+const STALL: usize = 60;
+/// Elements per chunk of the deterministic parallel sums.
+const CHUNK: usize = 4096;
+/// Halvings of a step that raises the residual before a new direction is sought.
+const BACKTRACKS: usize = 3;
+
+/// `<a, b>`, summed in chunks of fixed size and added in order: independent of the threads.
+fn dot(a: &Array2<f64>, b: &Array2<f64>) -> f64 {
+    let (a, b) = (a.as_slice().expect("layout"), b.as_slice().expect("layout"));
+    let parts: Vec<f64> = a
+        .par_chunks(CHUNK)
+        .zip(b.par_chunks(CHUNK))
+        .map(|(a, b)| a.iter().zip(b).map(|(x, y)| x * y).sum())
+        .collect();
+    parts.iter().sum()
+}
+
+/// The linearised balance at one point and GMRES's storage.
+struct Linear {
+    /// Krylov basis.
+    basis: Vec<Array2<f64>>,
+    /// Hessenberg matrix by columns, Givens rotations and the rotated right-hand side.
+    hessenberg: Vec<Vec<f64>>,
+    rotations: Vec<(f64, f64)>,
+    rhs: Vec<f64>,
+    /// The preconditioner `1 / (D (1 + 1/dt))` on moving cells, 0 on held ones.
+    inverse: Array2<f64>,
+    /// The law's stable stiffness over the pseudo-time step, `max(-dp/dg, 0) / dt`, on moving
+    /// cells of the block.
+    shift: Array2<f64>,
+    /// The elastic stiffness's factor `1 + 1/dt`.
+    elastic_factor: f64,
+    /// The solution `d` and scratch fields of the unknown's shape.
+    solution: Array2<f64>,
+    z: Array2<f64>,
+    w: Array2<f64>,
+    /// The domain block's perturbed gap and the law's pressure there.
+    perturbed: Array2<f64>,
+    perturbed_law: Array2<f64>,
+}
+
+impl Linear {
+    fn new(unknown: (usize, usize), block: (usize, usize)) -> Linear {
+        let zeros = || Array2::zeros(unknown);
+        Linear {
+            basis: (0..=RESTART).map(|_| zeros()).collect(),
+            hessenberg: vec![vec![0.0; RESTART + 1]; RESTART],
+            rotations: vec![(1.0, 0.0); RESTART],
+            rhs: vec![0.0; RESTART + 1],
+            inverse: zeros(),
+            shift: zeros(),
+            elastic_factor: 1.0,
+            solution: zeros(),
+            z: zeros(),
+            w: zeros(),
+            perturbed: Array2::zeros(block),
+            perturbed_law: Array2::zeros(block),
+        }
+    }
+
+    /// Sets the preconditioner and the pseudo-time term at `x` (its gradient projected).
+    fn prepare(&mut self, problem: &Problem, x: &Point, dt: f64) {
+        self.elastic_factor = 1.0 + 1.0 / dt;
+        let (mx, nx, ny, s0) = (problem.mx, problem.nx, problem.ny, problem.diagonal);
+        let (gs, rs, cs) = (
+            x.gap.as_slice().expect("layout"),
+            x.gradient.as_slice().expect("layout"),
+            x.curvature.as_slice().expect("layout"),
+        );
+        self.inverse
+            .as_slice_mut()
+            .expect("layout")
+            .par_chunks_mut(mx)
+            .zip(self.shift.as_slice_mut().expect("layout").par_chunks_mut(mx))
+            .enumerate()
+            .for_each(|(j, (ir, sr))| {
+                for i in 0..mx {
+                    let k = j * mx + i;
+                    if on_wall(j, i, gs[k], nx, ny) && rs[k] == 0.0 {
+                        (ir[i], sr[i]) = (0.0, 0.0);
+                        continue;
+                    }
+                    let law = if j < ny && i < nx { cs[k].max(0.0) } else { 0.0 };
+                    (ir[i], sr[i]) = (1.0 / ((s0 + law) * (1.0 + 1.0 / dt)), law / dt);
+                }
+            });
+    }
+
+    /// `out = M^-1 v`: the diagonal preconditioner, with the weighted mean that keeps the
+    /// moving cells' sum at zero where the mean gap is prescribed.
+    fn precondition(&self, problem: &Problem, v: &Array2<f64>, out: &mut Array2<f64>) {
+        let mu = if problem.mean_gap.is_some() {
+            dot(&self.inverse, v) / self.inverse.sum().max(f64::MIN_POSITIVE)
+        } else {
+            0.0
+        };
+        Zip::from(out)
+            .and(v)
+            .and(&self.inverse)
+            .par_for_each(|o, &v, &m| *o = (v - mu) * m);
+    }
+
+    /// `out = A v`: the linearised balance `(D/dt + S - dp/dg) v` at `x` on the moving cells,
+    /// zero on the held ones, less its mean over the moving cells where the mean gap is
+    /// prescribed (the multiplier's change).
+    fn apply(
+        &mut self,
+        problem: &mut Problem,
+        x: &Point,
+        v: &Array2<f64>,
+        out: &mut Array2<f64>,
+    ) -> Result<()> {
+        problem
+            .stiffness
+            .apply(v.view(), out.view_mut(), &mut problem.ws)?;
+        problem.calls += 1;
+        if self.elastic_factor != 1.0 {
+            let factor = self.elastic_factor;
+            out.par_mapv_inplace(|o| o * factor);
+        }
+        let block = s![..problem.ny, ..problem.nx];
+        let largest = v.slice(block).iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if largest > 0.0 {
+            // A forward difference of the whole field: the law's neighbours move too.
+            let h = 1e-6 * problem.law.range() / largest;
+            Zip::from(&mut self.perturbed)
+                .and(x.gap.slice(block))
+                .and(v.slice(block))
+                .par_for_each(|p, &g, &v| *p = g + h * v);
+            problem.law.pressure_field(
+                self.perturbed.view(),
+                &problem.cells,
+                self.perturbed_law.view_mut(),
+            )?;
+            Zip::from(out.slice_mut(block))
+                .and(&self.perturbed_law)
+                .and(x.law.slice(block))
+                .par_for_each(|o, &hi, &lo| *o -= (hi - lo) / h);
+        }
+        let moving = &self.inverse;
+        Zip::from(&mut *out)
+            .and(v)
+            .and(&self.shift)
+            .and(moving)
+            .par_for_each(|o, &v, &s, &m| *o = if m > 0.0 { *o + s * v } else { 0.0 });
+        if problem.mean_gap.is_some() {
+            let (sum, count) =
+                out.iter().zip(moving).fold(
+                    (0.0, 0.0),
+                    |(s, c), (&o, &m)| if m > 0.0 { (s + o, c + 1.0) } else { (s, c) },
+                );
+            if count > 0.0 {
+                let mean = sum / count;
+                Zip::from(out).and(moving).par_for_each(|o, &m| {
+                    if m > 0.0 {
+                        *o -= mean;
+                    }
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Solves `A d = -r` (`r` = `x`'s projected gradient) to the relative residual `eta` by
+    /// restarted GMRES, into `self.solution`. Returns the Krylov iterations.
+    fn solve(&mut self, problem: &mut Problem, x: &Point, eta: f64) -> Result<usize> {
+        self.solution.fill(0.0);
+        let b_norm = dot(&x.gradient, &x.gradient).sqrt();
+        if b_norm == 0.0 {
+            return Ok(0);
+        }
+        let target = eta * b_norm;
+        // The residual `-r - A d` of the current solution, into the first basis vector.
+        self.basis[0].zip_mut_with(&x.gradient, |b, &r| *b = -r);
+        let mut beta = b_norm;
+        let mut iterations = 0;
+        loop {
+            self.basis[0].mapv_inplace(|b| b / beta);
+            self.rhs.fill(0.0);
+            self.rhs[0] = beta;
+            let mut used = 0;
+            let mut reached = beta;
+            for j in 0..RESTART {
+                let mut z = std::mem::take(&mut self.z);
+                let mut w = std::mem::take(&mut self.w);
+                self.precondition(problem, &self.basis[j], &mut z);
+                self.apply(problem, x, &z, &mut w)?;
+                for i in 0..=j {
+                    let h = dot(&w, &self.basis[i]);
+                    self.hessenberg[j][i] = h;
+                    w.zip_mut_with(&self.basis[i], |w, &v| *w -= h * v);
+                }
+                let h_next = dot(&w, &w).sqrt();
+                self.hessenberg[j][j + 1] = h_next;
+                if h_next > 0.0 {
+                    self.basis[j + 1].zip_mut_with(&w, |v, &w| *v = w / h_next);
+                }
+                (self.z, self.w) = (z, w);
+                // Rotate the new column by the earlier rotations, then zero its subdiagonal.
+                let column = &mut self.hessenberg[j];
+                for (i, &(c, s)) in self.rotations[..j].iter().enumerate() {
+                    let (a, b) = (column[i], column[i + 1]);
+                    (column[i], column[i + 1]) = (c * a + s * b, -s * a + c * b);
+                }
+                let (a, b) = (column[j], column[j + 1]);
+                let norm = a.hypot(b);
+                let (c, s) = if norm > 0.0 {
+                    (a / norm, b / norm)
+                } else {
+                    (1.0, 0.0)
+                };
+                self.rotations[j] = (c, s);
+                (column[j], column[j + 1]) = (norm, 0.0);
+                self.rhs[j + 1] = -s * self.rhs[j];
+                self.rhs[j] *= c;
+                iterations += 1;
+                used = j + 1;
+                reached = self.rhs[j + 1].abs();
+                if reached <= target || iterations >= MAX_KRYLOV || h_next == 0.0 {
+                    break;
+                }
+            }
+            // The least-squares coefficients, by back substitution; the correction is
+            // `M^-1` of their combination of the basis.
+            let mut y = vec![0.0; used];
+            for i in (0..used).rev() {
+                let tail: f64 = (i + 1..used).map(|k| self.hessenberg[k][i] * y[k]).sum();
+                y[i] = (self.rhs[i] - tail) / self.hessenberg[i][i];
+            }
+            let mut combination = std::mem::take(&mut self.w);
+            combination.fill(0.0);
+            for (v, &y) in self.basis.iter().zip(&y) {
+                combination.zip_mut_with(v, |c, &v| *c += y * v);
+            }
+            let mut z = std::mem::take(&mut self.z);
+            self.precondition(problem, &combination, &mut z);
+            self.solution += &z;
+            (self.z, self.w) = (z, combination);
+            if reached <= target || iterations >= MAX_KRYLOV {
+                return Ok(iterations);
+            }
+            // Restart from the true residual.
+            let mut w = std::mem::take(&mut self.w);
+            let solution = std::mem::take(&mut self.solution);
+            self.apply(problem, x, &solution, &mut w)?;
+            self.solution = solution;
+            Zip::from(&mut self.basis[0])
+                .and(&x.gradient)
+                .and(&w)
+                .par_for_each(|b, &r, &a| *b = -r - a);
+            self.w = w;
+            beta = dot(&self.basis[0], &self.basis[0]).sqrt();
+            if beta <= target {
+                return Ok(iterations);
+            }
+        }
+    }
+}
+
+/// Solves under approach control (periodic or free) with any law; see the module docs.
+pub(super) fn solve(
+    op: &dyn Compliance,
+    law: &dyn AdhesionLaw,
+    g0: ArrayView2<f64>,
+    control: Control,
+    options: &AdhesiveOptions,
+    start: Start,
+    observer: &mut dyn FnMut(usize, f64),
+) -> Result<(AdhesiveState, AdhesiveReport)> {
+    let started = Instant::now();
+    // A law without an energy but with a flat one (line, surface) can have its state predicted
+    // by descending that energy when Newton cannot get going.
+    let predictor = law
+        .local_potential()
+        .is_none()
+        .then(|| law.flat_potential())
+        .flatten();
+    let (state, mut report) = iterate(
+        op,
+        law,
+        g0,
+        control,
+        options,
+        start,
+        predictor.is_some(),
+        observer,
+    )?;
+    let Some(potential) = predictor.filter(|_| report.termination == Termination::MaxIterations) else {
+        return Ok((state, report));
+    };
+    // No solution near the start (a jump into or out of contact): the descent of the flat
+    // law's energy travels there, settling on a stable state, and Newton corrects it.
+    let (predicted, descent) = energy::solve(op, law, potential, g0, control, options, start, observer)?;
+    let (state, mut polished) = iterate(
+        op,
+        law,
+        g0,
+        control,
+        options,
+        Start::Warm(&predicted),
+        false,
+        observer,
+    )?;
+    polished.outer_iterations += report.outer_iterations;
+    polished.inner_iterations += report.inner_iterations + descent.inner_iterations;
+    polished.operator_calls += report.operator_calls + descent.operator_calls;
+    report.residual_history.extend(&polished.residual_history);
+    polished.residual_history = report.residual_history;
+    polished.wall_time_s = started.elapsed().as_secs_f64();
+    Ok((state, polished))
+}
+
+/// Newton from `start`; with `give_up`, it stops (unconverged) as soon as it has to fall back
+/// on small pseudo-time steps.
+#[allow(clippy::too_many_arguments)]
+fn iterate(
+    op: &dyn Compliance,
+    law: &dyn AdhesionLaw,
+    g0: ArrayView2<f64>,
+    control: Control,
+    options: &AdhesiveOptions,
+    start: Start,
+    give_up: bool,
+    observer: &mut dyn FnMut(usize, f64),
+) -> Result<(AdhesiveState, AdhesiveReport)> {
+    let started = Instant::now();
+    let domain = *op.domain();
+    let Setup {
+        mut problem,
+        mut x,
+        delta,
+        load,
+    } = energy::setup(op, law, None, g0, control, options, start)?;
+    let unknown = x.gap.dim();
+    let mut sums: GradientSums = problem.project_gradient(&mut x);
+    let mut norm = dot(&x.gradient, &x.gradient).sqrt();
+    let mut trial = Point::new(Array2::zeros(unknown));
+    let mut linear = Linear::new(unknown, domain.shape());
+    let block = s![..problem.ny, ..problem.nx];
+    let scale = super::cell_compliance(&domain, op.e_star()) / law.range();
+    let mut history = Vec::new();
+    let mut termination = Termination::MaxIterations;
+    let (mut steps, mut krylov) = (0, 0);
+    let mut dt = FIRST_DT;
+    let mut last_ratio = 1.0f64;
+    // Stall detection: the best residual so far and when it last improved by 10 %.
+    let (mut best, mut improved_at) = (f64::INFINITY, 0);
+    loop {
+        let residual = sums.max * scale;
+        history.push(residual);
+        observer(steps, residual);
+        if residual < options.tolerance {
+            termination = Termination::Converged;
+            break;
+        }
+        if residual < 0.9 * best {
+            (best, improved_at) = (residual, steps);
+        }
+        if steps == options.max_outer_iterations || steps - improved_at > STALL || (give_up && dt < 1.0) {
+            break;
+        }
+        steps += 1;
+        // Eisenstat-Walker forcing: solve loosely while the residual falls slowly.
+        let eta = (0.9 * last_ratio * last_ratio).clamp(1e-4, 0.1);
+        linear.prepare(&problem, &x, dt);
+        krylov += linear.solve(&mut problem, &x, eta)?;
+        let largest = linear
+            .solution
+            .slice(block)
+            .iter()
+            .fold(0.0f64, |m, d| m.max(d.abs()));
+        let full = (MAX_MOVE * law.range() / largest).min(1.0);
+        // Backtrack along the direction while the residual rises (each try costs one
+        // evaluation, against a Krylov solve for a new direction).
+        let mut fraction = 1.0;
+        let (mut trial_sums, mut trial_norm, mut first_norm) = (None, f64::NAN, f64::NAN);
+        for cut in 0..=BACKTRACKS {
+            problem.step_and_project(&x.gap, &linear.solution, full * fraction, &mut trial.gap, None);
+            problem.evaluate(&mut trial)?;
+            let sums = problem.project_gradient(&mut trial);
+            trial_norm = dot(&trial.gradient, &trial.gradient).sqrt();
+            if cut == 0 {
+                first_norm = trial_norm;
+            }
+            if trial_norm < norm {
+                trial_sums = Some(sums);
+                break;
+            }
+            if cut == BACKTRACKS {
+                break;
+            }
+            fraction *= 0.5;
+        }
+        let trial_sums = match trial_sums {
+            Some(sums) => sums,
+            // No decrease along the direction: take the full step if it is a small step of
+            // the relaxation (or raises the residual only a little), else retry with a
+            // smaller pseudo-time step.
+            None if first_norm <= GROWTH * norm || dt <= MIN_DT => {
+                fraction = 1.0;
+                problem.step_and_project(&x.gap, &linear.solution, full, &mut trial.gap, None);
+                problem.evaluate(&mut trial)?;
+                trial_norm = first_norm;
+                problem.project_gradient(&mut trial)
+            }
+            None => {
+                dt = (dt * 0.1).max(MIN_DT);
+                continue;
+            }
+        };
+        last_ratio = (trial_norm / norm).min(1.0);
+        // Switched evolution relaxation: the pseudo-time step grows as the residual falls,
+        // and shrinks with a cut step.
+        dt = (dt * fraction * (norm / trial_norm).clamp(0.1, 10.0)).clamp(MIN_DT, MAX_DT);
+        std::mem::swap(&mut x, &mut trial);
+        (sums, norm) = (trial_sums, trial_norm);
+    }
+    Ok(energy::finish(
+        &problem,
+        x,
+        &sums,
+        (delta, load),
+        g0,
+        (steps, krylov),
+        history,
+        termination,
+        started,
+    ))
+}
