@@ -10,7 +10,9 @@
 //! ([`OuterLoop::Accelerated`], Anderson mixing), which reaches the same fixed point in far
 //! fewer outer iterations. Laws with a local potential (point, exponential) can also be solved
 //! with no outer loop at all, by descending the total energy ([`OuterLoop::EnergyDescent`],
-//! module `energy`), under approach control, or load control on periodic domains.
+//! module `energy`), under approach control, or load control on periodic domains; any law,
+//! the surface law included, by Newton-Krylov on the force balance ([`OuterLoop::Newton`],
+//! module `newton`), under approach control.
 //!
 //! Convergence (the paper's criterion, made scale-free): the mean over the grid of
 //! `|law(g) - p_a|` times the compliance of one cell (the displacement of a cell under unit
