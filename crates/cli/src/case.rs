@@ -125,7 +125,7 @@ pub struct Case {
     #[arg(long)]
     pub range: Option<f64>,
     /// Adhesive solver: auto (the default: energy where it applies, else accelerated),
-    /// dual-loop, accelerated or energy.
+    /// dual-loop, accelerated, energy or newton.
     #[arg(long, value_enum)]
     pub solver: Option<OuterKind>,
     /// Convergence tolerance: without adhesion the scale-free gap residual (default 1e-8, at
