@@ -65,7 +65,7 @@ pub(super) struct Point {
     pub(super) elastic: Array2<f64>,
     /// `p(g)` [Pa].
     pub(super) law: Array2<f64>,
-    /// `V''(g)` [Pa/m].
+    /// `V''(g)`, or without a potential the law's probed stiffness `-dp/dg` [Pa/m].
     pub(super) curvature: Array2<f64>,
     /// The gradient `S (g - g0) - p(g)` [Pa], then projected ([`Problem::project_gradient`]).
     pub(super) gradient: Array2<f64>,
@@ -136,7 +136,8 @@ pub(super) struct Problem<'a> {
     pub(super) law: &'a dyn AdhesionLaw,
     pub(super) cells: Cells,
     domain: Domain,
-    /// The block's gap shifted by a probe, and the law's pressure there (general laws).
+    /// The block's gap shifted by a probe, and the law's pressure there (laws without a
+    /// potential; empty otherwise).
     probe: (Array2<f64>, Array2<f64>),
     /// The unknown less the surface displacement [m] (up to its mean, periodic): `g0` periodic;
     /// `g0 - delta` on the domain's block and zero in the padding, free.
@@ -494,6 +495,7 @@ pub(super) fn setup<'a>(
         });
     }
     let n = (nx * ny) as f64;
+    let probe_shape = || Array2::zeros(if potential.is_some() { (0, 0) } else { shape });
     let cells = Cells {
         dx: domain.dx,
         dy: domain.dy,
@@ -547,7 +549,7 @@ pub(super) fn setup<'a>(
             law,
             cells,
             domain,
-            probe: (Array2::zeros(shape), Array2::zeros(shape)),
+            probe: (probe_shape(), probe_shape()),
             base: g0.to_owned(),
             mx: nx,
             my: ny,
@@ -599,7 +601,7 @@ pub(super) fn setup<'a>(
             law,
             cells,
             domain,
-            probe: (Array2::zeros(shape), Array2::zeros(shape)),
+            probe: (probe_shape(), probe_shape()),
             base,
             mx: padded.1,
             my: padded.0,
