@@ -73,6 +73,8 @@ impl Periodic {
 pub struct PeriodicStiffness {
     domain: Domain,
     conv: Convolution,
+    /// Its inverse on fields of zero mean: `2 / (E* |q|)`, zero at `q = 0`.
+    inverse: Convolution,
 }
 
 impl PeriodicStiffness {
@@ -85,12 +87,14 @@ impl PeriodicStiffness {
         let kernel = Array2::from_shape_fn((nx / 2 + 1, ny), |(kx, ky)| {
             0.5 * e_star * wavevector(kx, nx, lx).hypot(wavevector(ky, ny, ly))
         });
+        let inverse = kernel.mapv(|k| if k > 0.0 { 1.0 / k } else { 0.0 });
         Ok(PeriodicStiffness {
             domain: Domain {
                 periodic: true,
                 ..domain
             },
             conv: Convolution::new(nx, ny, kernel, (ny, nx), (ny, nx)),
+            inverse: Convolution::new(nx, ny, inverse, (ny, nx), (ny, nx)),
         })
     }
 
@@ -113,6 +117,25 @@ impl PeriodicStiffness {
         check("displacement", shape, displacement.dim())?;
         check("pressure", shape, pressure.dim())?;
         self.conv.apply(displacement, pressure, &mut ws.0);
+        Ok(())
+    }
+
+    /// Writes the displacement [m] (zero mean) under `pressure` [Pa], whose mean is ignored:
+    /// the inverse of [`PeriodicStiffness::apply`] on fields of zero mean (for preconditioning
+    /// solvers over the displacement).
+    ///
+    /// # Errors
+    /// [`ElasticError::ShapeMismatch`] if a field is not `(ny, nx)`.
+    pub fn invert(
+        &self,
+        pressure: ArrayView2<f64>,
+        displacement: ArrayViewMut2<f64>,
+        ws: &mut Workspace,
+    ) -> Result<()> {
+        let shape = self.domain.shape();
+        check("pressure", shape, pressure.dim())?;
+        check("displacement", shape, displacement.dim())?;
+        self.inverse.apply(pressure, displacement, &mut ws.0);
         Ok(())
     }
 }
@@ -185,6 +208,8 @@ pub struct FreeStiffness {
     e_star: f64,
     stiffness: Convolution,
     compliance: Convolution,
+    /// The circulant compliance from padded fields to padded fields.
+    padded_compliance: Convolution,
 }
 
 impl FreeStiffness {
@@ -211,6 +236,8 @@ impl FreeStiffness {
         let mut stiffness = Convolution::without_kernel(padded.1, padded.0, padded, padded);
         let scale = (padded.0 * padded.1) as f64;
         stiffness.set_kernel(kernel.mapv(|k| 1.0 / (k * scale)));
+        let mut padded_compliance = Convolution::without_kernel(padded.1, padded.0, padded, padded);
+        padded_compliance.set_kernel(kernel.mapv(|k| k * scale));
         Ok(FreeStiffness {
             domain: Domain {
                 periodic: false,
@@ -219,6 +246,7 @@ impl FreeStiffness {
             e_star,
             stiffness,
             compliance,
+            padded_compliance,
         })
     }
 
@@ -256,6 +284,25 @@ impl FreeStiffness {
         check("displacement", shape, displacement.dim())?;
         check("pressure", shape, pressure.dim())?;
         self.stiffness.apply(displacement, pressure, &mut ws.0);
+        Ok(())
+    }
+
+    /// Writes the padded displacement [m] under the padded `pressure` [Pa]: the circulant
+    /// compliance, the exact inverse of [`FreeStiffness::apply`] on the padded grid (for
+    /// preconditioning solvers over the displacement).
+    ///
+    /// # Errors
+    /// [`ElasticError::ShapeMismatch`] if a field is not `(2ny, 2nx)`.
+    pub fn invert(
+        &self,
+        pressure: ArrayView2<f64>,
+        displacement: ArrayViewMut2<f64>,
+        ws: &mut Workspace,
+    ) -> Result<()> {
+        let shape = self.padded_shape();
+        check("pressure", shape, pressure.dim())?;
+        check("displacement", shape, displacement.dim())?;
+        self.padded_compliance.apply(pressure, displacement, &mut ws.0);
         Ok(())
     }
 

@@ -290,6 +290,18 @@ fn the_periodic_stiffness_inverts_the_compliance_on_zero_mean_fields() {
         )
         .unwrap();
     assert!(back.iter().all(|v| v.abs() < 1e-12 * E * 1e-6 / 1e-6));
+    // `invert` is the compliance on zero-mean fields, whatever the pressure's mean.
+    let mut inverted = Array2::zeros(p.dim());
+    let shifted = &p + 2.0;
+    stiff
+        .invert(shifted.view(), inverted.view_mut(), &mut stiff.make_workspace())
+        .unwrap();
+    let u_scale = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let err = (&inverted - &u).iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(
+        err < 1e-12 * u_scale,
+        "invert(p + c) - compliance(p) = {err:e} of {u_scale:e}"
+    );
 }
 
 #[test]
@@ -332,6 +344,27 @@ fn the_free_stiffness_inverts_the_padded_compliance_whose_first_block_is_the_fre
         .apply(Array2::from_elem((40, 48), 1e-9).view(), back.view_mut(), &mut ws)
         .unwrap();
     assert!(back.iter().all(|&v| v > 0.0));
+    // `invert` is the stiffness's inverse on the whole padded grid, padding included.
+    let q = random_field(40, 48, 4);
+    let mut u = Array2::zeros((40, 48));
+    stiff.invert(q.view(), u.view_mut(), &mut ws).unwrap();
+    stiff.apply(u.view(), back.view_mut(), &mut ws).unwrap();
+    let q_scale = q.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let err = (&back - &q).iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(
+        err < 1e-10 * q_scale,
+        "stiffness(invert(q)) - q = {err:e} of {q_scale:e}"
+    );
+    // On a pressure confined to the first block it is `displacement`.
+    let mut confined = Array2::zeros((40, 48));
+    confined.slice_mut(ndarray::s![..20, ..24]).assign(&p);
+    stiff.invert(confined.view(), u.view_mut(), &mut ws).unwrap();
+    let scale = padded.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let err = (&u - &padded).iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(
+        err < 1e-12 * scale,
+        "invert - displacement = {err:e} of {scale:e}"
+    );
 }
 
 #[test]

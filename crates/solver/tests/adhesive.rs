@@ -870,38 +870,45 @@ fn energy_descent_on_a_free_sphere_agrees_with_the_accelerated_loop() {
 #[test]
 fn newton_and_the_energy_descent_agree_on_a_free_sphere() {
     // Two methods with nothing in common but the equations: Newton-Krylov on the force balance
-    // and the descent of the energy (point law, which has both; mu = 1, jump in and back out).
+    // and the descent of the energy (point law, which has both; jump in and back out), at
+    // mu = 1, where Newton is preconditioned by the diagonal, and at mu = 0.1, where the law
+    // is softer than a cell and it is preconditioned by the elastic inverse.
     pool().install(|| {
-        let (op, g0, law, w0) = sphere_case(1.0, 64, 60.0);
-        let point = PointLaw(law.0);
-        let path = approaches([-2.0, -1.0, 0.0, 1.0, 0.0, -1.0, -1.5].into_iter());
-        let cycle = |outer_loop| {
-            let options = AdhesiveOptions {
-                outer_loop,
-                ..AdhesiveOptions::default()
+        for mu in [1.0, 0.1] {
+            let (op, g0, law, w0) = sphere_case(mu, 64, 60.0);
+            let point = PointLaw(law.0);
+            let path = approaches([-2.0, -1.0, 0.0, 1.0, 0.0, -1.0, -1.5].into_iter());
+            // At mu = 0.1 the compressive load at 1 z0 is 12 times the adhesive scale pi R w0;
+            // at the default tolerance the descent's is 1.2e-4 pi R w0 off (Newton's is not).
+            let cycle = |outer_loop| {
+                let options = AdhesiveOptions {
+                    outer_loop,
+                    tolerance: 1e-8,
+                    ..AdhesiveOptions::default()
+                };
+                checked_sweep(&op, &point, &g0, &path, &options)
             };
-            checked_sweep(&op, &point, &g0, &path, &options)
-        };
-        let ((newton, newton_error), (energy, _)) =
-            (cycle(OuterLoop::Newton), cycle(OuterLoop::EnergyDescent));
-        println!("Newton: equations met to {newton_error:e} of the range");
-        assert!(newton_error < 1e-5);
-        for (n, e) in newton.iter().zip(&energy) {
-            println!(
-                "a/z0 {:5.2} W/(pi R w0): Newton {:9.6} ({} steps, {} Krylov), energy {:9.6}; area {:.4}",
-                n.report.approach / Z0,
-                n.report.load / (PI * R * w0),
-                n.report.outer_iterations,
-                n.report.inner_iterations,
-                e.report.load / (PI * R * w0),
-                n.report.contact_area_fraction
-            );
-            assert!(n.report.converged() && e.report.converged());
-            assert!((n.report.load - e.report.load).abs() < 1e-4 * PI * R * w0);
-            assert_eq!(n.report.contact_area_fraction, e.report.contact_area_fraction);
+            let ((newton, newton_error), (energy, _)) =
+                (cycle(OuterLoop::Newton), cycle(OuterLoop::EnergyDescent));
+            println!("mu = {mu}: Newton meets the equations to {newton_error:e} of the range");
+            assert!(newton_error < 1e-7);
+            for (n, e) in newton.iter().zip(&energy) {
+                println!(
+                    "a/z0 {:5.2} W/(pi R w0): Newton {:9.6} ({} steps, {} Krylov), energy {:9.6}; area {:.4}",
+                    n.report.approach / Z0,
+                    n.report.load / (PI * R * w0),
+                    n.report.outer_iterations,
+                    n.report.inner_iterations,
+                    e.report.load / (PI * R * w0),
+                    n.report.contact_area_fraction
+                );
+                assert!(n.report.converged() && e.report.converged());
+                assert!((n.report.load - e.report.load).abs() < 1e-4 * PI * R * w0);
+                assert_eq!(n.report.contact_area_fraction, e.report.contact_area_fraction);
+            }
+            assert!(newton[3].report.contact_area_fraction > 0.15);
+            assert!(newton[0].report.contact_area_fraction == 0.0);
         }
-        assert!(newton[3].report.contact_area_fraction > 0.3);
-        assert!(newton[0].report.contact_area_fraction == 0.0);
     });
 }
 

@@ -125,6 +125,20 @@ impl Stiffness {
         }?;
         Ok(())
     }
+
+    /// The inverse: the displacement under the pressure `p` (zero mean, periodic).
+    pub(super) fn invert(
+        &self,
+        p: ArrayView2<f64>,
+        u: ArrayViewMut2<f64>,
+        ws: &mut elastic::Workspace,
+    ) -> Result<()> {
+        match self {
+            Stiffness::Periodic(s) => s.invert(p, u, ws),
+            Stiffness::Free(s) => s.invert(p, u, ws),
+        }?;
+        Ok(())
+    }
 }
 
 pub(super) struct Problem<'a> {

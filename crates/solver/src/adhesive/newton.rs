@@ -82,8 +82,20 @@ struct Linear {
     hessenberg: Vec<Vec<f64>>,
     rotations: Vec<(f64, f64)>,
     rhs: Vec<f64>,
-    /// The preconditioner `1 / (D (1 + 1/dt))` on moving cells, 0 on held ones.
+    /// Whether the preconditioner is the elastic one, `W S^-1 W / (1 + 1/dt)` with
+    /// `W = sqrt(S_ii / D)`, rather than the diagonal `1 / (D (1 + 1/dt))`, `D` being the
+    /// diagonal `S_ii + max(-dp/dg, 0)`: where the law is nowhere stiffer than a cell, the work
+    /// is the elastic solve, which the stiffness's inverse (one more FFT a Krylov iteration)
+    /// does in far fewer iterations (`dmt-sphere`, μ = 0.1: 381 against 6843, 11 times less
+    /// time); where the law is stiffer, its stiff cells set the pace and the diagonal wins
+    /// (μ = 3: 3.7 times, μ = 5: 15 times less time than the elastic one).
+    elastic: bool,
+    /// The diagonal preconditioner on moving cells, 0 on held ones.
     inverse: Array2<f64>,
+    /// The elastic preconditioner's weights `W` on moving cells, 0 on held ones, and a
+    /// scratch field.
+    weight: Array2<f64>,
+    weighted: Array2<f64>,
     /// The law's stable stiffness over the pseudo-time step, `max(-dp/dg, 0) / dt`, on moving
     /// cells of the block.
     shift: Array2<f64>,
@@ -99,14 +111,17 @@ struct Linear {
 }
 
 impl Linear {
-    fn new(unknown: (usize, usize), block: (usize, usize)) -> Linear {
+    fn new(unknown: (usize, usize), block: (usize, usize), elastic: bool) -> Linear {
         let zeros = || Array2::zeros(unknown);
         Linear {
+            elastic,
             basis: (0..=RESTART).map(|_| zeros()).collect(),
             hessenberg: vec![vec![0.0; RESTART + 1]; RESTART],
             rotations: vec![(1.0, 0.0); RESTART],
             rhs: vec![0.0; RESTART + 1],
             inverse: zeros(),
+            weight: zeros(),
+            weighted: zeros(),
             shift: zeros(),
             elastic_factor: 1.0,
             solution: zeros(),
@@ -131,23 +146,53 @@ impl Linear {
             .expect("layout")
             .par_chunks_mut(mx)
             .zip(self.shift.as_slice_mut().expect("layout").par_chunks_mut(mx))
+            .zip(self.weight.as_slice_mut().expect("layout").par_chunks_mut(mx))
             .enumerate()
-            .for_each(|(j, (ir, sr))| {
+            .for_each(|(j, ((ir, sr), wr))| {
                 for i in 0..mx {
                     let k = j * mx + i;
                     if on_wall(j, i, gs[k], nx, ny) && rs[k] == 0.0 {
-                        (ir[i], sr[i]) = (0.0, 0.0);
+                        (ir[i], sr[i], wr[i]) = (0.0, 0.0, 0.0);
                         continue;
                     }
                     let law = if j < ny && i < nx { cs[k].max(0.0) } else { 0.0 };
                     (ir[i], sr[i]) = (1.0 / ((s0 + law) * (1.0 + 1.0 / dt)), law / dt);
+                    wr[i] = (s0 / (s0 + law)).sqrt();
                 }
             });
     }
 
-    /// `out = M^-1 v`: the diagonal preconditioner, with the weighted mean that keeps the
-    /// moving cells' sum at zero where the mean gap is prescribed.
-    fn precondition(&self, problem: &Problem, v: &Array2<f64>, out: &mut Array2<f64>) {
+    /// `out = M^-1 v`, with the mean that keeps the moving cells' sum at zero where the mean
+    /// gap is prescribed (see [`Linear::elastic`]).
+    fn precondition(&mut self, problem: &mut Problem, v: &Array2<f64>, out: &mut Array2<f64>) -> Result<()> {
+        if self.elastic {
+            let factor = 1.0 / self.elastic_factor;
+            Zip::from(&mut self.weighted)
+                .and(v)
+                .and(&self.weight)
+                .par_for_each(|t, &v, &w| *t = w * v);
+            problem
+                .stiffness
+                .invert(self.weighted.view(), out.view_mut(), &mut problem.ws)?;
+            problem.calls += 1;
+            Zip::from(&mut *out)
+                .and(&self.weight)
+                .par_for_each(|o, &w| *o *= w * factor);
+            if problem.mean_gap.is_some() {
+                let (sum, count) = out.iter().zip(&self.weight).fold((0.0, 0.0), |(s, c), (&o, &w)| {
+                    if w > 0.0 { (s + o, c + 1.0) } else { (s, c) }
+                });
+                if count > 0.0 {
+                    let mean = sum / count;
+                    Zip::from(&mut *out).and(&self.weight).par_for_each(|o, &w| {
+                        if w > 0.0 {
+                            *o -= mean;
+                        }
+                    });
+                }
+            }
+            return Ok(());
+        }
         let mu = if problem.mean_gap.is_some() {
             dot(&self.inverse, v) / self.inverse.sum().max(f64::MIN_POSITIVE)
         } else {
@@ -157,6 +202,7 @@ impl Linear {
             .and(v)
             .and(&self.inverse)
             .par_for_each(|o, &v, &m| *o = (v - mu) * m);
+        Ok(())
     }
 
     /// `out = A v`: the linearised balance `(D/dt + S - dp/dg) v` at `x` on the moving cells,
@@ -242,7 +288,9 @@ impl Linear {
             for j in 0..RESTART {
                 let mut z = std::mem::take(&mut self.z);
                 let mut w = std::mem::take(&mut self.w);
-                self.precondition(problem, &self.basis[j], &mut z);
+                let v = std::mem::take(&mut self.basis[j]);
+                self.precondition(problem, &v, &mut z)?;
+                self.basis[j] = v;
                 self.apply(problem, x, &z, &mut w)?;
                 for i in 0..=j {
                     let h = dot(&w, &self.basis[i]);
@@ -292,7 +340,7 @@ impl Linear {
                 combination.zip_mut_with(v, |c, &v| *c += y * v);
             }
             let mut z = std::mem::take(&mut self.z);
-            self.precondition(problem, &combination, &mut z);
+            self.precondition(problem, &combination, &mut z)?;
             self.solution += &z;
             (self.z, self.w) = (z, combination);
             if reached <= target || iterations >= MAX_KRYLOV {
@@ -394,7 +442,8 @@ fn iterate(
     let mut sums: GradientSums = problem.project_gradient(&mut x);
     let mut norm = dot(&x.gradient, &x.gradient).sqrt();
     let mut trial = Point::new(Array2::zeros(unknown));
-    let mut linear = Linear::new(unknown, domain.shape());
+    let elastic = law.stiffness_bound() <= problem.diagonal;
+    let mut linear = Linear::new(unknown, domain.shape(), elastic);
     let block = s![..problem.ny, ..problem.nx];
     let scale = super::cell_compliance(&domain, op.e_star()) / law.range();
     let mut history = Vec::new();
