@@ -9,7 +9,8 @@
 //! energy, so that no descent applies. Each iteration solves the linearised balance on the
 //! cells not held by the wall, `(M / dt + S + K) d = -r` with `K = -dp/dg`, by restarted GMRES
 //! (`K` applied as a directional difference of the whole field, exactly as the law is
-//! evaluated), right-preconditioned by its diagonal, and takes the step projected onto
+//! evaluated), right-preconditioned by the stiffness's inverse where the law is softer than a
+//! cell or by its diagonal where not (see `Linear::elastic`), and takes the step projected onto
 //! `g >= 0`, halved while it raises the residual (pseudo-transient continuation, Kelley &
 //! Keyes, SIAM J. Numer. Anal. 35, 1998). The mass `M = S + max(K_ii, 0)` is the stable part
 //! of the stiffness, so that a pseudo-time step relaxes all wavelengths alike. The step `dt`
