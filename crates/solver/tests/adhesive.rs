@@ -3,7 +3,7 @@
 //! complementarity, the adhesive law satisfied, adhesion enlarging the contact).
 
 use elastic::{Compliance, Domain, Free, Periodic};
-use ljadhesion::{AdhesionLaw, Cells, ExponentialLaw, LennardJones, PointLaw, SurfaceLaw};
+use ljadhesion::{AdhesionLaw, Cells, DugdaleLaw, ExponentialLaw, LennardJones, PointLaw, SurfaceLaw};
 use ndarray::Array2;
 use solver::adhesive::{OuterLoop, Start};
 use solver::geometry::{SphereProfile, flat_on_rough, sphere};
@@ -634,6 +634,36 @@ fn bad_input_is_refused() {
     assert!(on_rough(Control::CentralGap(1e-9)).is_err());
     // ... and a mean gap left: past full contact, no state exists.
     assert!(on_rough(Control::Approach(mean)).is_err());
+    // Newton takes the approach, and a law it can linearise.
+    let newton = AdhesiveOptions {
+        outer_loop: OuterLoop::Newton,
+        ..AdhesiveOptions::default()
+    };
+    assert!(
+        solve_adhesive(
+            &op,
+            &law,
+            g0.view(),
+            Control::Approach(0.0),
+            &newton,
+            Start::Loading
+        )
+        .is_ok()
+    );
+    assert!(bad(Control::Force(1e-9), newton));
+    assert!(bad(Control::CentralGap(1e-9), newton));
+    let dugdale = DugdaleLaw::equivalent_to(&law.0);
+    assert!(
+        solve_adhesive(
+            &op,
+            &dugdale,
+            g0.view(),
+            Control::Approach(0.0),
+            &newton,
+            Start::Loading
+        )
+        .is_err()
+    );
     let mut nan = g0.clone();
     nan[(3, 4)] = f64::NAN;
     assert!(

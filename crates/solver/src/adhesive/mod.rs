@@ -285,6 +285,12 @@ pub fn solve_adhesive_observed(
                     .into(),
             ));
         }
+        if !law.stiffness_bound().is_finite() {
+            return Err(SolverError::Unsupported(format!(
+                "the Newton solver linearises the law, and `{}` jumps (use `accelerated`)",
+                law.name()
+            )));
+        }
         return newton::solve(op, law, g0, control, options, start, observer);
     }
     let cell = domain.cell_area();
