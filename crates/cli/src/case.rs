@@ -56,8 +56,8 @@ pub enum OuterKind {
     /// No outer loop: conjugate gradients on the total energy (point or exponential law;
     /// approach or mean-gap control, or load control on periodic domains; fastest there).
     Energy,
-    /// No outer loop, any law (surface included): Newton-Krylov on the cells' force balance
-    /// (approach or mean-gap control).
+    /// No outer loop, any law but Dugdale's (surface included): Newton-Krylov on the cells'
+    /// force balance (approach or mean-gap control).
     Newton,
 }
 

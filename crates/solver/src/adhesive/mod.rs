@@ -10,9 +10,9 @@
 //! ([`OuterLoop::Accelerated`], Anderson mixing), which reaches the same fixed point in far
 //! fewer outer iterations. Laws with a local potential (point, exponential) can also be solved
 //! with no outer loop at all, by descending the total energy ([`OuterLoop::EnergyDescent`],
-//! module `energy`), under approach control, or load control on periodic domains; any law,
-//! the surface law included, by Newton-Krylov on the force balance ([`OuterLoop::Newton`],
-//! module `newton`), under approach control.
+//! module `energy`), under approach control, or load control on periodic domains; any law
+//! but Dugdale's, the surface law included, by Newton-Krylov on the force balance
+//! ([`OuterLoop::Newton`], module `newton`), under approach control.
 //!
 //! Convergence (the paper's criterion, made scale-free): the mean over the grid of
 //! `|law(g) - p_a|` times the compliance of one cell (the displacement of a cell under unit
@@ -58,9 +58,9 @@ pub enum OuterLoop {
     /// to the largest force imbalance of a cell times the cell's compliance, over the law's
     /// range (the module docs' measure, taken at its worst cell instead of on average).
     EnergyDescent,
-    /// No outer loop either, for any law (the surface law included): Newton-Krylov on the
-    /// cells' force balance over the gap, globalised by pseudo-transient continuation (module
-    /// `newton`), under approach control. Newton steps are reported as outer iterations, Krylov
+    /// No outer loop either, for any law but Dugdale's (the surface law included):
+    /// Newton-Krylov on the cells' force balance over the gap, globalised by pseudo-transient
+    /// continuation (module `newton`), under approach control. Newton steps are reported as outer iterations, Krylov
     /// iterations as inner ones; the tolerance is the energy descent's worst-cell measure.
     Newton,
 }
