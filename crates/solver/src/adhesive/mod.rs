@@ -60,8 +60,9 @@ pub enum OuterLoop {
     EnergyDescent,
     /// No outer loop either, for any law but Dugdale's (the surface law included):
     /// Newton-Krylov on the cells' force balance over the gap, globalised by pseudo-transient
-    /// continuation (module `newton`), under approach control. Newton steps are reported as outer iterations, Krylov
-    /// iterations as inner ones; the tolerance is the energy descent's worst-cell measure.
+    /// continuation (module `newton`), under approach control. Newton steps are reported as
+    /// outer iterations, Krylov iterations as inner ones; the tolerance is the energy descent's
+    /// worst-cell measure.
     Newton,
 }
 
