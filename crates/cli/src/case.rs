@@ -46,8 +46,9 @@ pub enum LawKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum OuterKind {
-    /// `energy` where it is the tested default (point or exponential law, approach or mean-gap
-    /// control), `accelerated` elsewhere.
+    /// `energy` for the point and exponential laws, `newton` for the line and surface laws
+    /// where the law at the wall is 4 or more times stiffer than a cell (approach or mean-gap
+    /// control, both), `accelerated` elsewhere.
     Auto,
     /// The paper's relaxation of the adhesive pressure.
     DualLoop,
@@ -59,6 +60,25 @@ pub enum OuterKind {
     /// No outer loop, any law but Dugdale's (surface included): Newton-Krylov on the cells'
     /// force balance (approach or mean-gap control).
     Newton,
+}
+
+/// `auto` takes the Newton solver for the line and surface laws under approach control where
+/// the law at the wall is at least this many times stiffer than a cell (its stiffness bound
+/// times a cell's compliance): there cells are bistable and the accelerated loop stalls (μ = 3
+/// on 64², 5.5: it did not finish a jump in that Newton took in 13 steps; μ = 5 on 64², 12: 3
+/// of 11 steps unconverged, none with Newton) or is slower (`jkr-sphere`, 4.6: 24 s against
+/// 16 s), while below it the loop is the faster (`rough-sphere`, 2.5: 4 s against 13 s;
+/// `dmt-sphere`, 0.05: 0.4 s against 0.9 s).
+pub const NEWTON_STIFFNESS: f64 = 4.0;
+
+/// The solver's name, as `--solver` takes it.
+pub fn solver_name(outer_loop: OuterLoop) -> &'static str {
+    match outer_loop {
+        OuterLoop::DualLoop => "dual-loop",
+        OuterLoop::Accelerated => "accelerated",
+        OuterLoop::EnergyDescent => "energy",
+        OuterLoop::Newton => "newton",
+    }
 }
 
 /// A contact case: every flag is also a key of the TOML case file (`--config`), with the same
@@ -124,8 +144,8 @@ pub struct Case {
     /// Range of the exponential or Dugdale law [m] (Dugdale default: 0.974 z0 if --z0 given).
     #[arg(long)]
     pub range: Option<f64>,
-    /// Adhesive solver: auto (the default: energy where it applies, else accelerated),
-    /// dual-loop, accelerated, energy or newton.
+    /// Adhesive solver: auto (the default: energy or newton where they are the tested choice,
+    /// else accelerated), dual-loop, accelerated, energy or newton.
     #[arg(long, value_enum)]
     pub solver: Option<OuterKind>,
     /// Convergence tolerance: without adhesion the scale-free gap residual (default 1e-8, at
@@ -285,6 +305,21 @@ impl Case {
             max_outer_iterations: self.max_iterations.unwrap_or(20_000),
             ..AdhesiveOptions::default()
         }
+    }
+
+    /// [`Case::adhesive_options`] for solving `problem`, where `auto` also takes the Newton
+    /// solver for the line and surface laws under approach control when the law is stiff
+    /// against a cell (see [`NEWTON_STIFFNESS`]).
+    pub fn adhesive_options_for(&self, control: Control, problem: &Problem) -> AdhesiveOptions {
+        let mut options = self.adhesive_options(control);
+        let auto = matches!(self.solver, None | Some(OuterKind::Auto));
+        let averaged = matches!(problem.law.name(), "line" | "surface");
+        let stiffness = problem.law.stiffness_bound()
+            * solver::adhesive::cell_compliance(&problem.domain, problem.e_star);
+        if auto && averaged && matches!(control, Control::Approach(_)) && stiffness >= NEWTON_STIFFNESS {
+            options.outer_loop = OuterLoop::Newton;
+        }
+        options
     }
 
     fn law(&self) -> Result<Box<dyn AdhesionLaw>> {

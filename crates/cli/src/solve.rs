@@ -1,6 +1,6 @@
 //! `solve`: one normal contact, with or without adhesion, from flags or a TOML case file.
 
-use crate::case::{Case, Problem, layered, on_workers, to_toml, write_field, write_summary};
+use crate::case::{Case, Problem, layered, on_workers, solver_name, to_toml, write_field, write_summary};
 use crate::plot;
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -212,7 +212,7 @@ fn solve_adhesive(
     problem: &Problem,
     out: &Path,
 ) -> Result<()> {
-    let options = case.adhesive_options(control);
+    let options = case.adhesive_options_for(control, problem);
     let mut last = Instant::now();
     let mut progress = |it: usize, residual: f64| {
         if last.elapsed().as_secs_f64() > 1.0 {
@@ -252,6 +252,7 @@ fn solve_adhesive(
             "gap.npy": "m", "displacement.npy": "m"
         },
         "law": problem.law.name(),
+        "solver": solver_name(options.outer_loop),
         "warnings": problem.warnings,
         "load": report.load,
         "mean_pressure": report.mean_pressure,

@@ -1,7 +1,7 @@
 //! `sweep`: a quasi-static approach-retraction cycle (or any list of approaches, mean
 //! pressures or central gaps) with continuation, written step by step and resumable.
 
-use crate::case::{Case, layered, on_workers, to_toml, write_field, write_summary};
+use crate::case::{Case, layered, on_workers, solver_name, to_toml, write_field, write_summary};
 use crate::plot::{self, Series};
 use crate::solve::finish;
 use anyhow::{Context, Result, bail};
@@ -234,7 +234,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     }
     let done = rows.len().min(controls.len());
 
-    let options = case.adhesive_options(controls[0]);
+    let options = case.adhesive_options_for(controls[0], &problem);
     let max_step = path.max_step.or(problem.adhesive().then(|| problem.law.range()));
     if let Some(h) = max_step
         && !(h.is_finite() && h > 0.0)
@@ -330,6 +330,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             "curve.csv": "approach m, load N, mean_pressure Pa, central_gap m, wall_time_s s"
         },
         "law": problem.law.name(),
+        "solver": problem.adhesive().then(|| solver_name(options.outer_loop)),
         "adhesive_range": problem.adhesive().then_some(range),
         "adhesive_range_per_cell": problem.adhesive().then_some(range / domain.dx.max(domain.dy)),
         "tabor_parameter": tabor,

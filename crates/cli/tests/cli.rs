@@ -634,6 +634,41 @@ fn long_sweep_steps_are_split_into_substeps_of_the_range() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("note: 2 substeps"), "{}", stderr(&o));
     assert_eq!(json(&d.join("summary.json"))["max_step"], 1e-9);
+    // A law far softer than a cell: `auto` keeps the accelerated loop.
+    assert_eq!(json(&d.join("summary.json"))["solver"], "accelerated");
+}
+
+#[test]
+fn auto_takes_newton_where_the_surface_law_is_stiff_against_a_cell() {
+    // jkr-sphere: the law at the wall is 4.6 times stiffer than a cell.
+    let d = dir("newton");
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "jkr-sphere",
+        "--approaches=-4e-9,-3e-9",
+        "--no-png",
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary = json(&d.join("summary.json"));
+    assert_eq!(summary["solver"], "newton");
+    assert_eq!(summary["converged"], true);
+    // ... and not where the user chose.
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "jkr-sphere",
+        "--approaches=-4e-9",
+        "--solver",
+        "dual-loop",
+        "--no-png",
+        "--out",
+        d.join("chosen").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(json(&d.join("chosen/summary.json"))["solver"], "dual-loop");
 }
 
 #[test]
