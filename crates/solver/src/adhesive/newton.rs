@@ -75,6 +75,23 @@ fn dot(a: &Array2<f64>, b: &Array2<f64>) -> f64 {
     parts.iter().sum()
 }
 
+/// Subtracts from `out` its mean over the moving cells (those where `mask > 0`), which
+/// keeps their sum at zero where the mean gap is prescribed.
+fn remove_moving_mean(out: &mut Array2<f64>, mask: &Array2<f64>) {
+    let (sum, count) = out.iter().zip(mask).fold(
+        (0.0, 0.0),
+        |(s, c), (&o, &m)| if m > 0.0 { (s + o, c + 1.0) } else { (s, c) },
+    );
+    if count > 0.0 {
+        let mean = sum / count;
+        Zip::from(out).and(mask).par_for_each(|o, &m| {
+            if m > 0.0 {
+                *o -= mean;
+            }
+        });
+    }
+}
+
 /// The linearised balance at one point and GMRES's storage.
 struct Linear {
     /// Krylov basis.
@@ -184,17 +201,7 @@ impl Linear {
                 .and(&self.weight)
                 .par_for_each(|o, &w| *o *= w * factor);
             if problem.mean_gap.is_some() {
-                let (sum, count) = out.iter().zip(&self.weight).fold((0.0, 0.0), |(s, c), (&o, &w)| {
-                    if w > 0.0 { (s + o, c + 1.0) } else { (s, c) }
-                });
-                if count > 0.0 {
-                    let mean = sum / count;
-                    Zip::from(&mut *out).and(&self.weight).par_for_each(|o, &w| {
-                        if w > 0.0 {
-                            *o -= mean;
-                        }
-                    });
-                }
+                remove_moving_mean(out, &self.weight);
             }
             return Ok(());
         }
@@ -210,7 +217,7 @@ impl Linear {
         Ok(())
     }
 
-    /// `out = A v`: the linearised balance `(D/dt + S - dp/dg) v` at `x` on the moving cells,
+    /// `out = A v`: the linearised balance `(M/dt + S + K) v` at `x` on the moving cells,
     /// zero on the held ones, less its mean over the moving cells where the mean gap is
     /// prescribed (the multiplier's change).
     fn apply(
@@ -254,19 +261,7 @@ impl Linear {
             .and(moving)
             .par_for_each(|o, &v, &s, &m| *o = if m > 0.0 { *o + s * v } else { 0.0 });
         if problem.mean_gap.is_some() {
-            let (sum, count) =
-                out.iter().zip(moving).fold(
-                    (0.0, 0.0),
-                    |(s, c), (&o, &m)| if m > 0.0 { (s + o, c + 1.0) } else { (s, c) },
-                );
-            if count > 0.0 {
-                let mean = sum / count;
-                Zip::from(out).and(moving).par_for_each(|o, &m| {
-                    if m > 0.0 {
-                        *o -= mean;
-                    }
-                });
-            }
+            remove_moving_mean(out, moving);
         }
         Ok(())
     }
