@@ -86,3 +86,20 @@ pub fn sphere(
     }
     Ok(shift_to_zero(g0))
 }
+
+/// A rigid one-dimensional wave of amplitude `amplitude` [m] (half its peak-to-valley
+/// height) and one wavelength across the domain's x side, crest centred on the grid:
+/// `g0 = amplitude (1 - cos(2 pi (x - x_c) / length_x))`. On a periodic domain this is the
+/// Westergaard / Johnson (1995) problem of a wavy surface (`theory::wavy`).
+pub fn wave(domain: &Domain, amplitude: f64) -> Result<Array2<f64>> {
+    if !(amplitude.is_finite() && amplitude > 0.0) {
+        return Err(invalid("wave_amplitude", amplitude, "must be finite and > 0 m"));
+    }
+    let centre = (domain.nx as f64 - 1.0) / 2.0;
+    let mut g0 = Array2::zeros(domain.shape());
+    for ((_, i), g) in g0.indexed_iter_mut() {
+        let phase = 2.0 * std::f64::consts::PI * (i as f64 - centre) / domain.nx as f64;
+        *g = amplitude * (1.0 - phase.cos());
+    }
+    Ok(shift_to_zero(g0))
+}

@@ -10,6 +10,7 @@ pub mod hertz;
 pub mod jkr_dmt;
 pub mod maugis;
 pub mod rough;
+pub mod wavy;
 
 /// Tabor parameter `mu = (R w0^2 / (E*^2 z0^3))^(1/3)` of a sphere of radius `r` [m] with
 /// work of adhesion `w0` [J/m^2] and range `z0` [m] on a half-space of modulus `e_star` [Pa].
