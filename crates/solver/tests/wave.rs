@@ -4,12 +4,13 @@
 //! one dimension).
 
 use elastic::{Compliance, Domain, Periodic};
-use ljadhesion::{LennardJones, PointLaw};
+use ljadhesion::{AdhesionLaw, LennardJones, PointLaw, SurfaceLaw};
 use ndarray::Array2;
 use solver::adhesive::OuterLoop;
 use solver::geometry::wave;
 use solver::{
-    AdhesiveOptions, Branch, ContactOptions, Control, CyclePoint, SweepPoint, solve, summarize, sweep,
+    AdhesiveOptions, AdhesiveReport, Branch, ContactOptions, Control, CyclePoint, SweepPoint, solve,
+    summarize, sweep,
 };
 use std::f64::consts::PI;
 use theory::wavy::Wave;
@@ -80,26 +81,33 @@ fn a_pressed_wave_is_westergaards() {
     }
 }
 
-/// A cycle of the wave (point law, energy descent): approach from `bottom` [z0] (apart) to
-/// `top` [z0] and back in steps of one `z0`.
-fn wave_cycle(op: &Periodic, g0: &Array2<f64>, top: i32, bottom: i32) -> Vec<SweepPoint> {
-    let law = PointLaw(LennardJones::new(W0, Z0).unwrap());
+/// The Lennard-Jones law a cycle uses, each with its solver.
+#[derive(Clone, Copy, Debug)]
+enum Law {
+    /// The point law, by energy descent.
+    Point,
+    /// The paper's surface law, by Newton.
+    Surface,
+}
+
+/// A cycle of the wave: approach from `bottom` [z0] (apart) to `top` [z0] and back in steps of
+/// one `z0`.
+fn wave_cycle(op: &Periodic, g0: &Array2<f64>, law: Law, top: i32, bottom: i32) -> Vec<SweepPoint> {
+    let lj = LennardJones::new(W0, Z0).unwrap();
+    let (point, surface) = (PointLaw(lj), SurfaceLaw(lj));
+    let (law, outer_loop): (&dyn AdhesionLaw, _) = match law {
+        Law::Point => (&point, OuterLoop::EnergyDescent),
+        Law::Surface => (&surface, OuterLoop::Newton),
+    };
     let mut path: Vec<Control> = (bottom..=top).map(|k| Control::Approach(k as f64 * Z0)).collect();
     path.extend((bottom..top).rev().map(|k| Control::Approach(k as f64 * Z0)));
     let options = AdhesiveOptions {
-        outer_loop: OuterLoop::EnergyDescent,
+        outer_loop,
         ..AdhesiveOptions::default()
     };
-    sweep(
-        op,
-        &law,
-        g0.view(),
-        &path,
-        &options,
-        None,
-        None,
-        &mut |_, _, _| true,
-    )
+    sweep(op, law, g0.view(), &path, &options, None, None, &mut |_, _, _| {
+        true
+    })
     .unwrap()
 }
 
@@ -112,14 +120,24 @@ struct Agreement {
     pull_off_ratio: f64,
 }
 
+/// How far a solve's mean pressure lies from Johnson's at its attached half-width, beyond what
+/// placing each edge within a cell `dx` [m] explains, in units of `p*`; `None` when detached.
+fn jkr_excess(theory: &Wave, dx: f64, r: &AdhesiveReport) -> Option<f64> {
+    (r.attached_area_fraction > 0.0).then(|| {
+        let a = 0.5 * r.attached_area_fraction * theory.wavelength;
+        let quantum = (theory.jkr_pressure(a + dx) - theory.jkr_pressure(a)).abs();
+        ((r.mean_pressure - theory.jkr_pressure(a)).abs() - quantum) / theory.full_contact_pressure()
+    })
+}
+
 /// Runs the wave at Tabor parameter `mu` on `n` cells (Johnson's alpha = 0.3: adhesive but not
 /// sticky, the contact does not snap shut) from `bottom` to `top` [z0] and back, and checks
 /// what holds at any resolution: every step converges, the wall contact lies inside the
 /// attached strip, the strip outlives the load's minimum under approach control, and the cycle
 /// loses energy.
-fn johnson_agreement(mu: f64, n: usize, top: i32, bottom: i32) -> Agreement {
+fn johnson_agreement(law: Law, mu: f64, n: usize, top: i32, bottom: i32) -> Agreement {
     let (op, g0, theory) = wave_case(mu, 0.3, n);
-    let points = wave_cycle(&op, &g0, top, bottom);
+    let points = wave_cycle(&op, &g0, law, top, bottom);
     let p_star = theory.full_contact_pressure();
     let dx = op.domain().dx;
     let mut worst = [0.0f64; 2];
@@ -131,12 +149,9 @@ fn johnson_agreement(mu: f64, n: usize, top: i32, bottom: i32) -> Agreement {
         // the contact (at mu = 10 about 3/4 of it at zero load, none once the load is tensile
         // enough).
         assert!(r.contact_area_fraction <= r.attached_area_fraction);
-        if r.attached_area_fraction > 0.0 {
-            let a = 0.5 * r.attached_area_fraction * theory.wavelength;
-            let quantum = (theory.jkr_pressure(a + dx) - theory.jkr_pressure(a)).abs();
-            let excess = (r.mean_pressure - theory.jkr_pressure(a)).abs() - quantum;
+        if let Some(excess) = jkr_excess(&theory, dx, r) {
             let b = usize::from(p.branch == Branch::Unloading);
-            worst[b] = worst[b].max(excess / p_star);
+            worst[b] = worst[b].max(excess);
         }
     }
     let (pull_off, a_min) = theory.jkr_pull_off();
@@ -153,7 +168,7 @@ fn johnson_agreement(mu: f64, n: usize, top: i32, bottom: i32) -> Agreement {
     let summary = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
     assert!(summary.jump_out_approach.is_some() && summary.hysteresis_energy > 0.0);
     println!(
-        "mu = {mu}, {n} cells ({:.1} per process zone): within {:.2e} (loading) and {:.2e} \
+        "{law:?} law, mu = {mu}, {n} cells ({:.1} per process zone): within {:.2e} (loading) and {:.2e} \
          (unloading) p* + a cell's worth of Johnson's; pull-off {:.5} p*, Johnson {:.5} p*",
         n as f64 / (theory.wavelength / (0.95 * Z0 * E * Z0 / W0)),
         worst[0],
@@ -170,14 +185,14 @@ fn johnson_agreement(mu: f64, n: usize, top: i32, bottom: i32) -> Agreement {
 #[test]
 fn a_high_tabor_wave_follows_johnsons_jkr_solution() {
     // mu = 3 with 7 cells per process zone: within 7e-4 p* on both branches, pull-off 0.7 %.
-    let a = johnson_agreement(3.0, 1024, 12, -10);
+    let a = johnson_agreement(Law::Point, 3.0, 1024, 12, -10);
     assert!(a.worst[0] < 1e-3 && a.worst[1] < 1e-3, "{:?}", a.worst);
     assert!((a.pull_off_ratio - 1.0).abs() < 0.01, "{}", a.pull_off_ratio);
     // mu = 10 with 2.6 cells per process zone: the lattice holds the advancing edge back (the
     // loading branch 2.0e-3 p* off, unloading 1.1e-3, pull-off 0.8 %); both fall to 4.9e-4 and
     // 0.07 % on 8192 cells (`wave_mesh_study`), so the bounds here are the grid's, not the
     // law's.
-    let a = johnson_agreement(10.0, 4096, 36, -26);
+    let a = johnson_agreement(Law::Point, 10.0, 4096, 36, -26);
     assert!(a.worst[0] < 2.5e-3 && a.worst[1] < 1.5e-3, "{:?}", a.worst);
     assert!((a.pull_off_ratio - 1.0).abs() < 0.015, "{}", a.pull_off_ratio);
 }
@@ -187,7 +202,7 @@ fn a_high_tabor_wave_follows_johnsons_jkr_solution() {
 fn wave_mesh_study() {
     let mut previous: Option<Agreement> = None;
     for n in [2048, 4096, 8192] {
-        let a = johnson_agreement(10.0, n, 36, -26);
+        let a = johnson_agreement(Law::Point, 10.0, n, 36, -26);
         if let Some(p) = previous {
             assert!(
                 a.worst[0] < p.worst[0] && (a.pull_off_ratio - 1.0).abs() < (p.pull_off_ratio - 1.0).abs()
@@ -195,4 +210,36 @@ fn wave_mesh_study() {
         }
         previous = Some(a);
     }
+}
+
+#[test]
+fn the_surface_law_converges_on_a_high_tabor_wave() {
+    // The paper's surface law where it is 30 times stiffer than a cell at the wall (mu = 10,
+    // 4096 cells): the jump in at -6 z0, two steps on and back, each a lattice-trapped crack
+    // front carrying about 13 cells per edge over their snap (Newton: ~330 steps a solve; with
+    // the pseudo-time step grown only by the residual's ratio and 60 steps of patience, 2 of
+    // these 7 steps ended unconverged after more than 6000 Newton steps each).
+    let (op, g0, theory) = wave_case(10.0, 0.3, 4096);
+    let points = wave_cycle(&op, &g0, Law::Surface, -4, -7);
+    for p in &points {
+        let r = &p.report;
+        assert!(r.converged(), "approach {} z0", r.approach / Z0);
+        if r.approach > -6.5 * Z0 {
+            // Attached, and on Johnson's curve as closely as along the whole cycle (the study
+            // below).
+            let excess = jkr_excess(&theory, op.domain().dx, r).expect("attached");
+            assert!(excess < 5e-3, "approach {} z0: {excess}", r.approach / Z0);
+        }
+    }
+}
+
+#[test]
+#[ignore = "a study: the paper's surface law on the mu = 10 wave, 124 Newton solves (17 minutes), quoted in README"]
+fn the_surface_law_on_a_high_tabor_wave_follows_johnsons_jkr_solution() {
+    // Measured: within 4.9e-3 (loading) and 4.7e-3 (unloading) p*, pull-off 2.4 % above
+    // Johnson's. The point law on the same grid: 2.0e-3, 1.1e-3 and 0.8 %: the surface law's
+    // area factor adds attraction where the gap slopes at the crack tip.
+    let a = johnson_agreement(Law::Surface, 10.0, 4096, 36, -26);
+    assert!(a.worst[0] < 5e-3 && a.worst[1] < 5e-3, "{:?}", a.worst);
+    assert!((a.pull_off_ratio - 1.0).abs() < 0.03, "{}", a.pull_off_ratio);
 }
