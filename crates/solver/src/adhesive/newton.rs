@@ -530,7 +530,7 @@ fn iterate(
         // and shrinks with a cut step. A whole step that lowers the residual at least doubles
         // it: after cuts near a snapping edge the residual falls by a few per cent a step, and
         // growing by that ratio alone left Newton crawling at the smallest steps (surface
-        // law on a wave at μ = 10, 4096 cells: 300-350 steps to a solve, against 300-6000 and
+        // law on a wave at μ = 10, 4096 cells: 300-350 steps to a solve, against 430-6200 and
         // 3 of 13 unconverged).
         let ratio = (norm / trial_norm).clamp(0.1, 10.0);
         let growth = if fraction == 1.0 && ratio > 1.0 {
