@@ -149,12 +149,13 @@ pub struct Case {
     #[arg(long, value_enum)]
     pub solver: Option<OuterKind>,
     /// Convergence tolerance: without adhesion the scale-free gap residual (default 1e-8, at
-    /// least 1e-13); with adhesion the outer residual, a mean gap error in units of the law's
-    /// range (default 1e-6, the paper's criterion).
+    /// least 1e-13); with adhesion, in units of the law's range [-] (default 1e-6, the paper's
+    /// criterion), for dual-loop and accelerated the outer residual (a mean gap error), for
+    /// energy and newton the worst cell's force imbalance times its compliance.
     #[arg(long)]
     pub tolerance: Option<f64>,
-    /// Iteration limit: conjugate-gradient iterations without adhesion (default 10000), outer
-    /// iterations with it (default 20000).
+    /// Iteration limit: conjugate-gradient iterations without adhesion (default 10000); with
+    /// it (default 20000) outer iterations, descent iterations (energy) or Newton steps.
     #[arg(long)]
     pub max_iterations: Option<usize>,
     /// Output directory (default: run).

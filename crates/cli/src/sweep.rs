@@ -261,8 +261,10 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     let started = Instant::now();
     let state_dir = out.join("state");
     let mut write_error = None;
+    // The last finished step, shown beside the running solve's iteration and residual.
+    let last = std::sync::Mutex::new(String::new());
     let points = on_workers(|| {
-        solver::sweep(
+        solver::sweep_observed(
             problem.op.as_ref(),
             problem.law.as_ref(),
             problem.g0.view(),
@@ -293,7 +295,9 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
                 let saved = write_state(&state_dir, state)
                     .and_then(|_| csv.write_all(line.as_bytes()).map_err(Into::into))
                     .and_then(|_| csv.flush().map_err(Into::into));
-                bar.set_message(format!("approach {:.4e} m, load {:.4e} N", r.approach, r.load));
+                let message = format!("last: approach {:.4e} m, load {:.4e} N", r.approach, r.load);
+                bar.set_message(message.clone());
+                *last.lock().expect("not poisoned") = message;
                 bar.inc(1);
                 match saved {
                     Ok(()) => true,
@@ -301,6 +305,14 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
                         write_error = Some(e);
                         false
                     }
+                }
+            },
+            &mut |_, iteration, residual| {
+                if iteration % 10 == 0 {
+                    bar.set_message(format!(
+                        "iteration {iteration}, residual {residual:.2e}  {}",
+                        last.lock().expect("not poisoned")
+                    ));
                 }
             },
         )

@@ -31,4 +31,5 @@ pub use report::{ContactReport, Termination};
 pub use state::ContactState;
 pub use sweep::{
     Branch, CyclePoint, CycleSummary, RETRIES, SweepPoint, approach_cycle, substeps, summarize, sweep,
+    sweep_observed,
 };

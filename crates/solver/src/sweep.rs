@@ -2,7 +2,9 @@
 //! gaps) solved in order, each step warm-started from the last, so that loading and unloading
 //! follow their own branches; and what a sweep shows (pull-off, jumps, hysteresis).
 
-use crate::adhesive::{AdhesiveOptions, AdhesiveReport, AdhesiveState, OuterLoop, Start, solve_adhesive};
+use crate::adhesive::{
+    AdhesiveOptions, AdhesiveReport, AdhesiveState, OuterLoop, Start, solve_adhesive_observed,
+};
 use crate::error::{Result, SolverError, invalid};
 use crate::options::Control;
 use elastic::Compliance;
@@ -129,6 +131,34 @@ pub fn sweep(
     start: Option<AdhesiveState>,
     on_step: &mut dyn FnMut(usize, &SweepPoint, &AdhesiveState) -> bool,
 ) -> Result<Vec<SweepPoint>> {
+    sweep_observed(
+        op,
+        law,
+        g0,
+        path,
+        options,
+        max_step,
+        start,
+        on_step,
+        &mut |_, _, _| {},
+    )
+}
+
+/// [`sweep`], calling `on_iteration(index, iteration, residual)` after every iteration of
+/// every solve (substeps and retries included; `iteration` counts within one solve), which
+/// shows where a long step stands.
+#[allow(clippy::too_many_arguments)]
+pub fn sweep_observed(
+    op: &dyn Compliance,
+    law: &dyn AdhesionLaw,
+    g0: ArrayView2<f64>,
+    path: &[Control],
+    options: &AdhesiveOptions,
+    max_step: Option<f64>,
+    start: Option<AdhesiveState>,
+    on_step: &mut dyn FnMut(usize, &SweepPoint, &AdhesiveState) -> bool,
+    on_iteration: &mut dyn FnMut(usize, usize, f64),
+) -> Result<Vec<SweepPoint>> {
     if let Some(h) = max_step
         && !(h.is_finite() && h > 0.0)
     {
@@ -171,7 +201,8 @@ pub fn sweep(
                     ..*options
                 };
                 let used = if retries == 0 { options } else { &limited };
-                let (next, report) = solve_adhesive(op, law, g0, sub, used, from)?;
+                let (next, report) =
+                    solve_adhesive_observed(op, law, g0, sub, used, from, &mut |i, r| on_iteration(k, i, r))?;
                 budget = budget.saturating_sub(match options.outer_loop {
                     OuterLoop::EnergyDescent => report.inner_iterations,
                     _ => report.outer_iterations,
@@ -240,7 +271,9 @@ pub fn substeps(previous: Option<Control>, next: Control, max_step: Option<f64>)
         (Control::CentralGap(a), Control::CentralGap(b)) => (a, b, Control::CentralGap),
         _ => return Vec::new(),
     };
-    let parts = ((b - a).abs() / h).ceil().max(1.0) as usize;
+    // A step of exactly `h` written in decimals (4e-9 to 3e-9 by 1e-9) can exceed it by an
+    // ulp: that is no reason to solve it twice.
+    let parts = ((b - a).abs() / h * (1.0 - 1e-9)).ceil().max(1.0) as usize;
     (1..parts)
         .map(|i| make(a + (b - a) * i as f64 / parts as f64))
         .collect()
@@ -404,6 +437,11 @@ mod tests {
         // Short steps, no previous control, no limit, a bad limit, load control or a change of
         // kind: nothing in between.
         assert!(substeps(Some(Approach(0.0)), Approach(0.2), Some(0.3)).is_empty());
+        assert!(substeps(Some(Approach(4e-9)), Approach(3e-9), Some(1e-9)).is_empty());
+        assert_eq!(
+            substeps(Some(Approach(4e-9)), Approach(2e-9), Some(1e-9)).len(),
+            1
+        );
         assert!(substeps(Some(Approach(0.0)), Approach(0.0), Some(0.3)).is_empty());
         assert!(substeps(None, Approach(1.0), Some(0.3)).is_empty());
         assert!(substeps(Some(Approach(0.0)), Approach(1.0), None).is_empty());
