@@ -168,7 +168,6 @@ pub fn sweep_observed(
             "the largest sweep step must be positive and finite [m]",
         ));
     }
-    let branch = branches(path);
     // Where the start state stands, for splitting the first step too.
     let mut previous = match (&start, path.first()) {
         (Some(s), Some(Control::Approach(_))) => Some(Control::Approach(s.contact.approach)),
@@ -177,6 +176,11 @@ pub fn sweep_observed(
             Some(Control::CentralGap(s.contact.gap[[ny / 2, nx / 2]]))
         }
         _ => None,
+    };
+    // The first step's branch follows from where the start state stands (a resumed sweep).
+    let branch = match previous {
+        Some(p) => branches(&[&[p], path].concat())[1..].to_vec(),
+        None => branches(path),
     };
     let mut state = start;
     let mut points = Vec::with_capacity(path.len());

@@ -1313,3 +1313,39 @@ fn challenge_dual_loop_study() {
         assert_eq!(flipped(&again, other), 0);
     }
 }
+
+#[test]
+fn a_resumed_sweep_knows_its_branch() {
+    // A sweep started from the state of a loading step that then moves apart is unloading from
+    // its first step (a resumed `roughcontact sweep` labelled it loading).
+    let (op, g0, law, _) = sphere_case(1.0, 16, 20.0);
+    let options = AdhesiveOptions::default();
+    let mut last = None;
+    sweep(
+        &op,
+        &law,
+        g0.view(),
+        &approaches([0.0, 1.0].into_iter()),
+        &options,
+        None,
+        None,
+        &mut |_, _, state| {
+            last = Some(state.clone());
+            true
+        },
+    )
+    .unwrap();
+    let points = sweep(
+        &op,
+        &law,
+        g0.view(),
+        &approaches([0.5, 0.8].into_iter()),
+        &options,
+        None,
+        last,
+        &mut |_, _, _| true,
+    )
+    .unwrap();
+    assert_eq!(points[0].branch, Branch::Unloading);
+    assert_eq!(points[1].branch, Branch::Loading);
+}
