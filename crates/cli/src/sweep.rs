@@ -102,6 +102,10 @@ pub struct SweepArgs {
     /// Continue an interrupted sweep in --out: finished steps are kept, not redone.
     #[arg(long)]
     resume: bool,
+    /// Also keep every step's fields (gap, compressive and adhesive pressure [Pa],
+    /// displacement [m], .npy) in --out/states/step-NNNN, not only the last one in --out/state.
+    #[arg(long)]
+    save_states: bool,
     /// Print the resolved case as TOML and exit without solving.
     #[arg(long)]
     print_config: bool,
@@ -224,8 +228,8 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             );
         }
         rows = parse_rows(&std::fs::read_to_string(&csv_path)?)?;
-        if !rows.is_empty() {
-            start = Some(read_state(&out.join("state"))?);
+        if let Some(last) = rows.last() {
+            start = Some(resume_state(&out, rows.len() - 1, last.point.approach)?);
         }
         eprintln!("resuming after {} of {} steps", rows.len(), controls.len());
     } else {
@@ -292,10 +296,31 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
                     r.wall_time_s,
                     p.retries
                 );
-                let saved = write_state(&state_dir, state)
+                let kept = match args.save_states {
+                    true => write_state(&step_dir(&out, done + k), state),
+                    false => Ok(()),
+                };
+                let saved = kept
+                    .and_then(|_| write_state(&state_dir, state))
                     .and_then(|_| csv.write_all(line.as_bytes()).map_err(Into::into))
                     .and_then(|_| csv.flush().map_err(Into::into));
                 let message = format!("last: approach {:.4e} m, load {:.4e} N", r.approach, r.load);
+                if bar.is_hidden() {
+                    // No terminal (a background run, a log file): a plain line a step instead.
+                    eprintln!(
+                        "step {}/{}: approach {:.4e} m, load {:.4e} N, {}, {:.1} s",
+                        done + k + 1,
+                        controls.len(),
+                        r.approach,
+                        r.load,
+                        if r.converged() {
+                            "converged"
+                        } else {
+                            "NOT converged"
+                        },
+                        r.wall_time_s
+                    );
+                }
                 bar.set_message(message.clone());
                 *last.lock().expect("not poisoned") = message;
                 bar.inc(1);
@@ -391,7 +416,36 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     )
 }
 
+/// Where `--save-states` keeps step `k`'s fields.
+fn step_dir(out: &Path, k: usize) -> PathBuf {
+    out.join("states").join(format!("step-{k:04}"))
+}
+
+/// The state to resume from after `step` (its approach `approach` [m]): `state/` if it is that
+/// step's, else that step's own from `--save-states`. A sweep stopped between writing a
+/// step's state and its row of curve.csv (or a curve.csv cut by hand) would otherwise resume
+/// from a state the path has not reached yet.
+fn resume_state(out: &Path, step: usize, approach: f64) -> Result<AdhesiveState> {
+    let state = read_state(&out.join("state"))?;
+    if state.contact.approach == approach {
+        return Ok(state);
+    }
+    let kept = step_dir(out, step);
+    if kept.join("approach.txt").exists() {
+        let state = read_state(&kept)?;
+        if state.contact.approach == approach {
+            return Ok(state);
+        }
+    }
+    bail!(
+        "--resume: the saved state in {} is at approach {:e} m, but curve.csv's last step ({step}) is at          {approach:e} m; rerun without --resume (with --save-states a sweep keeps every step's state)",
+        out.join("state").display(),
+        state.contact.approach
+    )
+}
+
 fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     write_field(dir, "compressive_pressure", &state.contact.pressure)?;
     write_field(dir, "adhesive_pressure", &state.adhesive_pressure)?;
     write_field(dir, "gap", &state.contact.gap)?;

@@ -523,21 +523,36 @@ fn sweep_example_writes_curve_and_summary_and_resumes() {
     let hertz = 4.0 / 3.0 * 1e9 * 1e-6f64.sqrt() * delta.powf(1.5);
     assert!((load / hertz - 1.0).abs() < 0.05, "{load} vs {hertz}");
 
-    // Cut the file after three steps, resume: the same curve.
+    // Cut the file after three steps: state/ holds the last step's state, not the third's,
+    // so resuming from it is refused.
     let kept: Vec<&str> = lines[..4].to_vec();
     std::fs::write(out.join("curve.csv"), kept.join("\n") + "\n").unwrap();
-    let o = roughcontact(&[
-        "sweep",
-        "--example",
-        "hertz",
-        "--n",
-        "64",
-        "--steps",
-        "4",
-        "--resume",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let resume = |extra: &[&str]| {
+        let mut a = vec![
+            "sweep",
+            "--example",
+            "hertz",
+            "--n",
+            "64",
+            "--steps",
+            "4",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        a.extend(extra);
+        roughcontact(&a)
+    };
+    let o = resume(&["--resume"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("curve.csv's last step (2)"), "{}", stderr(&o));
+    // With every step's state kept, a cut file resumes from its own last step: the same curve.
+    let o = resume(&["--save-states"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.join("states/step-0008/gap.npy").exists());
+    let csv = std::fs::read_to_string(out.join("curve.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    std::fs::write(out.join("curve.csv"), lines[..4].join("\n") + "\n").unwrap();
+    let o = resume(&["--resume"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(
         stderr(&o).contains("resuming after 3 of 9 steps"),
