@@ -102,6 +102,11 @@ pub struct SweepArgs {
     /// Continue an interrupted sweep in --out: finished steps are kept, not redone.
     #[arg(long)]
     resume: bool,
+    /// Start from a saved state instead of apart: a directory as written by a sweep (its
+    /// `state/`, or `states/step-NNNN` with --save-states) on the same grid. To continue a
+    /// cycle with another law, solver, tolerance or path.
+    #[arg(long, value_name = "DIR", conflicts_with = "resume")]
+    start_from: Option<PathBuf>,
     /// Also keep every step's fields (gap, compressive and adhesive pressure [Pa],
     /// displacement [m], .npy) in --out/states/step-NNNN, not only the last one in --out/state.
     #[arg(long)]
@@ -233,6 +238,23 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         }
         eprintln!("resuming after {} of {} steps", rows.len(), controls.len());
     } else {
+        if let Some(dir) = &args.start_from {
+            let state = read_state(dir)?;
+            let shape = problem.g0.dim();
+            if state.contact.gap.dim() != shape {
+                bail!(
+                    "--start-from: {} holds a {:?} grid, this case has {shape:?}",
+                    dir.display(),
+                    state.contact.gap.dim()
+                );
+            }
+            eprintln!(
+                "starting from {} (approach {:e} m)",
+                dir.display(),
+                state.contact.approach
+            );
+            start = Some(state);
+        }
         std::fs::write(&case_path, resolved.clone() + "\n")?;
         std::fs::write(&csv_path, format!("{HEADER}\n"))?;
     }

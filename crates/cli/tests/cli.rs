@@ -706,3 +706,86 @@ fn a_bistable_unloading_step_settles() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(json(&d.join("r/summary.json"))["converged"], true);
 }
+
+#[test]
+fn a_sweep_started_from_a_saved_state_continues_its_branch() {
+    let d = dir("start-from");
+    let case = [
+        "sweep",
+        "--example",
+        "jkr-sphere",
+        "--n",
+        "32",
+        "--law",
+        "point",
+        "--solver",
+        "energy",
+    ];
+    let run = |extra: &[&str]| roughcontact(&[&case[..], extra].concat());
+    let whole = d.join("whole");
+    let o = run(&["--steps", "4", "--save-states", "--out", whole.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let loads = |out: &std::path::Path| -> Vec<(f64, f64)> {
+        std::fs::read_to_string(out.join("curve.csv"))
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                (f[1].parse().unwrap(), f[2].parse().unwrap())
+            })
+            .collect()
+    };
+    let cycle = loads(&whole);
+    assert_eq!(cycle.len(), 9);
+    // The way back from the turning point (step 4), started from that step's saved state: the
+    // same unloading branch, attached where a start from apart is not.
+    let back: Vec<String> = cycle[5..].iter().map(|(a, _)| format!("{a:e}")).collect();
+    let approaches = format!("--approaches={}", back.join(","));
+    let turning = whole.join("states/step-0004");
+    let resumed = d.join("resumed");
+    let o = run(&[
+        &approaches,
+        "--start-from",
+        turning.to_str().unwrap(),
+        "--out",
+        resumed.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("starting from"), "{}", stderr(&o));
+    let apart = d.join("apart");
+    let last = format!("--approaches={}", back[3]);
+    let o = run(&[&last, "--out", apart.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let scale = cycle.iter().fold(0.0f64, |m, (_, l)| m.max(l.abs()));
+    let (from_state, from_apart) = (loads(&resumed), loads(&apart));
+    for (k, (a, l)) in cycle[5..].iter().enumerate() {
+        assert_eq!(from_state[k].0, *a);
+        assert!(
+            (from_state[k].1 - l).abs() <= 1e-9 * scale,
+            "{:?} vs {l}",
+            from_state[k]
+        );
+    }
+    // At the last approach (-5 nm) the unloading branch still holds on; approached from apart,
+    // the sphere does not jump in there.
+    assert!(
+        (from_apart[0].1 - cycle[8].1).abs() > 0.5 * scale,
+        "{from_apart:?} vs {cycle:?}"
+    );
+    // Another grid is refused.
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "jkr-sphere",
+        "--n",
+        "64",
+        &approaches,
+        "--start-from",
+        turning.to_str().unwrap(),
+        "--out",
+        d.join("other").to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("holds a (32, 32) grid"), "{}", stderr(&o));
+}
