@@ -318,9 +318,10 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
                     r.wall_time_s,
                     p.retries
                 );
-                let kept = match args.save_states {
-                    true => write_state(&step_dir(&out, done + k), state),
-                    false => Ok(()),
+                let kept = if args.save_states {
+                    write_state(&step_dir(&out, done + k), state)
+                } else {
+                    Ok(())
                 };
                 let saved = kept
                     .and_then(|_| write_state(&state_dir, state))
@@ -460,7 +461,8 @@ fn resume_state(out: &Path, step: usize, approach: f64) -> Result<AdhesiveState>
         }
     }
     bail!(
-        "--resume: the saved state in {} is at approach {:e} m, but curve.csv's last step ({step}) is at          {approach:e} m; rerun without --resume (with --save-states a sweep keeps every step's state)",
+        "--resume: the saved state in {} is at approach {:e} m, but curve.csv's last step ({step}) is at \
+         {approach:e} m; rerun without --resume (with --save-states a sweep keeps every step's state)",
         out.join("state").display(),
         state.contact.approach
     )
