@@ -289,6 +289,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     let mut write_error = None;
     // The last finished step, shown beside the running solve's iteration and residual.
     let last = std::sync::Mutex::new(String::new());
+    let mut quiet_since = Instant::now();
     let points = on_workers(|| {
         solver::sweep_observed(
             problem.op.as_ref(),
@@ -355,7 +356,16 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
                     }
                 }
             },
-            &mut |_, iteration, residual| {
+            &mut |k, iteration, residual| {
+                // Without a terminal, where the running solve stands once a minute.
+                if bar.is_hidden() && quiet_since.elapsed().as_secs() >= 60 {
+                    eprintln!(
+                        "step {}/{}: iteration {iteration}, residual {residual:.2e}",
+                        done + k + 1,
+                        controls.len()
+                    );
+                    quiet_since = Instant::now();
+                }
                 if iteration % 10 == 0 {
                     bar.set_message(format!(
                         "iteration {iteration}, residual {residual:.2e}  {}",
