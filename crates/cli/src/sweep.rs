@@ -46,6 +46,11 @@ pub struct SweepPath {
     /// Lennard-Jones; no splitting without adhesion]. Load steps are never split.
     #[arg(long)]
     pub max_step: Option<f64>,
+    /// Start from a saved state instead of apart: a directory as written by a sweep (its
+    /// `state/`, or `states/step-NNNN` with --save-states) on the same grid. To continue a
+    /// cycle with another law, solver, tolerance or path.
+    #[arg(long, value_name = "DIR")]
+    pub start_from: Option<PathBuf>,
 }
 
 /// Built-in cases, runnable with no input files (their TOML is in `data/examples`).
@@ -102,11 +107,6 @@ pub struct SweepArgs {
     /// Continue an interrupted sweep in --out: finished steps are kept, not redone.
     #[arg(long)]
     resume: bool,
-    /// Start from a saved state instead of apart: a directory as written by a sweep (its
-    /// `state/`, or `states/step-NNNN` with --save-states) on the same grid. To continue a
-    /// cycle with another law, solver, tolerance or path.
-    #[arg(long, value_name = "DIR", conflicts_with = "resume")]
-    start_from: Option<PathBuf>,
     /// Also keep every step's fields (gap, compressive and adhesive pressure [Pa],
     /// displacement [m], .npy) in --out/states/step-NNNN, not only the last one in --out/state.
     #[arg(long)]
@@ -238,7 +238,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         }
         eprintln!("resuming after {} of {} steps", rows.len(), controls.len());
     } else {
-        if let Some(dir) = &args.start_from {
+        if let Some(dir) = &path.start_from {
             let state = read_state(dir)?;
             let shape = problem.g0.dim();
             if state.contact.gap.dim() != shape {
