@@ -649,8 +649,22 @@ fn long_sweep_steps_are_split_into_substeps_of_the_range() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("note: 2 substeps"), "{}", stderr(&o));
     assert_eq!(json(&d.join("summary.json"))["max_step"], 1e-9);
-    // A law far softer than a cell: `auto` keeps the accelerated loop.
-    assert_eq!(json(&d.join("summary.json"))["solver"], "accelerated");
+    // A law far softer than a cell: `auto` takes Newton (the accelerated loop stops short).
+    assert_eq!(json(&d.join("summary.json"))["solver"], "newton");
+    // Neither soft nor stiff (2.5 times a cell): the accelerated loop.
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "dmt-sphere",
+        "--work-of-adhesion",
+        "0.05",
+        "--approaches=-2e-9",
+        "--no-png",
+        "--out",
+        d.join("middle").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(json(&d.join("middle/summary.json"))["solver"], "accelerated");
 }
 
 #[test]
@@ -788,4 +802,30 @@ fn a_sweep_started_from_a_saved_state_continues_its_branch() {
     ]);
     assert!(!o.status.success());
     assert!(stderr(&o).contains("holds a (32, 32) grid"), "{}", stderr(&o));
+}
+
+#[test]
+fn the_dmt_sphere_example_has_no_jumps() {
+    // At mu = 0.1 the load-approach curve is single-valued (DMT side): loading and unloading
+    // coincide, with no jump in or out. (The accelerated loop at its default tolerance, which
+    // `auto` took here before, reported a jump in at -1.0 nm and out at -1.1 nm.)
+    let d = dir("dmt");
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "dmt-sphere",
+        "--no-png",
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = json(&d.join("summary.json"));
+    assert!(s["jump_in_approach"].is_null(), "{s}");
+    assert!(s["jump_out_approach"].is_null(), "{s}");
+    // Pull-off force times the range: the scale of the cycle's work.
+    let scale = s["pull_off_force"].as_f64().unwrap().abs() * 1e-9;
+    assert!(
+        s["hysteresis_energy"].as_f64().unwrap().abs() < 1e-4 * scale,
+        "{s}"
+    );
 }
