@@ -47,8 +47,8 @@ pub enum LawKind {
 #[serde(rename_all = "kebab-case")]
 pub enum OuterKind {
     /// `energy` for the point and exponential laws, `newton` for the line and surface laws
-    /// where the law at the wall is 4 or more times stiffer than a cell (approach or mean-gap
-    /// control, both), `accelerated` elsewhere.
+    /// where the law at the wall is 4 or more times stiffer than a cell or at most as stiff as
+    /// one (approach or mean-gap control, both), `accelerated` elsewhere.
     Auto,
     /// The paper's relaxation of the adhesive pressure.
     DualLoop,
