@@ -238,25 +238,26 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         }
         eprintln!("resuming after {} of {} steps", rows.len(), controls.len());
     } else {
-        if let Some(dir) = &path.start_from {
-            let state = read_state(dir)?;
-            let shape = problem.g0.dim();
-            if state.contact.gap.dim() != shape {
-                bail!(
-                    "--start-from: {} holds a {:?} grid, this case has {shape:?}",
-                    dir.display(),
-                    state.contact.gap.dim()
-                );
-            }
-            eprintln!(
-                "starting from {} (approach {:e} m)",
-                dir.display(),
-                state.contact.approach
-            );
-            start = Some(state);
-        }
         std::fs::write(&case_path, resolved.clone() + "\n")?;
         std::fs::write(&csv_path, format!("{HEADER}\n"))?;
+    }
+    // A sweep from a saved state (also one resumed before its first step finished).
+    if let (None, Some(dir)) = (&start, &path.start_from) {
+        let state = read_state(dir)?;
+        let shape = problem.g0.dim();
+        if state.contact.gap.dim() != shape {
+            bail!(
+                "--start-from: {} holds a {:?} grid, this case has {shape:?}",
+                dir.display(),
+                state.contact.gap.dim()
+            );
+        }
+        eprintln!(
+            "starting from {} (approach {:e} m)",
+            dir.display(),
+            state.contact.approach
+        );
+        start = Some(state);
     }
     let done = rows.len().min(controls.len());
 
