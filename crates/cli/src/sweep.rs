@@ -216,6 +216,23 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     for w in &problem.warnings {
         eprintln!("warning: {w}");
     }
+    // Read and check a --start-from state before anything is written, so that a wrong one leaves
+    // the output directory as it was.
+    let saved = match &path.start_from {
+        Some(dir) => {
+            let state = read_state(dir)?;
+            let shape = problem.g0.dim();
+            if state.contact.gap.dim() != shape {
+                bail!(
+                    "--start-from: {} holds a {:?} grid, this case has {shape:?}",
+                    dir.display(),
+                    state.contact.gap.dim()
+                );
+            }
+            Some((dir, state))
+        }
+        None => None,
+    };
     let out = case.out.clone().expect("defaulted");
     std::fs::create_dir_all(out.join("state")).with_context(|| format!("creating {}", out.display()))?;
     let csv_path = out.join("curve.csv");
@@ -242,16 +259,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         std::fs::write(&csv_path, format!("{HEADER}\n"))?;
     }
     // A sweep from a saved state (also one resumed before its first step finished).
-    if let (None, Some(dir)) = (&start, &path.start_from) {
-        let state = read_state(dir)?;
-        let shape = problem.g0.dim();
-        if state.contact.gap.dim() != shape {
-            bail!(
-                "--start-from: {} holds a {:?} grid, this case has {shape:?}",
-                dir.display(),
-                state.contact.gap.dim()
-            );
-        }
+    if let (None, Some((dir, state))) = (&start, saved) {
         eprintln!(
             "starting from {} (approach {:e} m)",
             dir.display(),

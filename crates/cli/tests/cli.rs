@@ -787,7 +787,7 @@ fn a_sweep_started_from_a_saved_state_continues_its_branch() {
         (from_apart[0].1 - cycle[8].1).abs() > 0.5 * scale,
         "{from_apart:?} vs {cycle:?}"
     );
-    // Another grid is refused.
+    // Another grid is refused ...
     let o = roughcontact(&[
         "sweep",
         "--example",
@@ -802,6 +802,8 @@ fn a_sweep_started_from_a_saved_state_continues_its_branch() {
     ]);
     assert!(!o.status.success());
     assert!(stderr(&o).contains("holds a (32, 32) grid"), "{}", stderr(&o));
+    // ... before anything is written.
+    assert!(!d.join("other").exists());
 }
 
 #[test]
