@@ -212,7 +212,7 @@ fn solve_adhesive(
     problem: &Problem,
     out: &Path,
 ) -> Result<()> {
-    let options = case.adhesive_options_for(control, problem);
+    let options = case.adhesive_options(control);
     let mut last = Instant::now();
     let mut progress = |it: usize, residual: f64| {
         if last.elapsed().as_secs_f64() > 1.0 {

@@ -66,6 +66,8 @@ pub enum Example {
     RoughSphere,
     /// The contact-mechanics challenge at 256^2 with its exponential adhesion, load-controlled.
     ChallengeSmall,
+    /// Rigid wave at Johnson's alpha 0.3, crests at Tabor parameter 3 (Johnson 1995).
+    WavyJkr,
 }
 
 impl Example {
@@ -88,6 +90,7 @@ impl Example {
                 "challenge-small",
                 include_str!("../../../data/examples/challenge-small.toml"),
             ),
+            Example::WavyJkr => ("wavy-jkr", include_str!("../../../data/examples/wavy-jkr.toml")),
         }
     }
 }
@@ -269,7 +272,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     }
     let done = rows.len().min(controls.len());
 
-    let options = case.adhesive_options_for(controls[0], &problem);
+    let options = case.adhesive_options(controls[0]);
     let max_step = path.max_step.or(problem.adhesive().then(|| problem.law.range()));
     if let Some(h) = max_step
         && !(h.is_finite() && h > 0.0)
@@ -396,16 +399,33 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
 
     let domain = problem.domain;
     let lj_z0 = case.z0.filter(|_| problem.adhesive());
-    let tabor = match (case.sphere_radius, lj_z0, case.work_of_adhesion) {
+    // A wave's crests are its spheres: Johnson's (1995) parameter and JKR pull-off come with it.
+    let wave = case.wave_amplitude.map(|amplitude| theory::wavy::Wave {
+        amplitude,
+        wavelength: domain.nx as f64 * domain.dx,
+        e_star: problem.e_star,
+        work_of_adhesion: case.work_of_adhesion.unwrap_or(0.0),
+    });
+    let radius = case.sphere_radius.or(wave.map(|w| w.crest_radius()));
+    let tabor = match (radius, lj_z0, case.work_of_adhesion) {
         (Some(r), Some(z0), Some(w0)) => Some(theory::tabor_parameter(r, w0, problem.e_star, z0)),
         _ => None,
     };
+    let johnson = wave.filter(|_| problem.adhesive()).map(|w| {
+        json!({
+            "johnson_parameter": w.johnson_alpha(),
+            "crest_radius": w.crest_radius(),
+            "full_contact_pressure": w.full_contact_pressure(),
+            "jkr_pull_off_mean_pressure": w.jkr_pull_off().0,
+            "pull_off_mean_pressure": summary.pull_off_force.map(|f| f / (domain.nx as f64 * domain.dx * domain.ny as f64 * domain.dy)),
+        })
+    });
     let range = problem.law.range();
     let json = json!({
         "path": path,
         "units": {
             "pull_off_force": "N", "pull_off_approach": "m", "jump_in_approach": "m",
-            "jump_out_approach": "m", "hysteresis_energy": "J", "lengths": "m",
+            "jump_out_approach": "m", "hysteresis_energy": "J", "lengths": "m", "pressures": "Pa",
             "curve.csv": "approach m, load N, mean_pressure Pa, central_gap m, wall_time_s s"
         },
         "law": problem.law.name(),
@@ -413,6 +433,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         "adhesive_range": problem.adhesive().then_some(range),
         "adhesive_range_per_cell": problem.adhesive().then_some(range / domain.dx.max(domain.dy)),
         "tabor_parameter": tabor,
+        "wave": johnson,
         "max_step": max_step,
         "warnings": problem.warnings,
         "steps": cycle.len(),
@@ -444,6 +465,15 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     println!("hysteresis energy     {:.6e} J", summary.hysteresis_energy);
     if let Some(mu) = tabor {
         println!("Tabor parameter       {mu:.4}");
+    }
+    if let (Some(w), Some(f)) = (wave.filter(|_| problem.adhesive()), summary.pull_off_force) {
+        let area = domain.nx as f64 * domain.dx * domain.ny as f64 * domain.dy;
+        println!(
+            "pull-off pressure     {:.6e} Pa; Johnson's JKR wave (alpha {:.4}): {:.6e} Pa",
+            f / area,
+            w.johnson_alpha(),
+            w.jkr_pull_off().0
+        );
     }
     println!("wrote {}/curve.csv, summary.json", out.display());
     let failed = cycle.iter().filter(|p| !p.converged).count();

@@ -79,6 +79,24 @@ enum Model {
         #[arg(long)]
         max_approach: f64,
     },
+    /// Rigid wave A cos(2 pi x / lambda) on an elastic half-space (plane strain): Westergaard's
+    /// and Johnson's (1995) JKR mean pressure [Pa] against the contact strip's half-width a
+    /// [m] (one strip per wavelength); the summary gives Johnson's alpha, the pull-off and the
+    /// snap to complete contact. Compare `roughcontact sweep --example wavy-jkr`.
+    Wavy {
+        /// Amplitude A [m] (half the peak-to-valley height).
+        #[arg(long)]
+        amplitude: f64,
+        /// Wavelength lambda [m].
+        #[arg(long)]
+        wavelength: f64,
+        /// Composite modulus E* [Pa].
+        #[arg(long)]
+        modulus: f64,
+        /// Work of adhesion w0 [J/m^2] (0: Westergaard's problem alone).
+        #[arg(long, default_value_t = 0.0)]
+        work_of_adhesion: f64,
+    },
     /// Relative contact area of a nominally flat rough surface against the reduced pressure
     /// p/(E* g_bar): Persson's erf law and Müser's formula (the paper's Eq. 14, corrected).
     Area {
@@ -241,6 +259,94 @@ fn sticky(
     Ok(())
 }
 
+fn wavy(a: &TheoryArgs, w: &theory::wavy::Wave) -> Result<()> {
+    let lengths = [w.amplitude, w.wavelength, w.e_star];
+    if !(lengths.iter().all(|v| v.is_finite() && *v > 0.0)
+        && w.work_of_adhesion.is_finite()
+        && w.work_of_adhesion >= 0.0)
+    {
+        bail!("--amplitude, --wavelength and --modulus must be finite and > 0, --work-of-adhesion >= 0");
+    }
+    let mut out = open(a)?;
+    let p_star = w.full_contact_pressure();
+    if a.summary {
+        let adhesive = w.work_of_adhesion > 0.0;
+        let (pull_off, a_pull) = w.jkr_pull_off();
+        let (snap, a_snap) = w.jkr_snap_to_full_contact();
+        if a.json {
+            let v = json!({
+                "model": "wavy", "units": "pressures in Pa (tensile < 0), half-widths in m",
+                "full_contact_pressure": p_star,
+                "crest_radius": w.crest_radius(),
+                "johnson_parameter": w.johnson_alpha(),
+                "jkr_pull_off_mean_pressure": adhesive.then_some(pull_off),
+                "jkr_pull_off_half_width": adhesive.then_some(a_pull),
+                "jkr_snap_mean_pressure": adhesive.then_some(snap),
+                "jkr_snap_half_width": adhesive.then_some(a_snap),
+            });
+            writeln!(out, "{}", serde_json::to_string_pretty(&v)?)?;
+        } else {
+            writeln!(out, "Rigid wave on a half-space (Westergaard; Johnson 1995)")?;
+            writeln!(out, "full-contact pressure p*    {p_star:.6e} Pa")?;
+            writeln!(out, "crest radius                {:.6e} m", w.crest_radius())?;
+            if adhesive {
+                writeln!(out, "Johnson's alpha             {:.6}", w.johnson_alpha())?;
+                writeln!(
+                    out,
+                    "JKR pull-off                {pull_off:.6e} Pa at half-width {a_pull:.4e} m"
+                )?;
+                writeln!(
+                    out,
+                    "JKR snap to full contact    {snap:.6e} Pa at half-width {a_snap:.4e} m{}",
+                    if snap < 0.0 {
+                        " (negative: the wave sticks once it touches)"
+                    } else {
+                        ""
+                    }
+                )?;
+            }
+        }
+        return Ok(());
+    }
+    writeln!(
+        out,
+        "half_width_m,contact_fraction,westergaard_pressure_pa,jkr_pressure_pa"
+    )?;
+    let (mut p1, mut p2) = (Vec::new(), Vec::new());
+    // Up to (not at) complete contact, where Johnson's correction diverges.
+    for k in 0..a.points {
+        let half = 0.5 * w.wavelength * k as f64 / a.points as f64;
+        let (pw, pj) = (w.westergaard_pressure(half), w.jkr_pressure(half));
+        let fraction = 2.0 * half / w.wavelength;
+        writeln!(out, "{half:e},{fraction:e},{pw:e},{pj:e}")?;
+        p1.push((fraction, pw / p_star));
+        p2.push((fraction, pj / p_star));
+    }
+    if let Some(path) = &a.plot {
+        crate::plot::lines(
+            path,
+            &format!("rigid wave, Johnson's alpha = {:.3}", w.johnson_alpha()),
+            "contact fraction 2a/lambda",
+            "mean pressure p/p*",
+            &[
+                crate::plot::Series {
+                    label: "Westergaard",
+                    points: p1,
+                    markers: false,
+                    color: plotters::style::RGBColor(31, 119, 180),
+                },
+                crate::plot::Series {
+                    label: "JKR (Johnson 1995)",
+                    points: p2,
+                    markers: false,
+                    color: plotters::style::RGBColor(214, 39, 40),
+                },
+            ],
+        )?;
+    }
+    Ok(())
+}
+
 fn greenwood(
     a: &TheoryArgs,
     mu: f64,
@@ -357,6 +463,20 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
             max_approach,
         } => return hertz(&a, radius, modulus, max_approach),
         Model::Area { k, max_pressure } => return area(&a, k, max_pressure),
+        Model::Wavy {
+            amplitude,
+            wavelength,
+            modulus,
+            work_of_adhesion,
+        } => {
+            let wave = theory::wavy::Wave {
+                amplitude,
+                wavelength,
+                e_star: modulus,
+                work_of_adhesion,
+            };
+            return wavy(&a, &wave);
+        }
         Model::Sticky {
             work_of_adhesion,
             modulus,
@@ -391,7 +511,11 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
         Model::Maugis { .. } => bail!("give exactly one of --lambda or --tabor"),
         Model::Jkr => (1e7, None),
         Model::Dmt => (1e-7, None),
-        Model::Greenwood { .. } | Model::Hertz { .. } | Model::Area { .. } | Model::Sticky { .. } => {
+        Model::Greenwood { .. }
+        | Model::Hertz { .. }
+        | Model::Area { .. }
+        | Model::Sticky { .. }
+        | Model::Wavy { .. } => {
             unreachable!("handled above")
         }
     };

@@ -73,11 +73,16 @@ pub fn sphere(
             }
         };
     }
+    with_roughness(g0, heights)
+}
+
+/// `g0 - heights` (the roughness carried by a curved counterface), shifted to first touch.
+fn with_roughness(mut g0: Array2<f64>, heights: Option<ArrayView2<f64>>) -> Result<Array2<f64>> {
     if let Some(h) = heights {
-        if h.dim() != domain.shape() {
+        if h.dim() != g0.dim() {
             return Err(SolverError::ShapeMismatch {
                 what: "heights",
-                expected: domain.shape(),
+                expected: g0.dim(),
                 got: h.dim(),
             });
         }
@@ -88,10 +93,12 @@ pub fn sphere(
 }
 
 /// A rigid one-dimensional wave of amplitude `amplitude` [m] (half its peak-to-valley
-/// height) and one wavelength across the domain's x side, crest centred on the grid:
-/// `g0 = amplitude (1 - cos(2 pi (x - x_c) / length_x))`. On a periodic domain this is the
-/// Westergaard / Johnson (1995) problem of a wavy surface (`theory::wavy`).
-pub fn wave(domain: &Domain, amplitude: f64) -> Result<Array2<f64>> {
+/// height) and one wavelength across the domain's x side, crest centred on the grid
+/// (optionally carrying the roughness `heights` [m], peaks towards the half-space):
+/// `g0 = amplitude (1 - cos(2 pi (x - x_c) / length_x)) - H`, shifted to first touch. On a
+/// periodic domain the smooth wave is the Westergaard / Johnson (1995) problem of a wavy
+/// surface (`theory::wavy`).
+pub fn wave(domain: &Domain, amplitude: f64, heights: Option<ArrayView2<f64>>) -> Result<Array2<f64>> {
     if !(amplitude.is_finite() && amplitude > 0.0) {
         return Err(invalid("wave_amplitude", amplitude, "must be finite and > 0 m"));
     }
@@ -101,5 +108,5 @@ pub fn wave(domain: &Domain, amplitude: f64) -> Result<Array2<f64>> {
         let phase = 2.0 * std::f64::consts::PI * (i as f64 - centre) / domain.nx as f64;
         *g = amplitude * (1.0 - phase.cos());
     }
-    Ok(shift_to_zero(g0))
+    with_roughness(g0, heights)
 }

@@ -45,7 +45,7 @@ fn wave_case(mu: f64, alpha: f64, n: usize) -> (Periodic, Array2<f64>, Wave) {
         dy: dx,
         periodic: true,
     };
-    let g0 = wave(&domain, amplitude).unwrap();
+    let g0 = wave(&domain, amplitude, None).unwrap();
     (Periodic::new(domain, E).unwrap(), g0, theory)
 }
 
