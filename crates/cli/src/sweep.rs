@@ -411,13 +411,18 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         (Some(r), Some(z0), Some(w0)) => Some(theory::tabor_parameter(r, w0, problem.e_star, z0)),
         _ => None,
     };
-    let johnson = wave.filter(|_| problem.adhesive()).map(|w| {
+    let wave = wave.filter(|_| problem.adhesive());
+    // A wave's pull-off as the mean pressure over its (periodic) box [Pa].
+    let pull_off_pressure = summary
+        .pull_off_force
+        .map(|f| f / (domain.nx as f64 * domain.dx * domain.ny as f64 * domain.dy));
+    let johnson = wave.map(|w| {
         json!({
             "johnson_parameter": w.johnson_alpha(),
             "crest_radius": w.crest_radius(),
             "full_contact_pressure": w.full_contact_pressure(),
             "jkr_pull_off_mean_pressure": w.jkr_pull_off().0,
-            "pull_off_mean_pressure": summary.pull_off_force.map(|f| f / (domain.nx as f64 * domain.dx * domain.ny as f64 * domain.dy)),
+            "pull_off_mean_pressure": pull_off_pressure,
         })
     });
     let range = problem.law.range();
@@ -466,11 +471,9 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     if let Some(mu) = tabor {
         println!("Tabor parameter       {mu:.4}");
     }
-    if let (Some(w), Some(f)) = (wave.filter(|_| problem.adhesive()), summary.pull_off_force) {
-        let area = domain.nx as f64 * domain.dx * domain.ny as f64 * domain.dy;
+    if let (Some(w), Some(p)) = (wave, pull_off_pressure) {
         println!(
-            "pull-off pressure     {:.6e} Pa; Johnson's JKR wave (alpha {:.4}): {:.6e} Pa",
-            f / area,
+            "pull-off pressure     {p:.6e} Pa; Johnson's JKR wave (alpha {:.4}): {:.6e} Pa",
             w.johnson_alpha(),
             w.jkr_pull_off().0
         );
