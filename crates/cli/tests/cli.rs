@@ -931,3 +931,26 @@ fn the_wavy_jkr_example_pulls_off_at_johnsons_pressure() {
         assert!(stderr(&o).contains(needle), "{}", stderr(&o));
     }
 }
+
+#[test]
+fn a_box_that_cuts_the_tail_says_how_much() {
+    // jkr-sphere's box ends at a gap of 4.92 z0; the Lennard-Jones tail beyond it holds
+    // -V(4.92 z0) / w0 = 3.8 % of w0 (an independent evaluation of the 9-3 energy at the
+    // atomic separation g + z0: V/w0 = (z0/z)^8 / 3 - 4 (z0/z)^2 / 3).
+    let d = dir("tail");
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "jkr-sphere",
+        "--approaches=-9e-9",
+        "--no-png",
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let edge: f64 = (100.0f64 - 100.0 / 128.0).powi(2) / 2000.0; // (half-box minus half a cell)^2 / 2R [z0]
+    let z: f64 = 1.0 / (edge + 1.0);
+    let share = 4.0 / 3.0 * z.powi(2) - z.powi(8) / 3.0;
+    let text = format!("the law holds {:.1} % of w0", 100.0 * share);
+    assert!(stderr(&o).contains(&text), "{text}: {}", stderr(&o));
+}
