@@ -175,25 +175,12 @@ fn area(a: &TheoryArgs, k: f64, max: f64) -> Result<()> {
         p2.push((x, am));
     }
     if let Some(path) = &a.plot {
-        crate::plot::lines(
+        draw_curves(
             path,
             "relative contact area",
             "p / (E* g_bar)",
             "a_r",
-            &[
-                crate::plot::Series {
-                    label: "Persson",
-                    points: p1,
-                    markers: false,
-                    color: plotters::style::RGBColor(31, 119, 180),
-                },
-                crate::plot::Series {
-                    label: "Müser",
-                    points: p2,
-                    markers: false,
-                    color: plotters::style::RGBColor(214, 39, 40),
-                },
-            ],
+            vec![("Persson", p1), ("Müser", p2)],
         )?;
     }
     Ok(())
@@ -323,25 +310,12 @@ fn wavy(a: &TheoryArgs, w: &theory::wavy::Wave) -> Result<()> {
         p2.push((fraction, pj / p_star));
     }
     if let Some(path) = &a.plot {
-        crate::plot::lines(
+        draw_curves(
             path,
             &format!("rigid wave, Johnson's alpha = {:.3}", w.johnson_alpha()),
             "contact fraction 2a/lambda",
             "mean pressure p/p*",
-            &[
-                crate::plot::Series {
-                    label: "Westergaard",
-                    points: p1,
-                    markers: false,
-                    color: plotters::style::RGBColor(31, 119, 180),
-                },
-                crate::plot::Series {
-                    label: "JKR (Johnson 1995)",
-                    points: p2,
-                    markers: false,
-                    color: plotters::style::RGBColor(214, 39, 40),
-                },
-            ],
+            vec![("Westergaard", p1), ("JKR (Johnson 1995)", p2)],
         )?;
     }
     Ok(())
@@ -428,18 +402,30 @@ fn open(a: &TheoryArgs) -> Result<Box<dyn Write>> {
 }
 
 fn draw(path: &std::path::Path, title: &str, x: &str, y: &str, points: Vec<(f64, f64)>) -> Result<()> {
-    crate::plot::lines(
-        path,
-        title,
-        x,
-        y,
-        &[crate::plot::Series {
-            label: "theory",
+    draw_curves(path, title, x, y, vec![("theory", points)])
+}
+
+/// Several labelled curves on one chart, coloured in turn.
+fn draw_curves(
+    path: &std::path::Path,
+    title: &str,
+    x: &str,
+    y: &str,
+    curves: Vec<(&'static str, Vec<(f64, f64)>)>,
+) -> Result<()> {
+    use plotters::style::RGBColor;
+    const COLORS: [RGBColor; 2] = [RGBColor(31, 119, 180), RGBColor(214, 39, 40)];
+    let series: Vec<crate::plot::Series> = curves
+        .into_iter()
+        .zip(COLORS.iter().cycle())
+        .map(|((label, points), &color)| crate::plot::Series {
+            label,
             points,
             markers: false,
-            color: plotters::style::RGBColor(31, 119, 180),
-        }],
-    )
+            color,
+        })
+        .collect();
+    crate::plot::lines(path, title, x, y, &series)
 }
 
 pub fn theory(a: TheoryArgs) -> Result<()> {
