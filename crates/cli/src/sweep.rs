@@ -415,7 +415,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     // A wave's pull-off as the mean pressure over its (periodic) box [Pa].
     let pull_off_pressure = summary
         .pull_off_force
-        .map(|f| f / (domain.nx as f64 * domain.dx * domain.ny as f64 * domain.dy));
+        .map(|f| f / (domain.cell_area() * (domain.nx * domain.ny) as f64));
     let johnson = wave.map(|w| {
         json!({
             "johnson_parameter": w.johnson_alpha(),

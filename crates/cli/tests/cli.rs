@@ -16,6 +16,11 @@ fn dir(name: &str) -> PathBuf {
     d
 }
 
+/// `roughcontact sweep --example NAME --no-png --out OUT EXTRA...`.
+fn sweep_example(name: &str, out: &str, extra: &[&str]) -> Output {
+    roughcontact(&[&["sweep", "--example", name, "--no-png", "--out", out][..], extra].concat())
+}
+
 fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
@@ -652,18 +657,11 @@ fn sweep_refuses_bad_paths_and_warns_about_coarse_grids() {
     assert!(o.status.success());
     assert!(stdout(&o).contains("mean_pressures"));
     let d = dir("coarse");
-    let o = roughcontact(&[
-        "sweep",
-        "--example",
+    let o = sweep_example(
         "challenge-small",
-        "--n",
-        "32",
-        "--mean-pressures",
-        "2.5e5",
-        "--no-png",
-        "--out",
         d.join("c").to_str().unwrap(),
-    ]);
+        &["--n", "32", "--mean-pressures", "2.5e5"],
+    );
     assert!(stderr(&o).contains("process-zone"), "{}", stderr(&o));
     let o = roughcontact(&[
         "sweep",
@@ -682,15 +680,7 @@ fn sweep_refuses_bad_paths_and_warns_about_coarse_grids() {
 fn long_sweep_steps_are_split_into_substeps_of_the_range() {
     // dmt-sphere's z0 is 1 nm: a 3 nm step takes two substeps first.
     let d = dir("substeps");
-    let o = roughcontact(&[
-        "sweep",
-        "--example",
-        "dmt-sphere",
-        "--approaches=-2e-9,1e-9",
-        "--no-png",
-        "--out",
-        d.to_str().unwrap(),
-    ]);
+    let o = sweep_example("dmt-sphere", d.to_str().unwrap(), &["--approaches=-2e-9,1e-9"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("note: 2 substeps"), "{}", stderr(&o));
     assert_eq!(json(&d.join("summary.json"))["max_step"], 1e-9);
@@ -720,31 +710,17 @@ fn auto_takes_newton_for_the_surface_law_under_approach_control() {
         assert!(o.status.success(), "{}", stderr(&o));
         assert_eq!(json(&out.join("summary.json"))["solver"], "newton", "{name}");
     }
-    let o = roughcontact(&[
-        "sweep",
-        "--example",
-        "jkr-sphere",
-        "--approaches=-4e-9,-3e-9",
-        "--no-png",
-        "--out",
-        d.to_str().unwrap(),
-    ]);
+    let o = sweep_example("jkr-sphere", d.to_str().unwrap(), &["--approaches=-4e-9,-3e-9"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let summary = json(&d.join("summary.json"));
     assert_eq!(summary["solver"], "newton");
     assert_eq!(summary["converged"], true);
     // ... and not where the user chose.
-    let o = roughcontact(&[
-        "sweep",
-        "--example",
+    let o = sweep_example(
         "jkr-sphere",
-        "--approaches=-4e-9",
-        "--solver",
-        "dual-loop",
-        "--no-png",
-        "--out",
         d.join("chosen").to_str().unwrap(),
-    ]);
+        &["--approaches=-4e-9", "--solver", "dual-loop"],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(json(&d.join("chosen/summary.json"))["solver"], "dual-loop");
 }
@@ -755,19 +731,17 @@ fn a_bistable_unloading_step_settles() {
     // between contact and separation; Anderson mixing alone orbited there for 20000 outer
     // iterations. The stall detection hands over to damped relaxation, which settles.
     let d = dir("bistable");
-    let o = roughcontact(&[
-        "sweep",
-        "--example",
+    let o = sweep_example(
         "rough-sphere",
-        "--approaches=-1e-9,-1.5e-9",
-        "--solver",
-        "accelerated",
-        "--max-iterations",
-        "2000",
-        "--no-png",
-        "--out",
         d.join("r").to_str().unwrap(),
-    ]);
+        &[
+            "--approaches=-1e-9,-1.5e-9",
+            "--solver",
+            "accelerated",
+            "--max-iterations",
+            "2000",
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(json(&d.join("r/summary.json"))["converged"], true);
 }
@@ -863,14 +837,7 @@ fn the_dmt_sphere_example_has_no_jumps() {
     // coincide, with no jump in or out. (The accelerated loop at its default tolerance, which
     // `auto` took here before, reported a jump in at -1.0 nm and out at -1.1 nm.)
     let d = dir("dmt");
-    let o = roughcontact(&[
-        "sweep",
-        "--example",
-        "dmt-sphere",
-        "--no-png",
-        "--out",
-        d.to_str().unwrap(),
-    ]);
+    let o = sweep_example("dmt-sphere", d.to_str().unwrap(), &[]);
     assert!(o.status.success(), "{}", stderr(&o));
     let s = json(&d.join("summary.json"));
     assert!(s["jump_in_approach"].is_null(), "{s}");
@@ -889,14 +856,7 @@ fn the_wavy_jkr_example_pulls_off_at_johnsons_pressure() {
     // unloading branch holds on to its fold (-7 z0; the accelerated loop left it at -5 z0, its
     // pull-off 2 % short) and pulls off within 1 % of Johnson's JKR mean pressure.
     let d = dir("wavy");
-    let o = roughcontact(&[
-        "sweep",
-        "--example",
-        "wavy-jkr",
-        "--no-png",
-        "--out",
-        d.to_str().unwrap(),
-    ]);
+    let o = sweep_example("wavy-jkr", d.to_str().unwrap(), &[]);
     assert!(o.status.success(), "{}", stderr(&o));
     let s = json(&d.join("summary.json"));
     assert_eq!(s["solver"], "newton");
@@ -919,14 +879,7 @@ fn the_wavy_jkr_example_pulls_off_at_johnsons_pressure() {
         (&["--domain", "free"][..], "periodic"),
         (&["--sphere-radius", "1e-6"][..], "not both"),
     ] {
-        let o = roughcontact(
-            &[
-                &["sweep", "--example", "wavy-jkr", "--approaches=0", "--out"][..],
-                &[d.join("refused").to_str().unwrap()],
-                extra,
-            ]
-            .concat(),
-        );
+        let o = sweep_example("wavy-jkr", d.join("refused").to_str().unwrap(), extra);
         assert!(!o.status.success());
         assert!(stderr(&o).contains(needle), "{}", stderr(&o));
     }
@@ -938,15 +891,7 @@ fn a_box_that_cuts_the_tail_says_how_much() {
     // -V(4.92 z0) / w0 = 3.8 % of w0 (an independent evaluation of the 9-3 energy at the
     // atomic separation g + z0: V/w0 = (z0/z)^8 / 3 - 4 (z0/z)^2 / 3).
     let d = dir("tail");
-    let o = roughcontact(&[
-        "sweep",
-        "--example",
-        "jkr-sphere",
-        "--approaches=-9e-9",
-        "--no-png",
-        "--out",
-        d.to_str().unwrap(),
-    ]);
+    let o = sweep_example("jkr-sphere", d.to_str().unwrap(), &["--approaches=-9e-9"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let edge: f64 = (100.0f64 - 100.0 / 128.0).powi(2) / 2000.0; // (half-box minus half a cell)^2 / 2R [z0]
     let z: f64 = 1.0 / (edge + 1.0);
