@@ -4,9 +4,9 @@
 //! p/(E* g_bar), and the gap along the mid cross-section.
 
 use anyhow::{Context as _, Result};
-use roughcontact::case::{Case, DomainKind, LawKind};
+use crate::case::{Case, Law};
 use serde::{Deserialize, Serialize};
-use solver::{AdhesiveState, ContactState, Control, Start, solve, solve_adhesive};
+use solver::{AdhesiveState, ContactOptions, ContactState, Control, Settings, Start};
 use std::path::PathBuf;
 
 /// The challenge's box [m], modulus [Pa], and adhesion (work [J/m^2], exponential range [m]).
@@ -20,9 +20,8 @@ pub const RANGE: f64 = 2.071e-9;
 /// whichever is longer (a coarser grid cannot carry shorter waves).
 pub fn case(n: usize, g_bar: f64, surface: Option<&PathBuf>) -> Case {
     let mut c = Case {
-        modulus: Some(MODULUS),
+        modulus: MODULUS,
         length: Some(LENGTH),
-        domain: Some(DomainKind::Periodic),
         ..Case::default()
     };
     match surface {
@@ -91,10 +90,8 @@ impl Run {
     /// adhesive run takes an hour).
     pub fn solve(&self, log: bool) -> Result<Outcome> {
         let (rms_gradient, local_radius, rms_height, cell) = crate::surface_statistics(&self.case)?;
-        let mut case = self.case.clone();
-        case.fill_defaults();
-        let p = case.build()?;
-        let (ny, nx) = p.g0.dim();
+        let p = self.case.build()?;
+        let (ny, nx) = p.initial_gap.dim();
         let mut points = Vec::new();
         let mut profile = Vec::new();
         let mut keep = |reduced: f64, gap: &ndarray::Array2<f64>| {
@@ -105,36 +102,28 @@ impl Run {
         let mean = |a: &ndarray::Array2<f64>| a.iter().sum::<f64>() / a.len() as f64;
         let mut unloading = Vec::new();
         if p.adhesive() {
-            let options = case.adhesive_options(Control::MeanPressure(0.0));
+            let settings = Settings::default();
             let mut state: Option<AdhesiveState> = None;
             for (loading, loads) in [(true, &self.reduced), (false, &self.unloading)] {
                 for &r in loads {
-                    let control = Control::MeanPressure(r * p.e_star * rms_gradient);
+                    let control = Control::MeanPressure(r * p.e_star() * rms_gradient);
                     let start = match &state {
                         Some(s) => Start::Warm(s),
                         None => Start::Loading,
                     };
-                    let (s, rep) = solve_adhesive(
-                        p.op.as_ref(),
-                        p.law.as_ref(),
-                        p.g0.view(),
-                        control,
-                        &options,
-                        start,
-                    )
-                    .with_context(|| format!("p/(E* g) = {r}"))?;
+                    let (s, rep) = p
+                        .solve(control, &settings, start, &mut ())
+                        .with_context(|| format!("p/(E* g) = {r}"))?;
                     // The profile is the loading branch's.
                     if loading {
                         keep(r, &s.contact.gap);
                     }
                     if log {
                         eprintln!(
-                            "challenge {nx}^2 adhesive, {} p/(E* g) = {r}: contact {:.4}, {} outer and {} inner \
-                             iterations, {:.0} s, {:?}",
+                            "challenge {nx}^2 adhesive, {} p/(E* g) = {r}: contact {:.4}, {:?}, {:.0} s, {:?}",
                             if loading { "loading" } else { "unloading" },
                             rep.contact_area_fraction,
-                            rep.outer_iterations,
-                            rep.inner_iterations,
+                            rep.iterations,
                             rep.wall_time_s,
                             rep.termination
                         );
@@ -146,18 +135,19 @@ impl Run {
                         contact_area_fraction: rep.contact_area_fraction,
                         mean_gap: mean(&s.contact.gap),
                         converged: rep.converged(),
-                        iterations: rep.outer_iterations,
+                        iterations: rep.iterations.count(),
                         wall_time_s: rep.wall_time_s,
                     });
                     state = Some(s);
                 }
             }
         } else {
-            let options = case.contact_options();
+            let options = ContactOptions::default();
             let mut state: Option<ContactState> = None;
             for &r in &self.reduced {
-                let control = Control::MeanPressure(r * p.e_star * rms_gradient);
-                let (s, rep) = solve(p.op.as_ref(), p.g0.view(), control, &options, state.as_ref())
+                let control = Control::MeanPressure(r * p.e_star() * rms_gradient);
+                let (s, rep) = p
+                    .solve_without_adhesion(control, &options, state.as_ref(), &mut ())
                     .with_context(|| format!("p/(E* g) = {r}"))?;
                 keep(r, &s.gap);
                 points.push(LoadPoint {
@@ -187,7 +177,7 @@ impl Run {
 
 /// The challenge case with its exponential adhesion of work `w0` [J/m^2].
 pub fn adhesive(mut case: Case, w0: f64) -> Case {
-    case.law = Some(LawKind::Exponential);
+    case.law = Some(Law::Exponential);
     case.work_of_adhesion = Some(w0);
     case.range = Some(RANGE);
     case

@@ -44,7 +44,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             })?;
             let (pressure, compressive) = last.expect("the path has steps");
             let end = steps.last().expect("the path has steps");
-            let law = p.setup.case().build()?.law;
+            let law = p.setup.case().law()?;
             Ok(Field {
                 n: p.setup.n,
                 pressure,

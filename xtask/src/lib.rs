@@ -9,6 +9,7 @@
 //! this machine affords, stated in each figure's report.
 
 pub mod cache;
+pub mod case;
 pub mod challenge;
 pub mod fig05;
 pub mod fig06;
@@ -20,6 +21,10 @@ pub mod fig11;
 pub mod fig12;
 pub mod fig13;
 pub mod fig14;
+/// The command line's plotting module, compiled in from its source: one style for both.
+#[path = "../../crates/cli/src/plot.rs"]
+#[allow(dead_code)]
+mod plot;
 pub mod report;
 pub mod rough_sphere;
 pub mod sphere;
@@ -147,18 +152,15 @@ pub fn figures(options: Options) -> Result<Vec<FigureReport>> {
     Ok(reports)
 }
 
-/// Statistics of the roughness behind `case` (its heights on a periodic flat, without sphere
-/// or adhesion): RMS gradient [-], local radius (inverse RMS curvature) [m], Rq [m], cell [m].
-pub fn surface_statistics(case: &roughcontact::case::Case) -> Result<(f64, f64, f64, f64)> {
-    let mut flat = case.clone();
-    flat.law = None;
-    flat.work_of_adhesion = None;
-    flat.sphere_radius = None;
-    flat.domain = Some(roughcontact::case::DomainKind::Periodic);
-    flat.fill_defaults();
-    let p = flat.build()?;
-    let d = p.domain;
-    let grid = surfgen::Grid::new(d.nx, d.ny, d.dx * d.nx as f64, d.dy * d.ny as f64)?;
-    let s = surfgen::statistics(p.g0.view(), &grid, true, None);
-    Ok((s.rms_gradient, s.local_radius, s.heights.rms_height, d.dx))
+/// Statistics of the roughness behind `case` (its heights alone, periodic): RMS gradient
+/// [-], local radius (inverse RMS curvature) [m], Rq [m], cell [m].
+pub fn surface_statistics(case: &case::Case) -> Result<(f64, f64, f64, f64)> {
+    let (h, lx, ly) = case.heights()?.context("the case has no roughness")?;
+    let (ny, nx) = h.dim();
+    let grid = surfgen::Grid::new(nx, ny, lx, ly)?;
+    // The gap of a flat on the heights, as the problem sees it (`max(H) - H`).
+    let top = h.fold(f64::NEG_INFINITY, |m, &v| m.max(v));
+    let g0 = h.mapv(|v| top - v);
+    let s = surfgen::statistics(g0.view(), &grid, true, None);
+    Ok((s.rms_gradient, s.local_radius, s.heights.rms_height, grid.dx()))
 }

@@ -9,9 +9,9 @@
 //! coarse steps and refined around the minimum.
 
 use anyhow::Result;
-use roughcontact::case::{Case, DomainKind, LawKind};
+use crate::case::{Case, Law};
 use serde::{Deserialize, Serialize};
-use solver::{AdhesiveState, Control, Start, solve_adhesive};
+use solver::{AdhesiveState, Control, Settings, Start};
 use std::f64::consts::PI;
 
 pub const RADIUS: f64 = 1e-4;
@@ -127,13 +127,12 @@ impl Job {
         let l = self.length();
         let mut c = Case {
             sphere_radius: Some(RADIUS),
-            modulus: Some(MODULUS),
-            law: Some(LawKind::Point),
+            modulus: MODULUS,
+            law: Some(Law::Point),
             work_of_adhesion: Some(self.w0()),
             z0: Some(Z0),
             n: Some(self.n),
             length: Some(l),
-            domain: Some(DomainKind::Free),
             ..Case::default()
         };
         if self.rq > 0.0 {
@@ -143,17 +142,16 @@ impl Job {
             c.cutoff_wavelength = Some(self.cutoff_cells * l / self.n as f64);
             c.seed = Some(self.seed);
         }
-        c.fill_defaults();
         c
     }
 
     pub fn solve(&self) -> Result<Outcome> {
         let case = self.case();
         let p = case.build()?;
-        let options = solver::AdhesiveOptions {
+        let settings = Settings {
             tolerance: self.tolerance,
-            max_outer_iterations: 5000,
-            ..case.adhesive_options(Control::Approach(0.0))
+            max_iterations: 5000,
+            ..Settings::default()
         };
         let (rms_gradient, rq) = if self.rq > 0.0 {
             let (g, _, rq, _) = crate::surface_statistics(&case)?;
@@ -166,14 +164,7 @@ impl Job {
         let mut wall = 0.0;
         let mut step = |alpha: f64, from: Option<&AdhesiveState>| -> Result<(AdhesiveState, f64)> {
             let start = from.map_or(Start::Loading, Start::Warm);
-            let (s, r) = solve_adhesive(
-                p.op.as_ref(),
-                p.law.as_ref(),
-                p.g0.view(),
-                Control::Approach(alpha * Z0),
-                &options,
-                start,
-            )?;
+            let (s, r) = p.solve(Control::Approach(alpha * Z0), &settings, start, &mut ())?;
             steps += 1;
             all_converged &= r.converged();
             wall += r.wall_time_s;

@@ -3,9 +3,9 @@
 //! units of 2 pi R w0 and approaches in units of z0, as Greenwood (1997) plots them.
 
 use anyhow::Result;
-use roughcontact::case::{Case, DomainKind, LawKind};
+use crate::case::{Case, Law};
 use serde::{Deserialize, Serialize};
-use solver::{AdhesiveState, Control, SweepPoint, sweep};
+use solver::{AdhesiveState, ContactProblem, Control, Observer, Settings, SweepPoint};
 use std::f64::consts::PI;
 
 pub const RADIUS: f64 = 1e-6;
@@ -34,19 +34,16 @@ impl Setup {
     }
 
     pub fn case(&self) -> Case {
-        let mut c = Case {
+        Case {
             sphere_radius: Some(RADIUS),
-            modulus: Some(MODULUS),
-            law: Some(LawKind::Surface),
+            modulus: MODULUS,
+            law: Some(Law::Surface),
             work_of_adhesion: Some(self.work_of_adhesion()),
             z0: Some(Z0),
             n: Some(self.n),
             length: Some(2.0 * self.half_width * Z0),
-            domain: Some(DomainKind::Free),
             ..Case::default()
-        };
-        c.fill_defaults();
-        c
+        }
     }
 
     /// The load unit 2 pi R w0 [N].
@@ -102,30 +99,22 @@ impl Path {
 
     /// Solves the path with continuation; `on_state` sees every step's state.
     pub fn solve_with(&self, on_state: &mut dyn FnMut(usize, &AdhesiveState)) -> Result<Vec<Step>> {
-        let case = self.setup.case();
-        self.sweep_on(&case, &case.build()?, None, on_state)
+        self.sweep_on(&self.setup.case().build()?, None, on_state)
     }
 
     /// Sweeps this path's controls on an already built problem, from `start`.
     fn sweep_on(
         &self,
-        case: &Case,
-        p: &roughcontact::case::Problem,
+        p: &ContactProblem,
         start: Option<AdhesiveState>,
         on_state: &mut dyn FnMut(usize, &AdhesiveState),
     ) -> Result<Vec<Step>> {
-        let points = sweep(
-            p.op.as_ref(),
-            p.law.as_ref(),
-            p.g0.view(),
+        let points = p.sweep(
             &self.controls(),
-            &case.adhesive_options(self.controls()[0]),
             None,
+            &Settings::default(),
             start,
-            &mut |k, _: &SweepPoint, s| {
-                on_state(k, s);
-                true
-            },
+            &mut States(on_state),
         )?;
         Ok(points.iter().map(|q| self.step(q)).collect())
     }
@@ -147,10 +136,9 @@ impl Path {
     /// times finer steps (the pull-off of a DMT-like sphere sits in a sharp corner). The
     /// refined steps follow the path's own in the result.
     pub fn solve(&self) -> Result<Vec<Step>> {
-        let case = self.setup.case();
-        let p = case.build()?;
+        let p = self.setup.case().build()?;
         let mut states = Vec::new();
-        let mut steps = self.sweep_on(&case, &p, None, &mut |_, s| states.push(s.clone()))?;
+        let mut steps = self.sweep_on(&p, None, &mut |_, s| states.push(s.clone()))?;
         let k = (1..steps.len().saturating_sub(1))
             .filter(|&k| steps[k].unloading && steps[k - 1].unloading)
             .min_by(|&a, &b| steps[a].load.total_cmp(&steps[b].load));
@@ -161,7 +149,7 @@ impl Path {
                 by: By::Approach,
                 values: (1..20).map(|j| a + (b - a) * j as f64 / 20.0).collect(),
             };
-            let refined = fine.sweep_on(&case, &p, Some(states[k - 1].clone()), &mut |_, _| {})?;
+            let refined = fine.sweep_on(&p, Some(states[k - 1].clone()), &mut |_, _| {})?;
             steps.extend(refined.into_iter().map(|q| Step {
                 unloading: true,
                 refined: true,
@@ -623,5 +611,15 @@ mod tests {
         // Between 0.5 and 2.0 on the last (increasing) segment.
         assert_eq!(interpolate(pts[2..].iter().copied(), 1.25), Some(2.5));
         assert_eq!(interpolate(pts.iter().copied(), 5.0), None);
+    }
+}
+
+/// Hands every step's state to a closure.
+struct States<'a>(&'a mut dyn FnMut(usize, &AdhesiveState));
+
+impl Observer for States<'_> {
+    fn step(&mut self, k: usize, _: &SweepPoint, state: &AdhesiveState) -> bool {
+        (self.0)(k, state);
+        true
     }
 }

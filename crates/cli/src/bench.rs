@@ -89,7 +89,7 @@ pub fn bench(a: BenchArgs) -> Result<()> {
             max_iterations: a.max_iterations,
         };
         let t = Instant::now();
-        let (state, rep) = solver::solve(&op, g0.view(), Control::MeanPressure(a.pressure), &opts, None)?;
+        let (state, rep) = solver::cg::solve(&op, g0.view(), Control::MeanPressure(a.pressure), &opts, None, &mut ())?;
         let time = t.elapsed().as_secs_f64();
         let peak = peak_rss().map(|b| b as f64 / 1e6);
         let mut row = json!({
@@ -102,12 +102,13 @@ pub fn bench(a: BenchArgs) -> Result<()> {
                 tolerance: 1e-12,
                 ..Default::default()
             };
-            let (reference, _) = solver::solve(
+            let (reference, _) = solver::cg::solve(
                 &op,
                 g0.view(),
                 Control::MeanPressure(a.pressure),
                 &tight,
                 Some(&state),
+                &mut (),
             )?;
             let differ = state
                 .pressure

@@ -3,17 +3,16 @@
 
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
-use elastic::{Compliance, Domain, Free, Periodic};
 use ljadhesion::{
     AdhesionLaw, DugdaleLaw, ExponentialLaw, LennardJones, LineLaw, NoAdhesion, PointLaw, SurfaceLaw,
 };
 use ndarray::Array2;
 use serde::{Deserialize, Serialize, de::DeserializeOwned};
-use serde_json::{Map, Value};
-use solver::adhesive::OuterLoop;
-use solver::geometry::{SphereProfile, flat_on_rough, sphere, wave};
-use solver::{AdhesiveOptions, ContactOptions, Control};
+use serde_json::Value;
+use solver::geometry::SphereProfile;
+use solver::{ContactOptions, ContactProblem, Method, Settings, Shape};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use surfgen::io::{self, ReadOptions};
 use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec};
 
@@ -61,13 +60,16 @@ pub enum OuterKind {
     Newton,
 }
 
-/// The solver's name, as `--solver` takes it.
-pub fn solver_name(outer_loop: OuterLoop) -> &'static str {
-    match outer_loop {
-        OuterLoop::DualLoop => "dual-loop",
-        OuterLoop::Accelerated => "accelerated",
-        OuterLoop::EnergyDescent => "energy",
-        OuterLoop::Newton => "newton",
+impl OuterKind {
+    /// The library's method of this name.
+    pub fn method(self) -> Method {
+        match self {
+            OuterKind::Auto => Method::Auto,
+            OuterKind::DualLoop => Method::DualLoop,
+            OuterKind::Accelerated => Method::Accelerated,
+            OuterKind::Energy => Method::EnergyDescent,
+            OuterKind::Newton => Method::Newton,
+        }
     }
 }
 
@@ -170,23 +172,39 @@ fn keys<T: Default + Serialize>() -> Vec<String> {
     }
 }
 
+/// The first non-finite number in `table` (arrays included), with its key.
+fn non_finite(table: &toml::Table) -> Option<(&str, f64)> {
+    fn bad(v: &toml::Value) -> Option<f64> {
+        match v {
+            toml::Value::Float(x) if !x.is_finite() => Some(*x),
+            toml::Value::Array(a) => a.iter().find_map(bad),
+            _ => None,
+        }
+    }
+    table.iter().find_map(|(k, v)| bad(v).map(|x| (k.as_str(), x)))
+}
+
 /// Reads a TOML case file (or text) into two option structs, each key going to the struct that
 /// has it (unknown keys are an error), then lays every flag given on the command line over it.
+/// Values stay typed TOML values throughout, so nothing given is lost; a NaN or infinite number
+/// anywhere is refused, naming its key.
 pub fn layered<A, B>(text: Option<(&str, &str)>, a: &A, b: &B) -> Result<(A, B)>
 where
     A: Default + Serialize + DeserializeOwned,
     B: Default + Serialize + DeserializeOwned,
 {
-    let (mut ma, mut mb) = (Map::new(), Map::new());
+    let (mut ta, mut tb) = (toml::Table::new(), toml::Table::new());
     if let Some((name, text)) = text {
         let table: toml::Table = toml::from_str(text).with_context(|| format!("parsing {name}"))?;
+        if let Some((key, x)) = non_finite(&table) {
+            bail!("{name}: `{key}` must be a finite number, got {x}");
+        }
         let (ka, kb) = (keys::<A>(), keys::<B>());
         for (k, v) in table {
-            let v = serde_json::to_value(v)?;
             if ka.contains(&k) {
-                ma.insert(k, v);
+                ta.insert(k, v);
             } else if kb.contains(&k) {
-                mb.insert(k, v);
+                tb.insert(k, v);
             } else {
                 let mut all = ka.clone();
                 all.extend(kb.clone());
@@ -195,21 +213,13 @@ where
             }
         }
     }
-    let overlay = |m: &mut Map<String, Value>, flags: Value| {
-        if let Value::Object(flags) = flags {
-            for (k, v) in flags {
-                if !v.is_null() {
-                    m.insert(k, v);
-                }
-            }
+    for (table, flags) in [(&mut ta, toml::Table::try_from(a)?), (&mut tb, toml::Table::try_from(b)?)] {
+        if let Some((key, x)) = non_finite(&flags) {
+            bail!("--{} must be a finite number, got {x}", key.replace('_', "-"));
         }
-    };
-    overlay(&mut ma, serde_json::to_value(a)?);
-    overlay(&mut mb, serde_json::to_value(b)?);
-    Ok((
-        serde_json::from_value(Value::Object(ma))?,
-        serde_json::from_value(Value::Object(mb))?,
-    ))
+        table.extend(flags);
+    }
+    Ok((ta.try_into()?, tb.try_into()?))
 }
 
 /// Both option structs as one TOML case (for `--print-config`).
@@ -231,23 +241,11 @@ pub fn fingerprint(h: &Array2<f64>) -> String {
     format!("fnv1a64:{hash:016x}")
 }
 
-/// A built problem: grid, operator, initial gap, adhesive law and solver settings.
-pub struct Problem {
-    pub domain: Domain,
-    pub op: Box<dyn Compliance>,
-    pub g0: Array2<f64>,
-    pub law: Box<dyn AdhesionLaw>,
-    pub e_star: f64,
-    /// Fingerprint of the roughness (read or generated), if any.
+/// A built case: the library's problem and the fingerprint of its roughness (read or
+/// generated), if any.
+pub struct Built {
+    pub problem: ContactProblem,
     pub surface_hash: Option<String>,
-    /// Things the user should know before trusting the result.
-    pub warnings: Vec<String>,
-}
-
-impl Problem {
-    pub fn adhesive(&self) -> bool {
-        self.law.name() != "none"
-    }
 }
 
 impl Case {
@@ -270,10 +268,16 @@ impl Case {
         } else {
             self.law = Some(LawKind::None);
         }
-        self.tolerance = self.tolerance.or(Some(if adhesive { 1e-6 } else { 1e-8 }));
-        self.max_iterations = self
-            .max_iterations
-            .or(Some(if adhesive { 20_000 } else { 10_000 }));
+        self.tolerance = self.tolerance.or(Some(if adhesive {
+            Settings::DEFAULT_TOLERANCE
+        } else {
+            ContactOptions::DEFAULT_TOLERANCE
+        }));
+        self.max_iterations = self.max_iterations.or(Some(if adhesive {
+            Settings::DEFAULT_MAX_ITERATIONS
+        } else {
+            ContactOptions::DEFAULT_MAX_ITERATIONS
+        }));
         if self.rms_height.is_some() || self.rms_gradient.is_some() {
             self.hurst = self.hurst.or(Some(0.8));
             self.seed = self.seed.or(Some(1));
@@ -281,51 +285,28 @@ impl Case {
         self.out = self.out.clone().or_else(|| Some(PathBuf::from("run")));
     }
 
+    /// The non-adhesive solve's settings.
     pub fn contact_options(&self) -> ContactOptions {
         ContactOptions {
-            tolerance: self.tolerance.unwrap_or(1e-8),
-            max_iterations: self.max_iterations.unwrap_or(10_000),
+            tolerance: self.tolerance.unwrap_or(ContactOptions::DEFAULT_TOLERANCE),
+            max_iterations: self.max_iterations.unwrap_or(ContactOptions::DEFAULT_MAX_ITERATIONS),
         }
     }
 
-    /// The adhesive solver's settings for solves under controls like `control`.
-    ///
-    /// Under approach control `auto` takes a solver with no outer loop: the energy descent
-    /// for the laws that have an energy, Newton for the line and surface laws. The accelerated
-    /// loop is left for the rest (load and central-gap control, Dugdale's law) because near a
-    /// fold it leaves a branch early: unloading, its mixed iterates settle on the unstable
-    /// middle of the S and detach before the state does (sphere, μ = 2, 128²: at -3.12 z0,
-    /// the fold at -3.39 z0; `jkr-sphere` (μ = 3) in steps of z0/8: -4.38 z0, the fold at -5.0
-    /// z0; `wavy-jkr`: -5 z0 against -7 z0, the pull-off 2 % short of Johnson's, where
-    /// Newton's is 0.2 % over it), where Newton, which relaxes from the last state, holds on.
-    /// The loop is faster only where no cell is near a snap (`rough-sphere`: 6 s against 9 s,
-    /// the same cycle within 1e-5 of the pull-off); on soft laws its residual, the law's
-    /// mismatch cell by cell, also stops it short on long wavelengths (`dmt-sphere`: loads up
-    /// to 0.5 % off and a spurious jump in and out at the default tolerance).
-    pub fn adhesive_options(&self, control: Control) -> AdhesiveOptions {
-        let approach = matches!(control, Control::Approach(_));
-        let energy_applies = matches!(self.law, Some(LawKind::Point | LawKind::Exponential)) && approach;
-        let newton_applies = matches!(self.law, Some(LawKind::Line | LawKind::Surface)) && approach;
-        AdhesiveOptions {
-            outer_loop: match self.solver {
-                Some(OuterKind::DualLoop) => OuterLoop::DualLoop,
-                Some(OuterKind::Energy) => OuterLoop::EnergyDescent,
-                Some(OuterKind::Accelerated) => OuterLoop::Accelerated,
-                Some(OuterKind::Newton) => OuterLoop::Newton,
-                None | Some(OuterKind::Auto) if energy_applies => OuterLoop::EnergyDescent,
-                None | Some(OuterKind::Auto) if newton_applies => OuterLoop::Newton,
-                None | Some(OuterKind::Auto) => OuterLoop::Accelerated,
-            },
-            tolerance: self.tolerance.unwrap_or(1e-6),
-            max_outer_iterations: self.max_iterations.unwrap_or(20_000),
-            ..AdhesiveOptions::default()
+    /// The adhesive solve's settings: `--solver auto` is the library's [`Method::Auto`].
+    pub fn settings(&self) -> Settings {
+        Settings {
+            method: self.solver.map_or(Method::Auto, OuterKind::method),
+            tolerance: self.tolerance.unwrap_or(Settings::DEFAULT_TOLERANCE),
+            max_iterations: self.max_iterations.unwrap_or(Settings::DEFAULT_MAX_ITERATIONS),
+            ..Settings::default()
         }
     }
 
-    fn law(&self) -> Result<Box<dyn AdhesionLaw>> {
+    fn law(&self) -> Result<Arc<dyn AdhesionLaw>> {
         let kind = self.law.unwrap_or(LawKind::None);
         if kind == LawKind::None {
-            return Ok(Box::new(NoAdhesion));
+            return Ok(Arc::new(NoAdhesion));
         }
         let w0 = self
             .work_of_adhesion
@@ -338,16 +319,16 @@ impl Case {
         };
         Ok(match kind {
             LawKind::None => unreachable!("handled above"),
-            LawKind::Surface => Box::new(SurfaceLaw(lj()?)),
-            LawKind::Line => Box::new(LineLaw(lj()?)),
-            LawKind::Point => Box::new(PointLaw(lj()?)),
-            LawKind::Exponential => Box::new(ExponentialLaw::new(
+            LawKind::Surface => Arc::new(SurfaceLaw(lj()?)),
+            LawKind::Line => Arc::new(LineLaw(lj()?)),
+            LawKind::Point => Arc::new(PointLaw(lj()?)),
+            LawKind::Exponential => Arc::new(ExponentialLaw::new(
                 w0,
                 self.range.context("the exponential law needs --range rho [m]")?,
             )?),
             LawKind::Dugdale => match (self.range, self.z0) {
-                (Some(h0), _) => Box::new(DugdaleLaw::new(w0, h0)?),
-                (None, Some(_)) => Box::new(DugdaleLaw::equivalent_to(&lj()?)),
+                (Some(h0), _) => Arc::new(DugdaleLaw::new(w0, h0)?),
+                (None, Some(_)) => Arc::new(DugdaleLaw::equivalent_to(&lj()?)),
                 (None, None) => {
                     bail!("the Dugdale law needs --range h0 [m] (or --z0 for the LJ-equivalent one)")
                 }
@@ -356,18 +337,20 @@ impl Case {
     }
 
     /// Builds the problem; call [`Case::fill_defaults`] first.
-    pub fn build(&self) -> Result<Problem> {
+    pub fn build(&self) -> Result<Built> {
         let e_star = self.modulus.context(
             "the composite modulus is required: --modulus E* [Pa] (or modulus = ... in the case file)",
         )?;
         if !(e_star.is_finite() && e_star > 0.0) {
             bail!("--modulus must be a finite E* > 0 Pa, got {e_star}");
         }
-        let law = self.law()?;
-        let kind = self.domain.unwrap_or(DomainKind::Periodic);
-        let periodic = kind == DomainKind::Periodic;
+        let mut builder = ContactProblem::builder()
+            .modulus(e_star)
+            .shared_law(self.law()?)
+            .periodic(self.domain.unwrap_or(DomainKind::Periodic) == DomainKind::Periodic);
         let mut heights = None;
-        let domain = if let Some(path) = &self.surface {
+        let size;
+        if let Some(path) = &self.surface {
             let options = ReadOptions {
                 length_x: self.length,
                 length_y: self.length_y,
@@ -388,15 +371,8 @@ impl Case {
                     s.grid.ny
                 );
             }
-            let d = Domain {
-                nx: s.grid.nx,
-                ny: s.grid.ny,
-                dx: s.grid.dx(),
-                dy: s.grid.dy(),
-                periodic,
-            };
+            size = (s.grid.length_x, s.grid.length_y);
             heights = Some(s.heights);
-            d
         } else {
             let generated = self.rms_height.is_some() || self.rms_gradient.is_some();
             if self.sphere_radius.is_none() && self.wave_amplitude.is_none() && !generated {
@@ -430,95 +406,46 @@ impl Case {
                 };
                 heights = Some(surfgen::generate(&spec)?.heights);
             }
-            Domain {
-                nx: n,
-                ny,
-                dx: grid.dx(),
-                dy: grid.dy(),
-                periodic,
-            }
-        };
-        let roughness = heights.as_ref().map(|h| h.view());
-        let g0 = match (self.sphere_radius, self.wave_amplitude) {
+            builder = builder.grid(n, ny, grid.length_x, grid.length_y);
+            size = (grid.length_x, grid.length_y);
+        }
+        let surface_hash = heights.as_ref().map(fingerprint);
+        if let Some(h) = heights {
+            builder = builder.roughness(h, size.0, size.1);
+        }
+        builder = match (self.sphere_radius, self.wave_amplitude) {
             (Some(_), Some(_)) => bail!("give a sphere or a wave, not both"),
-            (Some(r), None) => {
-                let profile = if self.exact_sphere.unwrap_or(false) {
+            (Some(radius), None) => builder.shape(Shape::Sphere {
+                radius,
+                profile: if self.exact_sphere.unwrap_or(false) {
                     SphereProfile::Exact
                 } else {
                     SphereProfile::Paraboloid
-                };
-                sphere(&domain, r, profile, roughness)?
-            }
+                },
+            }),
             (None, Some(amplitude)) => {
-                if !periodic {
+                if self.domain == Some(DomainKind::Free) {
                     bail!("a wave repeats: it needs the periodic domain (--domain periodic)");
                 }
-                wave(&domain, amplitude, roughness)?
+                builder.wave(amplitude)
             }
-            (None, None) => flat_on_rough(roughness.expect("checked above"))?,
+            (None, None) => builder,
         };
-        let op: Box<dyn Compliance> = match kind {
-            DomainKind::Periodic => Box::new(Periodic::new(domain, e_star)?),
-            DomainKind::Free => Box::new(Free::new(domain, e_star)?),
-        };
-        let mut warnings = Vec::new();
-        if law.name() != "none" {
-            warnings.extend(solver::adhesive::resolution_warnings(
-                &domain,
-                e_star,
-                law.as_ref(),
-            ));
-            if !domain.periodic {
-                // The attraction beyond the grid is lost: the smallest gap on the border says how
-                // much. The law's energy there, -V(g), is the share of w0 its tail holds beyond
-                // that gap, and on a sphere (gap r^2/(2R) outside) the force the tail would add,
-                // 2 pi R V(g), is that share of 2 pi R w0 (undeformed; `jkr-sphere`, edge at
-                // 4.9 z0: 3.8 % estimated, 2.9 % measured at its pull-off, 2.5 z0 apart).
-                let (ny, nx) = g0.dim();
-                let border = g0
-                    .indexed_iter()
-                    .filter(|((j, i), _)| *j == 0 || *i == 0 || *j == ny - 1 || *i == nx - 1)
-                    .map(|(_, g)| *g)
-                    .fold(f64::INFINITY, f64::min);
-                let share = law
-                    .flat_potential()
-                    .map(|v| -v.energy(border) / law.work_of_adhesion());
-                if border < 10.0 * law.range() && share.is_none_or(|s| s > 1e-3) {
-                    let held = share.map_or(String::new(), |s| {
-                        format!(
-                            " (the law holds {:.1} % of w0 beyond that gap: on a sphere, about that share \
-                             of 2 pi R w0 is missing from the loads)",
-                            100.0 * s
-                        )
-                    });
-                    warnings.push(format!(
-                        "the undeformed gap at the grid's edge is only {:.2} times the adhesive range: \
-                         the attraction beyond the grid is cut off{held}; enlarge the box (gap >= 10 ranges)",
-                        border / law.range()
-                    ));
-                }
-            }
-        }
-        Ok(Problem {
-            domain,
-            op,
-            g0,
-            law,
-            e_star,
-            surface_hash: heights.as_ref().map(fingerprint),
-            warnings,
+        Ok(Built {
+            problem: builder.build()?,
+            surface_hash,
         })
     }
 }
 
 /// Writes `summary.json` into `out`: the version, the resolved case, the surface's
 /// fingerprint and the grid, then the run's own `results` (a JSON object).
-pub fn write_summary(out: &Path, case: &impl Serialize, problem: &Problem, results: Value) -> Result<()> {
-    let d = problem.domain;
+pub fn write_summary(out: &Path, case: &impl Serialize, built: &Built, results: Value) -> Result<()> {
+    let d = built.problem.domain();
     let mut summary = serde_json::json!({
         "version": env!("CARGO_PKG_VERSION"),
         "case": case,
-        "surface_hash": problem.surface_hash,
+        "surface_hash": built.surface_hash,
         "grid": { "nx": d.nx, "ny": d.ny, "dx": d.dx, "dy": d.dy, "periodic": d.periodic },
     });
     if let (Value::Object(all), Value::Object(results)) = (&mut summary, results) {

@@ -1,6 +1,6 @@
 //! `solve`: one normal contact, with or without adhesion, from flags or a TOML case file.
 
-use crate::case::{Case, Problem, layered, on_workers, solver_name, to_toml, write_field, write_summary};
+use crate::case::{Built, Case, layered, on_workers, to_toml, write_field, write_summary};
 use crate::plot;
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -8,8 +8,7 @@ use elastic::Domain;
 use ndarray::Array2;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
-use solver::adhesive::OuterLoop;
-use solver::{Control, Start};
+use solver::{Control, Iterations, Observer, Start};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -75,7 +74,8 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         println!("{}", to_toml(&case, &control)?);
         return Ok(());
     }
-    let problem = case.build()?;
+    let built = case.build()?;
+    let problem = &built.problem;
     let control = match (
         control.mean_pressure,
         control.load,
@@ -86,13 +86,13 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         (None, Some(w), None, None) => Control::Force(w),
         (None, None, Some(d), None) => Control::Approach(d),
         (None, None, None, Some(g)) => {
-            if !problem.domain.periodic {
+            if !problem.domain().periodic {
                 bail!("--mean-gap needs a periodic domain (on a free one the mean displacement is not zero)");
             }
             if !(g.is_finite() && g >= 0.0) {
                 bail!("--mean-gap must be finite and >= 0 m, got {g}");
             }
-            Control::Approach(problem.g0.mean().unwrap_or(0.0) - g)
+            Control::Approach(problem.initial_gap.mean().unwrap_or(0.0) - g)
         }
         _ => bail!("give exactly one of --mean-pressure [Pa], --load [N], --approach [m] or --mean-gap [m]"),
     };
@@ -102,28 +102,14 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     let out = case.out.clone().expect("defaulted");
     std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
     if problem.adhesive() {
-        return solve_adhesive(&args, &case, control, &problem, &out);
+        return solve_adhesive(&args, &case, control, &built, &out);
     }
     let options = case.contact_options();
-    let mut last = Instant::now();
-    let mut progress = |it: usize, residual: f64| {
-        if last.elapsed().as_secs_f64() > 1.0 {
-            eprint!("\riteration {it:>6}  residual {residual:.3e}");
-            last = Instant::now();
-        }
-    };
-    let (state, report) = on_workers(|| {
-        solver::solve_observed(
-            problem.op.as_ref(),
-            problem.g0.view(),
-            control,
-            &options,
-            None,
-            &mut progress,
-        )
-    })?;
+    let mut progress = Progress::new("");
+    let (state, report) =
+        on_workers(|| problem.solve_without_adhesion(control, &options, None, &mut progress))?;
     eprint!("\r{:60}\r", "");
-    let domain = problem.domain;
+    let domain = problem.domain();
     write_field(&out, "pressure", &state.pressure)?;
     write_field(&out, "gap", &state.gap)?;
     write_field(&out, "displacement", &state.displacement)?;
@@ -148,7 +134,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         "residual_history": report.residual_history,
         "wall_time_s": report.wall_time_s,
     });
-    write_summary(&out, &case, &problem, summary)?;
+    write_summary(&out, &case, &built, summary)?;
     if !args.no_png {
         pressure_map(
             &out,
@@ -205,39 +191,51 @@ pub fn finish(converged: bool, msg: String, keep_going: bool, out: &Path) -> Res
     }
 }
 
-fn solve_adhesive(
-    args: &SolveArgs,
-    case: &Case,
-    control: Control,
-    problem: &Problem,
-    out: &Path,
-) -> Result<()> {
-    let options = case.adhesive_options(control);
-    let mut last = Instant::now();
-    let mut progress = |it: usize, residual: f64| {
-        if last.elapsed().as_secs_f64() > 1.0 {
-            let kind = if options.outer_loop == OuterLoop::EnergyDescent {
-                ""
-            } else {
-                "outer "
-            };
-            eprint!("\r{kind}iteration {it:>6}  residual {residual:.3e}");
-            last = Instant::now();
+/// Where a long solve stands, at most once a second on one line of the terminal.
+struct Progress {
+    kind: &'static str,
+    last: Instant,
+}
+
+impl Progress {
+    fn new(kind: &'static str) -> Progress {
+        Progress {
+            kind,
+            last: Instant::now(),
         }
-    };
-    let (state, report) = on_workers(|| {
-        solver::solve_adhesive_observed(
-            problem.op.as_ref(),
-            problem.law.as_ref(),
-            problem.g0.view(),
-            control,
-            &options,
-            Start::Loading,
-            &mut progress,
-        )
-    })?;
+    }
+}
+
+impl Observer for Progress {
+    fn iteration(&mut self, _step: usize, iteration: usize, residual: f64) {
+        if self.last.elapsed().as_secs_f64() > 1.0 {
+            eprint!("\r{}iteration {iteration:>6}  residual {residual:.3e}", self.kind);
+            self.last = Instant::now();
+        }
+    }
+}
+
+/// The method's counts as words: "12 outer, 345 inner".
+pub fn counts(iterations: &Iterations) -> String {
+    match *iterations {
+        Iterations::Loop { outer, inner, .. } => format!("{outer} outer, {inner} inner"),
+        Iterations::Descent { iterations } => format!("{iterations} descent"),
+        Iterations::Newton {
+            steps,
+            krylov,
+            predictor,
+        } => format!("{steps} Newton steps, {krylov} Krylov, {predictor} predictor"),
+    }
+}
+
+fn solve_adhesive(args: &SolveArgs, case: &Case, control: Control, built: &Built, out: &Path) -> Result<()> {
+    let problem = &built.problem;
+    let settings = case.settings();
+    let mut progress = Progress::new("");
+    let (state, report) =
+        on_workers(|| problem.solve(control, &settings, Start::Loading, &mut progress))?;
     eprint!("\r{:60}\r", "");
-    let domain = problem.domain;
+    let domain = problem.domain();
     let total = state.total_pressure();
     write_field(out, "pressure", &total)?;
     write_field(out, "compressive_pressure", &state.contact.pressure)?;
@@ -252,7 +250,7 @@ fn solve_adhesive(
             "gap.npy": "m", "displacement.npy": "m"
         },
         "law": problem.law.name(),
-        "solver": solver_name(options.outer_loop),
+        "solver": report.method.name(),
         "warnings": problem.warnings,
         "load": report.load,
         "mean_pressure": report.mean_pressure,
@@ -265,8 +263,8 @@ fn solve_adhesive(
         "contact_clusters": report.clusters,
         "max_pressure": report.max_pressure,
         "min_pressure": report.min_pressure,
-        "outer_iterations": report.outer_iterations,
-        "inner_iterations": report.inner_iterations,
+        "iterations": report.iterations.count(),
+        "inner_iterations": report.iterations.inner(),
         "operator_calls": report.operator_calls,
         "converged": report.converged(),
         "termination": format!("{:?}", report.termination),
@@ -274,7 +272,7 @@ fn solve_adhesive(
         "residual_history": report.residual_history,
         "wall_time_s": report.wall_time_s,
     });
-    write_summary(out, case, problem, summary)?;
+    write_summary(out, case, built, summary)?;
     if !args.no_png {
         pressure_map(
             out,
@@ -291,21 +289,24 @@ fn solve_adhesive(
     println!("attractive area fraction {:.6}", report.attractive_area_fraction);
     println!("attached area fraction   {:.6}", report.attached_area_fraction);
     println!(
-        "iterations               {} outer, {} inner, residual {:.2e}, {:?}",
-        report.outer_iterations, report.inner_iterations, report.residual, report.termination
+        "iterations               {} ({}), residual {:.2e}, {:?}",
+        counts(&report.iterations),
+        report.method,
+        report.residual,
+        report.termination
     );
     println!("wall time                {:.3} s", report.wall_time_s);
     println!("wrote {}/summary.json and the fields as .npy", out.display());
     finish(
         report.converged(),
         format!(
-            "the adhesive solve did not converge: {:?}, residual {:.3e} after {} outer and {} inner iterations \
+            "the adhesive solve did not converge: {:?}, residual {:.3e} after {} iterations ({}) \
              (tolerance {:.1e})",
             report.termination,
             report.residual,
-            report.outer_iterations,
-            report.inner_iterations,
-            options.tolerance
+            counts(&report.iterations),
+            report.method,
+            settings.tolerance
         ),
         args.keep_going,
         out,

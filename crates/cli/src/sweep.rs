@@ -1,7 +1,7 @@
 //! `sweep`: a quasi-static approach-retraction cycle (or any list of approaches, mean
 //! pressures or central gaps) with continuation, written step by step and resumable.
 
-use crate::case::{Case, layered, on_workers, solver_name, to_toml, write_field, write_summary};
+use crate::case::{Case, layered, on_workers, to_toml, write_field, write_summary};
 use crate::plot::{self, Series};
 use crate::solve::finish;
 use anyhow::{Context, Result, bail};
@@ -11,7 +11,7 @@ use ndarray::Array2;
 use plotters::style::RGBColor;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
-use solver::{AdhesiveState, Branch, ContactState, Control, CyclePoint, approach_cycle, summarize};
+use solver::{AdhesiveState, Branch, ContactState, Control, CyclePoint, Observer, SweepPoint, approach_cycle, summarize};
 use std::fs::OpenOptions;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -126,7 +126,7 @@ pub struct SweepArgs {
 }
 
 const HEADER: &str = "step,approach,load,mean_pressure,contact_area_fraction,attractive_area_fraction,\
-attached_area_fraction,central_gap,branch,outer_iterations,inner_iterations,converged,residual,wall_time_s,\
+attached_area_fraction,central_gap,branch,iterations,inner_iterations,converged,residual,wall_time_s,\
 retries";
 
 /// One row of `curve.csv`, as much as the summary and the plot need.
@@ -215,7 +215,8 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     }) {
         bail!("the sweep path has a non-finite value");
     }
-    let problem = case.build()?;
+    let built = case.build()?;
+    let problem = &built.problem;
     for w in &problem.warnings {
         eprintln!("warning: {w}");
     }
@@ -224,7 +225,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     let saved = match &path.start_from {
         Some(dir) => {
             let state = read_state(dir)?;
-            let shape = problem.g0.dim();
+            let shape = problem.initial_gap.dim();
             if state.contact.gap.dim() != shape {
                 bail!(
                     "--start-from: {} holds a {:?} grid, this case has {shape:?}",
@@ -272,7 +273,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     }
     let done = rows.len().min(controls.len());
 
-    let options = case.adhesive_options(controls[0]);
+    let settings = case.settings();
     let max_step = path.max_step.or(problem.adhesive().then(|| problem.law.range()));
     if let Some(h) = max_step
         && !(h.is_finite() && h > 0.0)
@@ -295,100 +296,30 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             .expect("valid template"),
     );
     bar.set_position(done as u64);
-    let mut csv = OpenOptions::new().append(true).open(&csv_path)?;
+    let csv = OpenOptions::new().append(true).open(&csv_path)?;
     let started = Instant::now();
-    let state_dir = out.join("state");
-    let mut write_error = None;
-    // The last finished step, shown beside the running solve's iteration and residual.
-    let last = std::sync::Mutex::new(String::new());
-    let mut quiet_since = Instant::now();
+    let mut writer = StepWriter {
+        out: &out,
+        done,
+        steps: controls.len(),
+        save_states: args.save_states,
+        csv,
+        bar: &bar,
+        last: String::new(),
+        quiet_since: Instant::now(),
+        error: None,
+    };
     let points = on_workers(|| {
-        solver::sweep_observed(
-            problem.op.as_ref(),
-            problem.law.as_ref(),
-            problem.g0.view(),
+        problem.sweep(
             &controls[done..],
-            &options,
             max_step,
+            &settings,
             start,
-            &mut |k, p, state| {
-                let r = &p.report;
-                let line = format!(
-                    "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3},{}\n",
-                    done + k,
-                    r.approach,
-                    r.load,
-                    r.mean_pressure,
-                    r.contact_area_fraction,
-                    r.attractive_area_fraction,
-                    r.attached_area_fraction,
-                    r.central_gap,
-                    p.branch.name(),
-                    r.outer_iterations,
-                    r.inner_iterations,
-                    r.converged(),
-                    r.residual,
-                    r.wall_time_s,
-                    p.retries
-                );
-                let kept = if args.save_states {
-                    write_state(&step_dir(&out, done + k), state)
-                } else {
-                    Ok(())
-                };
-                let saved = kept
-                    .and_then(|_| write_state(&state_dir, state))
-                    .and_then(|_| csv.write_all(line.as_bytes()).map_err(Into::into))
-                    .and_then(|_| csv.flush().map_err(Into::into));
-                let message = format!("last: approach {:.4e} m, load {:.4e} N", r.approach, r.load);
-                if bar.is_hidden() {
-                    // No terminal (a background run, a log file): a plain line a step instead.
-                    eprintln!(
-                        "step {}/{}: approach {:.4e} m, load {:.4e} N, {}, {:.1} s",
-                        done + k + 1,
-                        controls.len(),
-                        r.approach,
-                        r.load,
-                        if r.converged() {
-                            "converged"
-                        } else {
-                            "NOT converged"
-                        },
-                        r.wall_time_s
-                    );
-                }
-                bar.set_message(message.clone());
-                *last.lock().expect("not poisoned") = message;
-                bar.inc(1);
-                match saved {
-                    Ok(()) => true,
-                    Err(e) => {
-                        write_error = Some(e);
-                        false
-                    }
-                }
-            },
-            &mut |k, iteration, residual| {
-                // Without a terminal, where the running solve stands once a minute.
-                if bar.is_hidden() && quiet_since.elapsed().as_secs() >= 60 {
-                    eprintln!(
-                        "step {}/{}: iteration {iteration}, residual {residual:.2e}",
-                        done + k + 1,
-                        controls.len()
-                    );
-                    quiet_since = Instant::now();
-                }
-                if iteration % 10 == 0 {
-                    bar.set_message(format!(
-                        "iteration {iteration}, residual {residual:.2e}  {}",
-                        last.lock().expect("not poisoned")
-                    ));
-                }
-            },
+            &mut writer,
         )
     })?;
     bar.finish_and_clear();
-    if let Some(e) = write_error {
+    if let Some(e) = writer.error {
         return Err(e.context("writing the sweep's results"));
     }
     rows.extend(points.iter().map(|p| Row {
@@ -397,18 +328,18 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     let cycle: Vec<CyclePoint> = rows.iter().map(|r| r.point).collect();
     let summary = summarize(&cycle);
 
-    let domain = problem.domain;
+    let domain = problem.domain();
     let lj_z0 = case.z0.filter(|_| problem.adhesive());
     // A wave's crests are its spheres: Johnson's (1995) parameter and JKR pull-off come with it.
     let wave = case.wave_amplitude.map(|amplitude| theory::wavy::Wave {
         amplitude,
         wavelength: domain.nx as f64 * domain.dx,
-        e_star: problem.e_star,
+        e_star: problem.e_star(),
         work_of_adhesion: case.work_of_adhesion.unwrap_or(0.0),
     });
     let radius = case.sphere_radius.or(wave.map(|w| w.crest_radius()));
     let tabor = match (radius, lj_z0, case.work_of_adhesion) {
-        (Some(r), Some(z0), Some(w0)) => Some(theory::tabor_parameter(r, w0, problem.e_star, z0)),
+        (Some(r), Some(z0), Some(w0)) => Some(theory::tabor_parameter(r, w0, problem.e_star(), z0)),
         _ => None,
     };
     let wave = wave.filter(|_| problem.adhesive());
@@ -434,7 +365,9 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             "curve.csv": "approach m, load N, mean_pressure Pa, central_gap m, wall_time_s s"
         },
         "law": problem.law.name(),
-        "solver": problem.adhesive().then(|| solver_name(options.outer_loop)),
+        "solver": problem
+            .adhesive()
+            .then(|| settings.method.resolve(problem.law.as_ref(), controls[0]).name()),
         "adhesive_range": problem.adhesive().then_some(range),
         "adhesive_range_per_cell": problem.adhesive().then_some(range / domain.dx.max(domain.dy)),
         "tabor_parameter": tabor,
@@ -450,7 +383,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         "converged": summary.all_converged,
         "wall_time_s": started.elapsed().as_secs_f64(),
     });
-    write_summary(&out, &case, &problem, json)?;
+    write_summary(&out, &case, &built, json)?;
     if !args.no_png && cycle.len() > 1 {
         plot_cycle(&out.join("load_approach.png"), &cycle)?;
     }
@@ -596,5 +529,99 @@ fn force_unit(v: f64) -> (f64, &'static str) {
         (1e9, "nN")
     } else {
         (1e12, "pN")
+    }
+}
+
+/// Writes each finished step (its row of curve.csv, its state) and shows where the sweep
+/// stands; a write that fails stops the sweep and is kept in `error`.
+struct StepWriter<'a> {
+    out: &'a Path,
+    /// Steps finished before this run (a resumed sweep), and the path's length.
+    done: usize,
+    steps: usize,
+    save_states: bool,
+    csv: std::fs::File,
+    bar: &'a ProgressBar,
+    /// The last finished step, shown beside the running solve's iteration and residual.
+    last: String,
+    quiet_since: Instant,
+    error: Option<anyhow::Error>,
+}
+
+impl Observer for StepWriter<'_> {
+    fn iteration(&mut self, k: usize, iteration: usize, residual: f64) {
+        // Without a terminal, where the running solve stands once a minute.
+        if self.bar.is_hidden() && self.quiet_since.elapsed().as_secs() >= 60 {
+            eprintln!(
+                "step {}/{}: iteration {iteration}, residual {residual:.2e}",
+                self.done + k + 1,
+                self.steps
+            );
+            self.quiet_since = Instant::now();
+        }
+        if iteration % 10 == 0 {
+            self.bar.set_message(format!(
+                "iteration {iteration}, residual {residual:.2e}  {}",
+                self.last
+            ));
+        }
+    }
+
+    fn step(&mut self, k: usize, p: &SweepPoint, state: &AdhesiveState) -> bool {
+        let r = &p.report;
+        let line = format!(
+            "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3},{}\n",
+            self.done + k,
+            r.approach,
+            r.load,
+            r.mean_pressure,
+            r.contact_area_fraction,
+            r.attractive_area_fraction,
+            r.attached_area_fraction,
+            r.central_gap,
+            p.branch.name(),
+            r.iterations.count(),
+            r.iterations.inner().map_or(String::new(), |i| i.to_string()),
+            r.converged(),
+            r.residual,
+            r.wall_time_s,
+            p.retries
+        );
+        let kept = if self.save_states {
+            write_state(&step_dir(self.out, self.done + k), state)
+        } else {
+            Ok(())
+        };
+        let saved = kept
+            .and_then(|_| write_state(&self.out.join("state"), state))
+            .and_then(|_| self.csv.write_all(line.as_bytes()).map_err(Into::into))
+            .and_then(|_| self.csv.flush().map_err(Into::into));
+        let message = format!("last: approach {:.4e} m, load {:.4e} N", r.approach, r.load);
+        if self.bar.is_hidden() {
+            // No terminal (a background run, a log file): a plain line a step instead.
+            eprintln!(
+                "step {}/{}: approach {:.4e} m, load {:.4e} N, {}, {:.1} s",
+                self.done + k + 1,
+                self.steps,
+                r.approach,
+                r.load,
+                if r.converged() {
+                    "converged"
+                } else {
+                    "NOT converged"
+                },
+                r.wall_time_s
+            );
+        }
+        self.bar.set_message(message.clone());
+        self.last = message;
+        self.bar.inc(1);
+        match saved {
+            Ok(()) => true,
+            Err(e) => {
+                self.error = Some(e);
+                false
+            }
+        }
     }
 }

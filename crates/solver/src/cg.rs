@@ -7,6 +7,7 @@
 //! iteration applies the elastic operator twice (to the pressure and to the search direction).
 
 use crate::error::{Result, SolverError, invalid};
+use crate::method::Observer;
 use crate::options::{ContactOptions, Control};
 use crate::report::{ContactReport, Termination, count_clusters};
 use crate::state::ContactState;
@@ -40,10 +41,10 @@ fn sum3(
 }
 
 /// Solves the normal contact of the half-space `op` with the initial gap `g0` [m] (minimum 0,
-/// see [`crate::geometry`]) under `control`. `warm` (a previous state on the same grid) seeds
-/// the pressure; otherwise the solve starts cold. Returns the new state and its report; a solve
-/// that reaches the iteration limit returns its last iterate with
-/// [`Termination::MaxIterations`].
+/// see [`crate::geometry`]) under `control`, telling `observer` each iteration's residual.
+/// `warm` (a previous state on the same grid) seeds the pressure; otherwise the solve starts
+/// cold. Returns the new state and its report; a solve that reaches the iteration limit
+/// returns its last iterate with [`Termination::MaxIterations`].
 ///
 /// # Errors
 /// Non-finite or negative-minimum `g0`, a field of the wrong shape, a negative load or
@@ -54,18 +55,7 @@ pub fn solve(
     control: Control,
     options: &ContactOptions,
     warm: Option<&ContactState>,
-) -> Result<(ContactState, ContactReport)> {
-    solve_observed(op, g0, control, options, warm, &mut |_, _| {})
-}
-
-/// [`solve`], calling `observer(iteration, residual)` after every iteration (for progress).
-pub fn solve_observed(
-    op: &dyn Compliance,
-    g0: ArrayView2<f64>,
-    control: Control,
-    options: &ContactOptions,
-    warm: Option<&ContactState>,
-    observer: &mut dyn FnMut(usize, f64),
+    observer: &mut dyn Observer,
 ) -> Result<(ContactState, ContactReport)> {
     let mut state = match warm {
         Some(w) => w.clone(),
@@ -73,31 +63,32 @@ pub fn solve_observed(
     };
     let mut scratch = Scratch::new(op);
     let report = solve_in(
-        op,
+        &mut scratch,
         g0,
         control,
         options,
         &mut state,
         warm.is_some(),
-        &mut scratch,
-        observer,
+        &mut |i, r| observer.iteration(0, i, r),
     )?;
     Ok((state, report))
 }
 
-/// Buffers of the conjugate-gradient solver, owned by the caller so that repeated solves on
-/// one grid (sweeps, the adhesive inner loop) allocate nothing.
-pub struct Scratch {
+/// The operator and the buffers of the conjugate-gradient solver, owned by the caller so that
+/// repeated solves on one grid (the adhesive inner loop) allocate nothing.
+pub(crate) struct Scratch<'a> {
+    pub(crate) op: &'a dyn Compliance,
     pub(crate) ws: elastic::Workspace,
     direction: Array2<f64>,
     response: Array2<f64>,
 }
 
-impl Scratch {
+impl<'a> Scratch<'a> {
     /// Buffers for solves with `op`.
-    pub fn new(op: &dyn Compliance) -> Self {
+    pub(crate) fn new(op: &'a dyn Compliance) -> Self {
         let shape = op.domain().shape();
         Scratch {
+            op,
             ws: op.make_workspace(),
             direction: Array2::zeros(shape),
             response: Array2::zeros(shape),
@@ -105,19 +96,18 @@ impl Scratch {
     }
 }
 
-/// [`solve_observed`] in place: `state` is the warm start when `warm` is true (its pressure
-/// seeds the solve) and receives the solution; `scratch` must have been made for `op`.
-#[allow(clippy::too_many_arguments)]
-pub fn solve_in(
-    op: &dyn Compliance,
+/// [`solve`] in place with the operator of `scratch`: `state` is the warm start when `warm`
+/// is true (its pressure seeds the solve) and receives the solution.
+pub(crate) fn solve_in(
+    scratch: &mut Scratch,
     g0: ArrayView2<f64>,
     control: Control,
     options: &ContactOptions,
     state: &mut ContactState,
     warm: bool,
-    scratch: &mut Scratch,
     observer: &mut dyn FnMut(usize, f64),
 ) -> Result<ContactReport> {
+    let op = scratch.op;
     let started = Instant::now();
     let domain = *op.domain();
     let shape = domain.shape();
@@ -217,6 +207,7 @@ pub fn solve_in(
         ws,
         direction: t,
         response: r,
+        ..
     } = scratch;
     if t.dim() != shape {
         *t = Array2::zeros(shape);

@@ -25,6 +25,9 @@ pub enum SolverError {
         col: usize,
         value: f64,
     },
+    /// The problem lacks a part.
+    #[error("the problem needs {0}")]
+    Incomplete(&'static str),
     /// The chosen method cannot solve this problem (the message says what can).
     #[error("{0}")]
     Unsupported(String),

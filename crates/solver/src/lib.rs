@@ -7,29 +7,58 @@
 //! the counterface, so that `g = g0 - delta + u` with the initial gap `g0` of
 //! [`geometry`] (minimum 0).
 //!
-//! The problem is plain data: an elastic operator ([`elastic::Periodic`] or
-//! [`elastic::Free`]), an initial gap field, a [`Control`] (mean pressure, force or approach)
-//! and [`ContactOptions`]. [`solve`] returns a [`ContactState`] (fields, resumable as a warm
-//! start) and a [`ContactReport`] (scalars, residual history, why it stopped).
+//! A problem is a [`ContactProblem`]: the elastic operator on its grid ([`elastic::Periodic`]
+//! or [`elastic::Free`]), the initial gap and the adhesive law, built from a geometry, a
+//! surface, a material and a law by [`ProblemBuilder`]. [`ContactProblem::solve`] solves it
+//! under a [`Control`] (mean pressure, force, approach or central gap) by a [`Method`] with
+//! its [`Settings`], returning an [`AdhesiveState`] (fields, resumable as a warm start) and an
+//! [`AdhesiveReport`]; [`ContactProblem::sweep`] follows a path of controls. An [`Observer`]
+//! watches either. Without adhesion, [`cg::solve`] is the constrained conjugate-gradient solve.
+//!
+//! A rough sphere with the paper's surface law, swept in and out:
+//!
+//! ```
+//! use ljadhesion::{LennardJones, SurfaceLaw};
+//! use ndarray::Array2;
+//! use solver::{ContactProblem, Settings, approach_cycle, summarize, CyclePoint};
+//!
+//! let (n, side, z0) = (32, 100e-9, 1e-9);
+//! // A gentle roughness of 0.3 z0 (any heights [m] of shape (ny, nx) will do).
+//! let heights = Array2::from_shape_fn((n, n), |(j, i)| {
+//!     0.3 * z0 * ((i as f64 * 0.7).sin() * (j as f64 * 0.9).cos())
+//! });
+//! let problem = ContactProblem::builder()
+//!     .roughness(heights, side, side)
+//!     .sphere(1e-6)
+//!     .modulus(1e9)
+//!     .law(SurfaceLaw(LennardJones::new(0.02, z0)?))
+//!     .build()?;
+//! let path = approach_cycle(-3.0 * z0, 1.0 * z0, 4);
+//! let points = problem.sweep(&path, Some(z0), &Settings::default(), None, &mut ())?;
+//! let cycle = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
+//! assert!(cycle.all_converged);
+//! assert!(cycle.pull_off_force.unwrap() < 0.0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 pub mod adhesive;
 pub mod cg;
 pub mod error;
 pub mod geometry;
+pub mod method;
 pub mod options;
+pub mod problem;
 pub mod report;
 pub mod state;
 pub mod sweep;
 
-pub use adhesive::{
-    AdhesiveOptions, AdhesiveReport, AdhesiveState, OuterLoop, Start, solve_adhesive, solve_adhesive_observed,
-};
-pub use cg::{solve, solve_observed};
+pub use adhesive::{AdhesiveReport, AdhesiveState, Iterations, Start};
 pub use error::{Result, SolverError};
+pub use method::{Method, Mixing, Observer, Settings};
 pub use options::{ContactOptions, Control};
+pub use problem::{ContactProblem, ProblemBuilder, Shape};
 pub use report::{ContactReport, Termination};
 pub use state::ContactState;
 pub use sweep::{
-    Branch, CyclePoint, CycleSummary, RETRIES, SweepPoint, approach_cycle, substeps, summarize, sweep,
-    sweep_observed,
+    Branch, CyclePoint, CycleSummary, RETRIES, SweepPoint, approach_cycle, substeps, summarize,
 };

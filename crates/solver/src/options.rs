@@ -24,11 +24,18 @@ pub struct ContactOptions {
     pub max_iterations: usize,
 }
 
+impl ContactOptions {
+    /// The default tolerance on the scale-free gap residual.
+    pub const DEFAULT_TOLERANCE: f64 = 1e-8;
+    /// The default iteration limit.
+    pub const DEFAULT_MAX_ITERATIONS: usize = 10_000;
+}
+
 impl Default for ContactOptions {
     fn default() -> Self {
         ContactOptions {
-            tolerance: 1e-8,
-            max_iterations: 10_000,
+            tolerance: ContactOptions::DEFAULT_TOLERANCE,
+            max_iterations: ContactOptions::DEFAULT_MAX_ITERATIONS,
         }
     }
 }

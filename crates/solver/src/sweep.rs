@@ -2,14 +2,11 @@
 //! gaps) solved in order, each step warm-started from the last, so that loading and unloading
 //! follow their own branches; and what a sweep shows (pull-off, jumps, hysteresis).
 
-use crate::adhesive::{
-    AdhesiveOptions, AdhesiveReport, AdhesiveState, OuterLoop, Start, solve_adhesive_observed,
-};
+use crate::adhesive::{AdhesiveReport, AdhesiveState, Start};
 use crate::error::{Result, SolverError, invalid};
+use crate::method::{Observer, Settings};
 use crate::options::Control;
-use elastic::Compliance;
-use ljadhesion::AdhesionLaw;
-use ndarray::ArrayView2;
+use crate::problem::ContactProblem;
 
 /// The direction of a sweep step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -91,73 +88,37 @@ pub fn branches(path: &[Control]) -> Vec<Branch> {
     out
 }
 
-/// Solves every control of `path` in order (each warm-started from the previous step; the
-/// first from `start`), calling `on_step(index, point, state)` after each one; `on_step`
-/// returns `false` to stop early. Returns the solved points.
+/// Solves every control of `path` in order on `problem` (each warm-started from the previous
+/// step; the first from `start`, else from apart), telling `observer` every iteration and
+/// every step; its [`Observer::step`] returns `false` to stop early. Returns the solved points.
 ///
 /// A step of approach that does not converge is solved again from the state before it, in
 /// twice as many substeps, up to [`RETRIES`] times (down to an eighth): near a jump a long
 /// step can leave a ring of cells cycling in and out of contact for ever, which shorter steps,
 /// each warm-started closer to its answer, avoid. Central-gap steps are not retried: the ones
-/// that fail sit at the fold of a jump out, where finer substeps did not help (Fig. 6 in full
-/// mode at mu = 3: three failed with retries against two without, at 6.5 times the solver
-/// time). The solves of a retry share
-/// one iteration limit ([`AdhesiveOptions::max_outer_iterations`]), so a step costs at most
-/// `1 + RETRIES` limits. The failed attempts' iterations and time are counted in the step's
-/// report. A step that still does not converge
-/// (or a load or central-gap step) is reported (in its [`AdhesiveReport::termination`])
-/// and the sweep goes on from it.
+/// that fail sit at the fold of a jump out, where finer substeps did not help
+/// (`docs/decisions.md`). The solves of a retry share one iteration limit
+/// ([`Settings::max_iterations`]), so a step costs at most `1 + RETRIES` limits. The failed
+/// attempts' iterations and time are counted in the step's report. A step that still does not
+/// converge (or a load or central-gap step) is reported (in its
+/// [`AdhesiveReport::termination`]) and the sweep goes on from it.
 ///
 /// `max_step` [m] keeps the sweep quasi-static: a step of approach (or of central gap) longer
 /// than it is split into equal substeps no longer than it, each solved and warm-started in
 /// turn, and only the last is returned. Without it a long unloading step jumps across the
-/// attached states the surfaces would pass through and can land on a less attached branch
-/// (seen on the contact-mechanics challenge with steps of 120 `z0`). How fine is fine enough
-/// depends on the problem: there substeps of 10 `z0` gave an adhesive cycle within 0.4 % of
-/// substeps of one `z0`, while on a sphere at Tabor parameter 3 on 64^2 cells a step of
-/// 0.25 `z0` left a ring of cells cycling in and out of contact and 0.125 `z0` converged.
-/// Load-controlled steps are never split.
+/// attached states the surfaces would pass through and can land on a less attached branch.
+/// How fine is fine enough depends on the problem (`docs/decisions.md`). Load-controlled
+/// steps are never split.
 ///
 /// # Errors
-/// As [`solve_adhesive`]; a `max_step` that is not positive and finite.
-#[allow(clippy::too_many_arguments)]
+/// As [`ContactProblem::solve`]; a `max_step` that is not positive and finite.
 pub fn sweep(
-    op: &dyn Compliance,
-    law: &dyn AdhesionLaw,
-    g0: ArrayView2<f64>,
+    problem: &ContactProblem,
     path: &[Control],
-    options: &AdhesiveOptions,
     max_step: Option<f64>,
+    settings: &Settings,
     start: Option<AdhesiveState>,
-    on_step: &mut dyn FnMut(usize, &SweepPoint, &AdhesiveState) -> bool,
-) -> Result<Vec<SweepPoint>> {
-    sweep_observed(
-        op,
-        law,
-        g0,
-        path,
-        options,
-        max_step,
-        start,
-        on_step,
-        &mut |_, _, _| {},
-    )
-}
-
-/// [`sweep`], calling `on_iteration(index, iteration, residual)` after every iteration of
-/// every solve (substeps and retries included; `iteration` counts within one solve), which
-/// shows where a long step stands.
-#[allow(clippy::too_many_arguments)]
-pub fn sweep_observed(
-    op: &dyn Compliance,
-    law: &dyn AdhesionLaw,
-    g0: ArrayView2<f64>,
-    path: &[Control],
-    options: &AdhesiveOptions,
-    max_step: Option<f64>,
-    start: Option<AdhesiveState>,
-    on_step: &mut dyn FnMut(usize, &SweepPoint, &AdhesiveState) -> bool,
-    on_iteration: &mut dyn FnMut(usize, usize, f64),
+    observer: &mut dyn Observer,
 ) -> Result<Vec<SweepPoint>> {
     if let Some(h) = max_step
         && !(h.is_finite() && h > 0.0)
@@ -186,7 +147,7 @@ pub fn sweep_observed(
     let mut points = Vec::with_capacity(path.len());
     for (k, &control) in path.iter().enumerate() {
         let mut limit = max_step;
-        let mut spent = (0, 0, 0, 0.0);
+        let mut spent: Option<(crate::adhesive::Iterations, usize, f64)> = None;
         let mut retries = 0;
         let (next, mut report, between, unconverged_substeps) = loop {
             let between = substeps(previous, control, limit);
@@ -194,27 +155,29 @@ pub fn sweep_observed(
             let mut current: Option<AdhesiveState> = None;
             // A retry's solves share one iteration limit, so that a step no substeps can save
             // costs at most `1 + RETRIES` limits.
-            let mut budget = options.max_outer_iterations;
+            let mut budget = settings.max_iterations;
             let mut solve = |sub: Control, current: &Option<AdhesiveState>| {
                 let from = current
                     .as_ref()
                     .or(state.as_ref())
                     .map_or(Start::Loading, Start::Warm);
-                let limited = AdhesiveOptions {
-                    max_outer_iterations: budget,
-                    ..*options
+                let limited = Settings {
+                    max_iterations: budget,
+                    ..*settings
                 };
-                let used = if retries == 0 { options } else { &limited };
-                let (next, report) =
-                    solve_adhesive_observed(op, law, g0, sub, used, from, &mut |i, r| on_iteration(k, i, r))?;
-                budget = budget.saturating_sub(match options.outer_loop {
-                    OuterLoop::EnergyDescent => report.inner_iterations,
-                    _ => report.outer_iterations,
-                });
-                spent.0 += report.outer_iterations;
-                spent.1 += report.inner_iterations;
-                spent.2 += report.operator_calls;
-                spent.3 += report.wall_time_s;
+                let used = if retries == 0 { settings } else { &limited };
+                let (next, report) = crate::adhesive::solve(problem, sub, used, from, &mut |i, r| {
+                    observer.iteration(k, i, r)
+                })?;
+                budget = budget.saturating_sub(report.iterations.count());
+                match &mut spent {
+                    Some((iterations, calls, time)) => {
+                        iterations.accumulate(&report.iterations);
+                        *calls += report.operator_calls;
+                        *time += report.wall_time_s;
+                    }
+                    None => spent = Some((report.iterations, report.operator_calls, report.wall_time_s)),
+                }
                 Ok::<_, SolverError>((next, report))
             };
             for &sub in &between {
@@ -231,10 +194,11 @@ pub fn sweep_observed(
             retries += 1;
             limit = Some(length / (2 * (between.len() + 1)) as f64);
         };
-        report.outer_iterations = spent.0;
-        report.inner_iterations = spent.1;
-        report.operator_calls = spent.2;
-        report.wall_time_s = spent.3;
+        if let Some((iterations, calls, time)) = spent {
+            report.iterations = iterations;
+            report.operator_calls = calls;
+            report.wall_time_s = time;
+        }
         let point = SweepPoint {
             control,
             branch: branch[k],
@@ -243,7 +207,7 @@ pub fn sweep_observed(
             unconverged_substeps,
             retries,
         };
-        let go_on = on_step(k, &point, &next);
+        let go_on = observer.step(k, &point, &next);
         points.push(point);
         state = Some(next);
         previous = Some(control);

@@ -33,12 +33,12 @@
 //! Two operator applications per iteration (the direction and the trial gap), against one per
 //! inner iteration times many inner iterations per outer one in the dual loop.
 
-use super::{AdhesiveOptions, AdhesiveReport, AdhesiveState, Start, assemble};
+use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start, assemble, cells};
 use crate::error::{Result, SolverError, invalid};
 use crate::options::Control;
 use crate::report::Termination;
 use crate::state::ContactState;
-use elastic::{Compliance, Domain, FreeStiffness, PeriodicStiffness};
+use elastic::{Domain, FreeStiffness, PeriodicStiffness};
 use ljadhesion::{AdhesionLaw, Cells, LocalPotential};
 use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip, s};
 use rayon::prelude::*;
@@ -488,15 +488,16 @@ pub(super) struct Setup<'a> {
 /// Sets up the problem over the gap (or the padded displacement, free) under approach control
 /// (`Control::Approach`) or, periodic only, load control (`Control::Force`,
 /// `Control::MeanPressure`), with the law's `potential` if it has one; see the module docs.
-pub(super) fn setup<'a>(
-    op: &dyn Compliance,
-    law: &'a dyn AdhesionLaw,
-    potential: Option<&'a dyn LocalPotential>,
-    g0: ArrayView2<f64>,
-    control: Control,
-    options: &AdhesiveOptions,
-    start: Start,
-) -> Result<Setup<'a>> {
+pub(super) fn setup<'a>(job: &Job<'a>, potential: Option<&'a dyn LocalPotential>) -> Result<Setup<'a>> {
+    let Job {
+        op,
+        law,
+        g0,
+        control,
+        settings,
+        start,
+        ..
+    } = *job;
     let domain = *op.domain();
     let shape = domain.shape();
     let (ny, nx) = shape;
@@ -510,11 +511,7 @@ pub(super) fn setup<'a>(
     }
     let n = (nx * ny) as f64;
     let probe_shape = || Array2::zeros(if potential.is_some() { (0, 0) } else { shape });
-    let cells = Cells {
-        dx: domain.dx,
-        dy: domain.dy,
-        periodic: domain.periodic,
-    };
+    let cells = cells(&domain);
     let (delta, load) = match control {
         Control::Approach(d) => (d, None),
         Control::MeanPressure(p) => (0.0, Some(p)),
@@ -529,15 +526,6 @@ pub(super) fn setup<'a>(
             "reaches the mean initial gap: a periodic surface is in full contact before that",
         ));
     }
-    if let Start::Warm(s) = start
-        && s.contact.gap.dim() != shape
-    {
-        return Err(SolverError::ShapeMismatch {
-            what: "warm-start gap",
-            expected: shape,
-            got: s.contact.gap.dim(),
-        });
-    }
     let (mut problem, first, hold) = if domain.periodic {
         let stiffness = PeriodicStiffness::new(domain, op.e_star())?;
         let first = match start {
@@ -547,7 +535,7 @@ pub(super) fn setup<'a>(
             // load instead.
             Start::Loading => match load {
                 Some(p) if p > 0.0 => {
-                    crate::cg::solve(op, g0, Control::MeanPressure(p), &options.inner, None)?
+                    crate::cg::solve(op, g0, Control::MeanPressure(p), &settings.contact, None, &mut ())?
                         .0
                         .gap
                 }
@@ -653,27 +641,59 @@ pub(super) fn setup<'a>(
     })
 }
 
+/// The energy descent of the module docs.
+pub(super) struct EnergyDescent;
+
+impl AdhesiveMethod for EnergyDescent {
+    fn check(&self, job: &Job) -> Result<()> {
+        potential(job).map(|_| ())
+    }
+
+    fn solve(&self, job: &Job, observer: &mut dyn FnMut(usize, f64)) -> Result<(AdhesiveState, AdhesiveReport)> {
+        solve(job, potential(job)?, observer)
+    }
+}
+
+/// The law's local potential, if the descent can solve this problem; else why not.
+fn potential<'a>(job: &Job<'a>) -> Result<&'a dyn LocalPotential> {
+    let Some(potential) = job.law.local_potential() else {
+        return Err(SolverError::Unsupported(format!(
+            "energy descent needs a law with a local potential (point, exponential), not `{}`",
+            job.law.name()
+        )));
+    };
+    if !job.op.domain().periodic && !matches!(job.control, Control::Approach(_)) {
+        return Err(SolverError::Unsupported(
+            "energy descent on a free domain takes the approach only (use `accelerated` for loads \
+             and central gaps)"
+                .into(),
+        ));
+    }
+    if let Control::CentralGap(g) = job.control {
+        return Err(invalid(
+            "central_gap",
+            g,
+            "energy descent takes the approach (or mean gap), the load or the mean pressure",
+        ));
+    }
+    Ok(potential)
+}
+
 /// Solves under approach control or, periodic only, load control by the descent of the
-/// module docs.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn solve(
-    op: &dyn Compliance,
-    law: &dyn AdhesionLaw,
-    potential: &dyn LocalPotential,
-    g0: ArrayView2<f64>,
-    control: Control,
-    options: &AdhesiveOptions,
-    start: Start,
+/// module docs, with the law's `potential`.
+pub(super) fn solve<'a>(
+    job: &Job<'a>,
+    potential: &'a dyn LocalPotential,
     observer: &mut dyn FnMut(usize, f64),
 ) -> Result<(AdhesiveState, AdhesiveReport)> {
     let started = Instant::now();
-    let domain = *op.domain();
+    let Job { law, settings, .. } = *job;
     let Setup {
         mut problem,
         mut x,
         delta,
         load,
-    } = setup(op, law, Some(potential), g0, control, options, start)?;
+    } = setup(job, Some(potential))?;
     let unknown = x.gap.dim();
     let mut direction = Array2::zeros(unknown);
     let mut sums = problem.project_gradient(&mut x);
@@ -685,7 +705,7 @@ pub(super) fn solve(
     let mut s_direction = Array2::zeros(unknown);
     let (mx, my, nx, ny) = (problem.mx, problem.my, problem.nx, problem.ny);
 
-    let scale = super::cell_compliance(&domain, op.e_star()) / law.range();
+    let scale = job.residual_scale();
     let mut history = Vec::new();
     let mut termination = Termination::MaxIterations;
     let mut iterations = 0;
@@ -693,11 +713,11 @@ pub(super) fn solve(
         let residual = sums.max * scale;
         history.push(residual);
         observer(iterations, residual);
-        if residual < options.tolerance {
+        if residual < settings.tolerance {
             termination = Termination::Converged;
             break;
         }
-        if iterations == options.max_outer_iterations {
+        if iterations == settings.max_iterations {
             break;
         }
         if load.is_some_and(|p| p < 0.0) && x.min_gap > 1e3 * law.range() {
@@ -801,33 +821,27 @@ pub(super) fn solve(
             slope = -zr;
         }
     }
-    Ok(finish(
-        &problem,
-        x,
-        &sums,
-        (delta, load),
-        g0,
-        (0, iterations),
+    let outcome = Outcome {
+        iterations: Iterations::Descent { iterations },
+        operator_calls: problem.calls,
         history,
         termination,
         started,
-    ))
+    };
+    Ok(finish(job, &problem, x, &sums, (delta, load), outcome))
 }
 
 /// The state and report at the solution `x`, whose gradient `sums` describe (see [`setup`]
-/// for `delta` and `load`).
-#[allow(clippy::too_many_arguments)]
+/// for `delta` and `load`); `outcome`'s operator calls are replaced by the problem's count.
 pub(super) fn finish(
+    job: &Job,
     problem: &Problem,
     x: Point,
     sums: &GradientSums,
     (delta, load): (f64, Option<f64>),
-    g0: ArrayView2<f64>,
-    (outer, inner): (usize, usize),
-    history: Vec<f64>,
-    termination: Termination,
-    started: Instant,
+    mut outcome: Outcome,
 ) -> (AdhesiveState, AdhesiveReport) {
+    let g0 = job.g0;
     let domain = problem.domain;
     let shape = domain.shape();
     let (ny, nx) = shape;
@@ -870,15 +884,6 @@ pub(super) fn finish(
         displacement,
         approach,
     };
-    assemble(
-        &domain,
-        problem.law,
-        contact,
-        law_pressure,
-        (outer, inner, problem.calls),
-        history,
-        1.0,
-        termination,
-        started,
-    )
+    outcome.operator_calls = problem.calls;
+    assemble(job, contact, law_pressure, outcome)
 }

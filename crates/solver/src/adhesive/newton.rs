@@ -27,13 +27,11 @@
 //! range (the energy descent's measure), below the tolerance.
 
 use super::energy::{self, GradientSums, Point, Problem, Setup, on_wall};
-use super::{AdhesiveOptions, AdhesiveReport, AdhesiveState, Start};
-use crate::error::Result;
+use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start};
+use crate::error::{Result, SolverError};
 use crate::options::Control;
 use crate::report::Termination;
-use elastic::Compliance;
-use ljadhesion::AdhesionLaw;
-use ndarray::{Array2, ArrayView2, Zip, s};
+use ndarray::{Array2, Zip, s};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -374,87 +372,103 @@ impl Linear {
     }
 }
 
+/// Newton-Krylov of the module docs.
+pub(super) struct Newton;
+
+impl AdhesiveMethod for Newton {
+    fn check(&self, job: &Job) -> Result<()> {
+        if !matches!(job.control, Control::Approach(_)) {
+            return Err(SolverError::Unsupported(
+                "the Newton solver takes the approach only (use `accelerated` for loads and central \
+                 gaps)"
+                    .into(),
+            ));
+        }
+        if !job.law.stiffness_bound().is_finite() {
+            return Err(SolverError::Unsupported(format!(
+                "the Newton solver linearises the law, and `{}` jumps (use `accelerated`)",
+                job.law.name()
+            )));
+        }
+        Ok(())
+    }
+
+    fn solve(&self, job: &Job, observer: &mut dyn FnMut(usize, f64)) -> Result<(AdhesiveState, AdhesiveReport)> {
+        solve(job, observer)
+    }
+}
+
 /// Solves under approach control (periodic or free) with any law; see the module docs.
-pub(super) fn solve(
-    op: &dyn Compliance,
-    law: &dyn AdhesionLaw,
-    g0: ArrayView2<f64>,
-    control: Control,
-    options: &AdhesiveOptions,
-    start: Start,
-    observer: &mut dyn FnMut(usize, f64),
-) -> Result<(AdhesiveState, AdhesiveReport)> {
+fn solve(job: &Job, observer: &mut dyn FnMut(usize, f64)) -> Result<(AdhesiveState, AdhesiveReport)> {
     let started = Instant::now();
     // A law without an energy but with a flat one (line, surface) can have its state predicted
     // by descending that energy when Newton cannot get going.
+    let law = job.law;
     let predictor = law
         .local_potential()
         .is_none()
         .then(|| law.flat_potential())
         .flatten();
-    let (state, mut report) = iterate(
-        op,
-        law,
-        g0,
-        control,
-        options,
-        start,
-        predictor.is_some(),
-        observer,
-    )?;
+    let (state, report) = iterate(job, predictor.is_some(), observer)?;
     let Some(potential) = predictor.filter(|_| report.termination == Termination::MaxIterations) else {
         return Ok((state, report));
     };
     // No solution near the start (a jump into or out of contact): the descent of the flat
     // law's energy travels there, settling on a stable state, and Newton corrects it.
-    let (predicted, descent) = energy::solve(op, law, potential, g0, control, options, start, observer)?;
-    let (state, mut polished) = iterate(
-        op,
-        law,
-        g0,
-        control,
-        options,
-        Start::Warm(&predicted),
-        false,
-        observer,
-    )?;
-    polished.outer_iterations += report.outer_iterations;
-    polished.inner_iterations += report.inner_iterations + descent.inner_iterations;
+    let (predicted, descent) = energy::solve(job, potential, observer)?;
+    let polish = Job {
+        start: Start::Warm(&predicted),
+        ..*job
+    };
+    let (state, mut polished) = iterate(&polish, false, observer)?;
+    let (
+        Iterations::Newton { steps, krylov, .. },
+        Iterations::Newton {
+            steps: more_steps,
+            krylov: more_krylov,
+            ..
+        },
+    ) = (report.iterations, polished.iterations)
+    else {
+        unreachable!("iterate reports Newton's counts")
+    };
+    polished.iterations = Iterations::Newton {
+        steps: steps + more_steps,
+        krylov: krylov + more_krylov,
+        predictor: descent.iterations.count(),
+    };
     polished.operator_calls += report.operator_calls + descent.operator_calls;
-    report.residual_history.extend(&polished.residual_history);
-    polished.residual_history = report.residual_history;
+    let mut history = report.residual_history;
+    history.extend(&polished.residual_history);
+    polished.residual_history = history;
     polished.wall_time_s = started.elapsed().as_secs_f64();
     Ok((state, polished))
 }
 
-/// Newton from `start`; with `give_up`, it stops (unconverged) as soon as it has to fall back
-/// on the smallest pseudo-time step or a Krylov solve stops short of its forcing term.
-#[allow(clippy::too_many_arguments)]
+/// Newton from the start of `job`; with `give_up`, it stops (unconverged) as soon as it has to
+/// fall back on the smallest pseudo-time step or a Krylov solve stops short of its forcing
+/// term.
 fn iterate(
-    op: &dyn Compliance,
-    law: &dyn AdhesionLaw,
-    g0: ArrayView2<f64>,
-    control: Control,
-    options: &AdhesiveOptions,
-    start: Start,
+    job: &Job,
     give_up: bool,
     observer: &mut dyn FnMut(usize, f64),
 ) -> Result<(AdhesiveState, AdhesiveReport)> {
     let started = Instant::now();
-    let domain = *op.domain();
+    let domain = *job.op.domain();
+    let (law, settings) = (job.law, job.settings);
     let Setup {
         mut problem,
         mut x,
         delta,
         load,
-    } = energy::setup(op, law, None, g0, control, options, start)?;
+    } = energy::setup(job, None)?;
     let unknown = x.gap.dim();
     let mut sums: GradientSums = problem.project_gradient(&mut x);
     let mut norm = dot(&x.gradient, &x.gradient).sqrt();
     let mut trial = Point::new(Array2::zeros(unknown));
     let mut linear = Linear::new(unknown, domain.shape());
     let block = s![..problem.ny, ..problem.nx];
-    let scale = super::cell_compliance(&domain, op.e_star()) / law.range();
+    let scale = job.residual_scale();
     let mut history = Vec::new();
     let mut termination = Termination::MaxIterations;
     let (mut steps, mut krylov) = (0, 0);
@@ -469,14 +483,14 @@ fn iterate(
         let residual = sums.max * scale;
         history.push(residual);
         observer(steps, residual);
-        if residual < options.tolerance {
+        if residual < settings.tolerance {
             termination = Termination::Converged;
             break;
         }
         if residual < 0.9 * best {
             (best, improved_at) = (residual, steps);
         }
-        if steps == options.max_outer_iterations
+        if steps == settings.max_iterations
             || steps - improved_at > patience
             || (give_up && dt <= MIN_DT)
         {
@@ -563,15 +577,16 @@ fn iterate(
         std::mem::swap(&mut x, &mut trial);
         (sums, norm) = (trial_sums, trial_norm);
     }
-    Ok(energy::finish(
-        &problem,
-        x,
-        &sums,
-        (delta, load),
-        g0,
-        (steps, krylov),
+    let outcome = Outcome {
+        iterations: Iterations::Newton {
+            steps,
+            krylov,
+            predictor: 0,
+        },
+        operator_calls: problem.calls,
         history,
         termination,
         started,
-    ))
+    };
+    Ok(energy::finish(job, &problem, x, &sums, (delta, load), outcome))
 }

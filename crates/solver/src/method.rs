@@ -1,0 +1,187 @@
+//! Which adhesive method solves a problem, how hard it tries, and who watches.
+//!
+//! The four methods (`docs/solvers.md` says which one when) share one entry point,
+//! [`crate::ContactProblem::solve`], one set of [`Settings`] and one report. [`Method::Auto`]
+//! is resolved here, from the law and the control, so the library and the command line pick
+//! the same method for the same problem.
+
+use crate::options::{ContactOptions, Control};
+use crate::sweep::SweepPoint;
+use crate::{AdhesiveState, error::Result, error::invalid};
+use ljadhesion::AdhesionLaw;
+
+/// An adhesive solution method.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Method {
+    /// The tested choice for the problem ([`Method::resolve`]).
+    #[default]
+    Auto,
+    /// The paper's relaxation of the adhesive pressure, `p_a <- p_a + beta (law(g) - p_a)`,
+    /// around non-adhesive inner solves (the paper's Fig. 4).
+    DualLoop,
+    /// The dual loop with Anderson mixing of the adhesive pressure: the same fixed point in
+    /// fewer outer iterations. Any law and control.
+    Accelerated,
+    /// No outer loop: constrained conjugate gradients on the total energy, for laws with a
+    /// local potential (point, exponential), under approach control, or load control on
+    /// periodic domains.
+    EnergyDescent,
+    /// No outer loop: Newton-Krylov on the cells' force balance with pseudo-transient
+    /// continuation, for any law but Dugdale's (the surface law included), under approach
+    /// control.
+    Newton,
+}
+
+impl Method {
+    /// Every method, `Auto` first.
+    pub const ALL: [Method; 5] = [
+        Method::Auto,
+        Method::DualLoop,
+        Method::Accelerated,
+        Method::EnergyDescent,
+        Method::Newton,
+    ];
+
+    /// The method's name as the command line takes it (`auto`, `dual-loop`, `accelerated`,
+    /// `energy`, `newton`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Auto => "auto",
+            Method::DualLoop => "dual-loop",
+            Method::Accelerated => "accelerated",
+            Method::EnergyDescent => "energy",
+            Method::Newton => "newton",
+        }
+    }
+
+    /// The method for `law` under `control`: itself, or for [`Method::Auto`] the energy
+    /// descent for the laws with an energy and Newton for the line and surface laws under
+    /// approach control, the accelerated loop elsewhere (load and central-gap control,
+    /// Dugdale's law, no adhesion). Near a fold the accelerated loop leaves a branch early,
+    /// where the two methods that relax from the last state hold on (`docs/solvers.md`).
+    pub fn resolve(self, law: &dyn AdhesionLaw, control: Control) -> Method {
+        if self != Method::Auto {
+            return self;
+        }
+        let approach = matches!(control, Control::Approach(_));
+        let adhesive = law.work_of_adhesion() > 0.0;
+        if approach && adhesive && law.local_potential().is_some() {
+            Method::EnergyDescent
+        } else if approach && adhesive && law.flat_potential().is_some() && law.stiffness_bound().is_finite() {
+            Method::Newton
+        } else {
+            Method::Accelerated
+        }
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Method {
+    type Err = String;
+
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
+                format!("unknown method `{s}`; the methods are {}", names.join(", "))
+            })
+    }
+}
+
+/// How an adhesive solve runs: the method, its tolerance and limit, and the settings that
+/// only some methods read (each says which).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// The method ([`Method::Auto`] by default).
+    pub method: Method,
+    /// Tolerance on the method's residual, in units of the law's range [-]: the dual loops'
+    /// mean gap error of the pending adhesive correction, the descent's and Newton's largest
+    /// force imbalance of a cell times its compliance (`docs/solvers.md`). The paper's 1e-6.
+    pub tolerance: f64,
+    /// Limit on the method's own iterations: outer iterations of the dual loops, descent
+    /// iterations, Newton steps.
+    pub max_iterations: usize,
+    /// The dual loops only: relaxation and mixing.
+    pub mixing: Mixing,
+    /// The non-adhesive solves inside a method: the dual loops' inner solves and the energy
+    /// descent's start under a compressive load.
+    pub contact: ContactOptions,
+}
+
+/// The dual loop's and the accelerated loop's own settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mixing {
+    /// Global relaxation factor `beta` in (0, 1] (`None`: 1). Each cell's step is further
+    /// scaled by `1 / (1 + k c)`, with `k` the law's attractive stiffness at the cell's gap and
+    /// `c` the cell's compliance; `beta` shrinks when the residual grows or stalls and regrows
+    /// slowly while it falls.
+    pub relaxation: Option<f64>,
+    /// Iterates kept by the accelerated loop's Anderson mixing.
+    pub history: usize,
+}
+
+impl Settings {
+    /// The paper's tolerance, 1e-6 of the law's range.
+    pub const DEFAULT_TOLERANCE: f64 = 1e-6;
+    /// The default limit on the method's iterations.
+    pub const DEFAULT_MAX_ITERATIONS: usize = 20_000;
+
+    /// The default settings with `method`.
+    pub fn with_method(method: Method) -> Settings {
+        Settings {
+            method,
+            ..Settings::default()
+        }
+    }
+
+    pub(crate) fn validate(&self) -> Result<()> {
+        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
+            return Err(invalid("tolerance", self.tolerance, "must be finite and > 0"));
+        }
+        if let Some(b) = self.mixing.relaxation
+            && !(b > 0.0 && b <= 1.0)
+        {
+            return Err(invalid("relaxation", b, "must be in (0, 1]"));
+        }
+        Ok(())
+    }
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            method: Method::Auto,
+            tolerance: Settings::DEFAULT_TOLERANCE,
+            max_iterations: Settings::DEFAULT_MAX_ITERATIONS,
+            mixing: Mixing {
+                relaxation: None,
+                history: 8,
+            },
+            contact: ContactOptions {
+                tolerance: 1e-10,
+                max_iterations: ContactOptions::DEFAULT_MAX_ITERATIONS,
+            },
+        }
+    }
+}
+
+/// Watches a solve or a sweep. Both methods do nothing by default; `()` watches nothing.
+pub trait Observer {
+    /// After every iteration of a solve: the sweep step it belongs to (0 for a single solve),
+    /// the method's iteration count within the solve, and its residual.
+    fn iteration(&mut self, _step: usize, _iteration: usize, _residual: f64) {}
+
+    /// After every step of a sweep, with its point and state; `false` stops the sweep.
+    fn step(&mut self, _index: usize, _point: &SweepPoint, _state: &AdhesiveState) -> bool {
+        true
+    }
+}
+
+impl Observer for () {}

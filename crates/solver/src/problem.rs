@@ -1,0 +1,411 @@
+//! A contact problem as one object: the elastic half-space on its grid, the rigid
+//! counterface's initial gap, the adhesive law, and what the user should know before trusting
+//! the result. Built from a geometry, a surface, a material and a law by [`ProblemBuilder`];
+//! solved by [`ContactProblem::solve`] and [`ContactProblem::sweep`].
+
+use crate::adhesive::{AdhesiveReport, AdhesiveState, Start};
+use crate::error::{Result, SolverError, invalid};
+use crate::geometry::{SphereProfile, flat_on_rough, sphere, wave};
+use crate::method::{Observer, Settings};
+use crate::options::{ContactOptions, Control};
+use crate::report::ContactReport;
+use crate::state::ContactState;
+use crate::sweep::SweepPoint;
+use elastic::{Compliance, Domain, Free, Periodic};
+use ljadhesion::{AdhesionLaw, NoAdhesion};
+use ndarray::Array2;
+use std::sync::Arc;
+
+/// The shape of the rigid counterface, on which any roughness sits.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Shape {
+    /// A flat: the roughness alone makes the gap.
+    #[default]
+    Flat,
+    /// A sphere of radius `radius` [m] centred on the grid ([`crate::geometry::sphere`]).
+    Sphere {
+        /// Radius [m].
+        radius: f64,
+        /// Paraboloid or exact profile.
+        profile: SphereProfile,
+    },
+    /// A wave `amplitude (1 - cos(2 pi x / L))`, one wavelength across the box along x
+    /// ([`crate::geometry::wave`]); periodic domains only.
+    Wave {
+        /// Amplitude [m], half the peak-to-valley height.
+        amplitude: f64,
+    },
+}
+
+/// A normal contact problem: an elastic half-space (its operator knows the grid and the
+/// composite modulus), the initial gap `g0` [m] to the rigid counterface (minimum 0, shape
+/// `(ny, nx)`), an adhesive law ([`NoAdhesion`] for none), and warnings about the set-up.
+#[derive(Clone)]
+pub struct ContactProblem {
+    /// The half-space's compliance on the grid: [`Periodic`] or [`Free`].
+    pub operator: Arc<dyn Compliance>,
+    /// The initial gap `g0` [m].
+    pub initial_gap: Array2<f64>,
+    /// The adhesive law.
+    pub law: Arc<dyn AdhesionLaw>,
+    /// Things the user should know before trusting the result: a grid too coarse for the law,
+    /// attraction cut off at a free grid's edge.
+    pub warnings: Vec<String>,
+}
+
+impl ContactProblem {
+    /// A builder from geometry, surface, material and law.
+    pub fn builder() -> ProblemBuilder {
+        ProblemBuilder::default()
+    }
+
+    /// A problem from its parts, with the warnings computed as the builder does.
+    ///
+    /// # Errors
+    /// An initial gap of another shape than the operator's grid.
+    pub fn new(
+        operator: impl Compliance + 'static,
+        initial_gap: Array2<f64>,
+        law: impl AdhesionLaw + 'static,
+    ) -> Result<ContactProblem> {
+        ContactProblem::from_shared(Arc::new(operator), initial_gap, Arc::new(law))
+    }
+
+    /// [`ContactProblem::new`] with shared parts.
+    ///
+    /// # Errors
+    /// As [`ContactProblem::new`].
+    pub fn from_shared(
+        operator: Arc<dyn Compliance>,
+        initial_gap: Array2<f64>,
+        law: Arc<dyn AdhesionLaw>,
+    ) -> Result<ContactProblem> {
+        let expected = operator.domain().shape();
+        if initial_gap.dim() != expected {
+            return Err(SolverError::ShapeMismatch {
+                what: "initial gap",
+                expected,
+                got: initial_gap.dim(),
+            });
+        }
+        let mut problem = ContactProblem {
+            operator,
+            initial_gap,
+            law,
+            warnings: Vec::new(),
+        };
+        problem.warnings = problem.check();
+        Ok(problem)
+    }
+
+    /// The same problem under another law.
+    pub fn with_law(&self, law: impl AdhesionLaw + 'static) -> ContactProblem {
+        let mut problem = ContactProblem {
+            law: Arc::new(law),
+            ..self.clone()
+        };
+        problem.warnings = problem.check();
+        problem
+    }
+
+    /// The grid.
+    pub fn domain(&self) -> Domain {
+        *self.operator.domain()
+    }
+
+    /// The composite modulus E* [Pa].
+    pub fn e_star(&self) -> f64 {
+        self.operator.e_star()
+    }
+
+    /// Whether the law attracts at all.
+    pub fn adhesive(&self) -> bool {
+        self.law.work_of_adhesion() > 0.0
+    }
+
+    /// Solves the adhesive contact under `control` by the method of `settings`, from `start`:
+    /// [`Control::Approach`] (any sign: negative is apart), [`Control::Force`] or
+    /// [`Control::MeanPressure`] (any sign: negative pulls), or [`Control::CentralGap`] (the
+    /// approach follows, which traces unstable branches). `observer` hears every iteration.
+    ///
+    /// # Errors
+    /// Bad input, a method that cannot solve this law under this control (the message names
+    /// one that can), non-finite gaps met by the law.
+    pub fn solve(
+        &self,
+        control: Control,
+        settings: &Settings,
+        start: Start,
+        observer: &mut dyn Observer,
+    ) -> Result<(AdhesiveState, AdhesiveReport)> {
+        crate::adhesive::solve(self, control, settings, start, &mut |i, r| {
+            observer.iteration(0, i, r)
+        })
+    }
+
+    /// Solves every control of `path` in order, each warm-started from the last (the first
+    /// from `start`, else from apart); see [`crate::sweep::sweep`] for the splitting of long
+    /// steps (`max_step` [m]) and the retries. `observer` hears every iteration and every
+    /// step, and can stop the sweep.
+    ///
+    /// # Errors
+    /// As [`ContactProblem::solve`]; a `max_step` that is not positive and finite.
+    pub fn sweep(
+        &self,
+        path: &[Control],
+        max_step: Option<f64>,
+        settings: &Settings,
+        start: Option<AdhesiveState>,
+        observer: &mut dyn Observer,
+    ) -> Result<Vec<SweepPoint>> {
+        crate::sweep::sweep(self, path, max_step, settings, start, observer)
+    }
+
+    /// Solves the contact as if the law were switched off, by the constrained conjugate
+    /// gradients of [`crate::cg`] (faster than an adhesive method with no adhesion).
+    ///
+    /// # Errors
+    /// As [`crate::cg::solve`].
+    pub fn solve_without_adhesion(
+        &self,
+        control: Control,
+        options: &ContactOptions,
+        warm: Option<&ContactState>,
+        observer: &mut dyn Observer,
+    ) -> Result<(ContactState, ContactReport)> {
+        crate::cg::solve(
+            self.operator.as_ref(),
+            self.initial_gap.view(),
+            control,
+            options,
+            warm,
+            observer,
+        )
+    }
+
+    /// The warnings of this set-up (see [`ContactProblem::warnings`]).
+    fn check(&self) -> Vec<String> {
+        let mut warnings = Vec::new();
+        if !self.adhesive() {
+            return warnings;
+        }
+        let law = self.law.as_ref();
+        let domain = self.domain();
+        warnings.extend(resolution_warnings(&domain, self.e_star(), law));
+        if domain.periodic {
+            return warnings;
+        }
+        // The attraction beyond the grid is lost: the smallest gap on the border says how much.
+        // The law's energy there, -V(g), is the share of w0 its tail holds beyond that gap; on a
+        // sphere (gap r^2/(2R) outside) the force the tail would add, 2 pi R V(g), is that
+        // share of 2 pi R w0 (undeformed).
+        let g0 = &self.initial_gap;
+        let (ny, nx) = g0.dim();
+        let border = g0
+            .indexed_iter()
+            .filter(|((j, i), _)| *j == 0 || *i == 0 || *j == ny - 1 || *i == nx - 1)
+            .map(|(_, g)| *g)
+            .fold(f64::INFINITY, f64::min);
+        let share = law
+            .flat_potential()
+            .map(|v| -v.energy(border) / law.work_of_adhesion());
+        if border < 10.0 * law.range() && share.is_none_or(|s| s > 1e-3) {
+            let held = share.map_or(String::new(), |s| {
+                format!(
+                    " (the law holds {:.1} % of w0 beyond that gap: on a sphere, about that share \
+                     of 2 pi R w0 is missing from the loads)",
+                    100.0 * s
+                )
+            });
+            warnings.push(format!(
+                "the undeformed gap at the grid's edge is only {:.2} times the adhesive range: \
+                 the attraction beyond the grid is cut off{held}; enlarge the box (gap >= 10 ranges)",
+                border / law.range()
+            ));
+        }
+        warnings
+    }
+}
+
+impl std::fmt::Debug for ContactProblem {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ContactProblem")
+            .field("domain", &self.domain())
+            .field("e_star", &self.e_star())
+            .field("law", &self.law.name())
+            .field("warnings", &self.warnings)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Warnings about a grid too coarse for the law: the cohesive (process-zone) length
+/// `E* w0 / sigma0^2` must span at least one cell, or the adhesive zone at a contact edge
+/// falls inside one cell. Each message says how fine the grid should be.
+pub fn resolution_warnings(domain: &Domain, e_star: f64, law: &dyn AdhesionLaw) -> Vec<String> {
+    let sigma = -law.peak_pressure();
+    let process_zone = e_star * law.work_of_adhesion() / (sigma * sigma);
+    let cell = domain.dx.max(domain.dy);
+    let mut warnings = Vec::new();
+    if cell > process_zone {
+        warnings.push(format!(
+            "the cell size {cell:.3e} m exceeds the adhesive process-zone length E* w0 / sigma0^2 = \
+             {process_zone:.3e} m: the attractive zone at contact edges is not resolved; use a cell \
+             of at most {process_zone:.3e} m ({} cells across this domain) for mesh-converged \
+             adhesion",
+            (domain.nx as f64 * domain.dx / process_zone).ceil()
+        ));
+    }
+    warnings
+}
+
+/// Builds a [`ContactProblem`] from a geometry, a surface, a material and a law:
+///
+/// ```
+/// use ljadhesion::{LennardJones, SurfaceLaw};
+/// use solver::ContactProblem;
+///
+/// let law = SurfaceLaw(LennardJones::new(0.05, 1e-9)?);
+/// let problem = ContactProblem::builder()
+///     .grid(64, 64, 2e-7, 2e-7)
+///     .sphere(1e-6)
+///     .modulus(1e9)
+///     .law(law)
+///     .build()?;
+/// assert!(!problem.domain().periodic);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Default)]
+pub struct ProblemBuilder {
+    modulus: Option<f64>,
+    grid: Option<(usize, usize, f64, f64)>,
+    roughness: Option<Array2<f64>>,
+    shape: Shape,
+    periodic: Option<bool>,
+    law: Option<Arc<dyn AdhesionLaw>>,
+}
+
+impl ProblemBuilder {
+    /// The composite modulus E* [Pa] (required).
+    pub fn modulus(mut self, e_star: f64) -> Self {
+        self.modulus = Some(e_star);
+        self
+    }
+
+    /// A grid of `nx` by `ny` cells spanning `length_x` by `length_y` [m]; with roughness, its
+    /// shape must match the heights'.
+    pub fn grid(mut self, nx: usize, ny: usize, length_x: f64, length_y: f64) -> Self {
+        self.grid = Some((nx, ny, length_x, length_y));
+        self
+    }
+
+    /// Roughness heights [m] of shape `(ny, nx)` (peaks towards the half-space) spanning
+    /// `length_x` by `length_y` [m]: they set the grid.
+    pub fn roughness(mut self, heights: Array2<f64>, length_x: f64, length_y: f64) -> Self {
+        let (ny, nx) = heights.dim();
+        self.grid = Some((nx, ny, length_x, length_y));
+        self.roughness = Some(heights);
+        self
+    }
+
+    /// The counterface's shape (a flat by default).
+    pub fn shape(mut self, shape: Shape) -> Self {
+        self.shape = shape;
+        self
+    }
+
+    /// A paraboloidal sphere of radius `radius` [m].
+    pub fn sphere(self, radius: f64) -> Self {
+        self.shape(Shape::Sphere {
+            radius,
+            profile: SphereProfile::Paraboloid,
+        })
+    }
+
+    /// A wave of amplitude `amplitude` [m].
+    pub fn wave(self, amplitude: f64) -> Self {
+        self.shape(Shape::Wave { amplitude })
+    }
+
+    /// Periodic (the pattern repeats) or free (an isolated contact) boundaries; by default
+    /// free for a sphere, periodic otherwise.
+    pub fn periodic(mut self, periodic: bool) -> Self {
+        self.periodic = Some(periodic);
+        self
+    }
+
+    /// The adhesive law (none by default).
+    pub fn law(mut self, law: impl AdhesionLaw + 'static) -> Self {
+        self.law = Some(Arc::new(law));
+        self
+    }
+
+    /// [`ProblemBuilder::law`] for a shared law.
+    pub fn shared_law(mut self, law: Arc<dyn AdhesionLaw>) -> Self {
+        self.law = Some(law);
+        self
+    }
+
+    /// The problem.
+    ///
+    /// # Errors
+    /// A missing modulus or grid, nothing to press (a flat with no roughness), heights whose
+    /// shape differs from the grid's, a wave on a free domain, and the geometry's and the
+    /// operators' own checks.
+    pub fn build(self) -> Result<ContactProblem> {
+        let e_star = self.modulus.ok_or(SolverError::Incomplete(
+            "the composite modulus E* [Pa]",
+        ))?;
+        if !(e_star.is_finite() && e_star > 0.0) {
+            return Err(invalid("modulus", e_star, "must be a finite E* > 0 Pa"));
+        }
+        let (nx, ny, lx, ly) = self.grid.ok_or(SolverError::Incomplete(
+            "the grid: its cells and size, or roughness heights with their size [m]",
+        ))?;
+        for (name, l) in [("length_x", lx), ("length_y", ly)] {
+            if !(l.is_finite() && l > 0.0) {
+                return Err(invalid(name, l, "must be a finite length > 0 m"));
+            }
+        }
+        if let Some(h) = &self.roughness
+            && h.dim() != (ny, nx)
+        {
+            return Err(SolverError::ShapeMismatch {
+                what: "roughness heights",
+                expected: (ny, nx),
+                got: h.dim(),
+            });
+        }
+        let periodic = self
+            .periodic
+            .unwrap_or(!matches!(self.shape, Shape::Sphere { .. }));
+        let domain = Domain {
+            nx,
+            ny,
+            dx: lx / nx as f64,
+            dy: ly / ny as f64,
+            periodic,
+        };
+        let roughness = self.roughness.as_ref().map(|h| h.view());
+        let initial_gap = match self.shape {
+            Shape::Flat => flat_on_rough(roughness.ok_or(SolverError::Incomplete(
+                "something to press: roughness, a sphere or a wave",
+            ))?)?,
+            Shape::Sphere { radius, profile } => sphere(&domain, radius, profile, roughness)?,
+            Shape::Wave { amplitude } => {
+                if !periodic {
+                    return Err(SolverError::Unsupported(
+                        "a wave repeats: it needs the periodic domain".into(),
+                    ));
+                }
+                wave(&domain, amplitude, roughness)?
+            }
+        };
+        let operator: Arc<dyn Compliance> = if periodic {
+            Arc::new(Periodic::new(domain, e_star)?)
+        } else {
+            Arc::new(Free::new(domain, e_star)?)
+        };
+        let law = self.law.unwrap_or_else(|| Arc::new(NoAdhesion));
+        ContactProblem::from_shared(operator, initial_gap, law)
+    }
+}
