@@ -3,8 +3,8 @@
 //! warm-started from the last. Relative contact area against the reduced pressure
 //! p/(E* g_bar), and the gap along the mid cross-section.
 
-use anyhow::{Context as _, Result};
 use crate::case::{Case, Law};
+use anyhow::{Context as _, Result};
 use serde::{Deserialize, Serialize};
 use solver::{AdhesiveState, ContactOptions, ContactState, Control, Settings, Start};
 use std::path::PathBuf;

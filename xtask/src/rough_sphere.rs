@@ -8,8 +8,8 @@
 //! most negative load of a displacement-controlled unloading from a fixed preload, found by
 //! coarse steps and refined around the minimum.
 
-use anyhow::Result;
 use crate::case::{Case, Law};
+use anyhow::Result;
 use serde::{Deserialize, Serialize};
 use solver::{AdhesiveState, Control, Settings, Start};
 use std::f64::consts::PI;

@@ -2,8 +2,8 @@
 //! paraboloid of radius R = 1000 z0 on a free grid, Tabor parameter set through w0. Loads in
 //! units of 2 pi R w0 and approaches in units of z0, as Greenwood (1997) plots them.
 
-use anyhow::Result;
 use crate::case::{Case, Law};
+use anyhow::Result;
 use serde::{Deserialize, Serialize};
 use solver::{AdhesiveState, ContactProblem, Control, Observer, Settings, SweepPoint};
 use std::f64::consts::PI;

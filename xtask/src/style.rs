@@ -2,12 +2,12 @@
 //! markers with error bars) on linear or logarithmic axes, and a colour [`map`], each written
 //! as PNG and SVG, in the command line's plotting module's font and colours (shared as source).
 
+use crate::plot::{ensure_font, length_unit, viridis};
 use anyhow::{Context, Result, anyhow};
 use ndarray::ArrayView2;
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::ValueFormatter;
 use plotters::prelude::*;
-use crate::plot::{ensure_font, length_unit, viridis};
 use std::path::Path;
 
 /// Tableau's ten colours: distinguishable, also in grey print.

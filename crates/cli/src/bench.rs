@@ -89,7 +89,14 @@ pub fn bench(a: BenchArgs) -> Result<()> {
             max_iterations: a.max_iterations,
         };
         let t = Instant::now();
-        let (state, rep) = solver::cg::solve(&op, g0.view(), Control::MeanPressure(a.pressure), &opts, None, &mut ())?;
+        let (state, rep) = solver::cg::solve(
+            &op,
+            g0.view(),
+            Control::MeanPressure(a.pressure),
+            &opts,
+            None,
+            &mut (),
+        )?;
         let time = t.elapsed().as_secs_f64();
         let peak = peak_rss().map(|b| b as f64 / 1e6);
         let mut row = json!({

@@ -213,7 +213,10 @@ where
             }
         }
     }
-    for (table, flags) in [(&mut ta, toml::Table::try_from(a)?), (&mut tb, toml::Table::try_from(b)?)] {
+    for (table, flags) in [
+        (&mut ta, toml::Table::try_from(a)?),
+        (&mut tb, toml::Table::try_from(b)?),
+    ] {
         if let Some((key, x)) = non_finite(&flags) {
             bail!("--{} must be a finite number, got {x}", key.replace('_', "-"));
         }
@@ -289,7 +292,9 @@ impl Case {
     pub fn contact_options(&self) -> ContactOptions {
         ContactOptions {
             tolerance: self.tolerance.unwrap_or(ContactOptions::DEFAULT_TOLERANCE),
-            max_iterations: self.max_iterations.unwrap_or(ContactOptions::DEFAULT_MAX_ITERATIONS),
+            max_iterations: self
+                .max_iterations
+                .unwrap_or(ContactOptions::DEFAULT_MAX_ITERATIONS),
         }
     }
 

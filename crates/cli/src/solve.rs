@@ -232,8 +232,7 @@ fn solve_adhesive(args: &SolveArgs, case: &Case, control: Control, built: &Built
     let problem = &built.problem;
     let settings = case.settings();
     let mut progress = Progress::new("");
-    let (state, report) =
-        on_workers(|| problem.solve(control, &settings, Start::Loading, &mut progress))?;
+    let (state, report) = on_workers(|| problem.solve(control, &settings, Start::Loading, &mut progress))?;
     eprint!("\r{:60}\r", "");
     let domain = problem.domain();
     let total = state.total_pressure();

@@ -11,7 +11,9 @@ use ndarray::Array2;
 use plotters::style::RGBColor;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
-use solver::{AdhesiveState, Branch, ContactState, Control, CyclePoint, Observer, SweepPoint, approach_cycle, summarize};
+use solver::{
+    AdhesiveState, Branch, ContactState, Control, CyclePoint, Observer, SweepPoint, approach_cycle, summarize,
+};
 use std::fs::OpenOptions;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -309,15 +311,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         quiet_since: Instant::now(),
         error: None,
     };
-    let points = on_workers(|| {
-        problem.sweep(
-            &controls[done..],
-            max_step,
-            &settings,
-            start,
-            &mut writer,
-        )
-    })?;
+    let points = on_workers(|| problem.sweep(&controls[done..], max_step, &settings, start, &mut writer))?;
     bar.finish_and_clear();
     if let Some(e) = writer.error {
         return Err(e.context("writing the sweep's results"));

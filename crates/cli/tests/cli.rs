@@ -506,7 +506,7 @@ fn adhesive_solve_reports_both_pressures() {
     assert_eq!(s["law"], "surface");
     assert!(s["load"].as_f64().unwrap() < 0.0, "adhesion pulls: {}", s["load"]);
     assert!(s["adhesive_load"].as_f64().unwrap() < 0.0);
-    assert!(s["outer_iterations"].is_number() && s["inner_iterations"].is_number());
+    assert!(s["iterations"].is_number() && s["inner_iterations"].is_number());
     for f in [
         "pressure",
         "compressive_pressure",
@@ -898,4 +898,84 @@ fn a_box_that_cuts_the_tail_says_how_much() {
     let share = 4.0 / 3.0 * z.powi(2) - z.powi(8) / 3.0;
     let text = format!("the law holds {:.1} % of w0", 100.0 * share);
     assert!(stderr(&o).contains(&text), "{text}: {}", stderr(&o));
+}
+
+#[test]
+fn non_finite_values_are_refused_with_their_key() {
+    let d = dir("non-finite");
+    let base = [
+        "solve",
+        "--sphere-radius",
+        "1e-6",
+        "--length",
+        "2e-7",
+        "--n",
+        "16",
+        "--approach",
+        "1e-9",
+    ];
+    for (extra, key) in [
+        (
+            vec!["--modulus", "1e9", "--z0", "1e-9", "--work-of-adhesion", "nan"],
+            "--work-of-adhesion",
+        ),
+        (vec!["--modulus", "inf"], "--modulus"),
+        (vec!["--modulus", "1e9", "--tolerance", "nan"], "--tolerance"),
+    ] {
+        let o = roughcontact(&[&base[..], &extra, &["--out", d.to_str().unwrap()]].concat());
+        assert!(!o.status.success(), "{extra:?} was accepted");
+        let e = stderr(&o);
+        assert!(e.contains(key) && e.contains("finite"), "{extra:?}: {e}");
+    }
+    let case = d.join("case.toml");
+    std::fs::write(&case, "modulus = 1e9\nwork_of_adhesion = 0.05\nz0 = nan\n").unwrap();
+    let o = roughcontact(&[&base[..], &["--config", case.to_str().unwrap()]].concat());
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(e.contains("`z0`") && e.contains("finite"), "{e}");
+}
+
+#[test]
+fn auto_picks_the_librarys_method_for_every_built_in_example() {
+    use ljadhesion::{AdhesionLaw, ExponentialLaw, LennardJones, NoAdhesion, SurfaceLaw};
+    use solver::{Control, Method};
+    let d = dir("auto-examples");
+    for (name, extra) in [
+        ("hertz", vec!["--n", "16", "--steps", "1"]),
+        ("jkr-sphere", vec!["--n", "16", "--steps", "1"]),
+        ("dmt-sphere", vec!["--n", "16", "--steps", "1"]),
+        ("rough-sphere", vec!["--n", "16", "--steps", "1"]),
+        ("challenge-small", vec!["--n", "32", "--mean-pressures", "1.25e5"]),
+        ("wavy-jkr", vec!["--n", "64", "--steps", "1"]),
+    ] {
+        // The library's choice for the example's law and path, from its case file alone.
+        let text = std::fs::read_to_string(format!("../../data/examples/{name}.toml")).unwrap();
+        let table: toml::Table = toml::from_str(&text).unwrap();
+        let number = |k: &str| table.get(k).and_then(|v| v.as_float());
+        let law: Box<dyn AdhesionLaw> = match table.get("law").and_then(|v| v.as_str()) {
+            None => Box::new(NoAdhesion),
+            Some("surface") => Box::new(SurfaceLaw(
+                LennardJones::new(number("work_of_adhesion").unwrap(), number("z0").unwrap()).unwrap(),
+            )),
+            Some("exponential") => Box::new(
+                ExponentialLaw::new(number("work_of_adhesion").unwrap(), number("range").unwrap()).unwrap(),
+            ),
+            Some(other) => panic!("{name}: add the law {other} here"),
+        };
+        let control = if table.contains_key("mean_pressures") {
+            Control::MeanPressure(1.0)
+        } else {
+            Control::Approach(0.0)
+        };
+        let expected = law
+            .work_of_adhesion()
+            .gt(&0.0)
+            .then(|| Method::Auto.resolve(law.as_ref(), control).name());
+        // The command line's choice, as its summary records it.
+        let out = d.join(name);
+        let o = sweep_example(name, out.to_str().unwrap(), &extra);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let solver = json(&out.join("summary.json"))["solver"].clone();
+        assert_eq!(solver.as_str(), expected, "{name}");
+    }
 }

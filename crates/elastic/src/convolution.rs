@@ -48,6 +48,7 @@ impl ConvWorkspace {
 
 /// A planned convolution of `(ny_in, nx_in)` fields with a kernel of real spectrum on an
 /// `(my, mx)` periodic transform grid, keeping the first `(ny_out, nx_out)` values.
+#[derive(Clone)]
 pub struct Convolution {
     mx: usize,
     my: usize,

@@ -36,6 +36,7 @@ fn wavevector(k: usize, n: usize, l: f64) -> f64 {
 /// The periodic half-space: `u(q) = 2 p(q) / (E* |q|)` for `q != 0`; the mean displacement is
 /// zero (`q = 0` carries the load, which a periodic half-space cannot displace by a finite
 /// amount), so `u` is the displacement relative to its mean.
+#[derive(Clone)]
 pub struct Periodic {
     domain: Domain,
     e_star: f64,
@@ -143,6 +144,7 @@ impl PeriodicStiffness {
 /// The free (non-periodic) half-space: exact influence coefficients of uniform pressure on
 /// each rectangular cell (Love 1929), applied as a linear convolution by FFT on a zero-padded
 /// `2nx` by `2ny` grid (DC-FFT). The displacement is the true one (zero at infinity).
+#[derive(Clone)]
 pub struct Free {
     domain: Domain,
     e_star: f64,

@@ -59,6 +59,4 @@ pub use options::{ContactOptions, Control};
 pub use problem::{ContactProblem, ProblemBuilder, Shape};
 pub use report::{ContactReport, Termination};
 pub use state::ContactState;
-pub use sweep::{
-    Branch, CyclePoint, CycleSummary, RETRIES, SweepPoint, approach_cycle, substeps, summarize,
-};
+pub use sweep::{Branch, CyclePoint, CycleSummary, RETRIES, SweepPoint, approach_cycle, substeps, summarize};

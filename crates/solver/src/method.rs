@@ -67,7 +67,8 @@ impl Method {
         let adhesive = law.work_of_adhesion() > 0.0;
         if approach && adhesive && law.local_potential().is_some() {
             Method::EnergyDescent
-        } else if approach && adhesive && law.flat_potential().is_some() && law.stiffness_bound().is_finite() {
+        } else if approach && adhesive && law.flat_potential().is_some() && law.stiffness_bound().is_finite()
+        {
             Method::Newton
         } else {
             Method::Accelerated
@@ -85,13 +86,10 @@ impl std::str::FromStr for Method {
     type Err = String;
 
     fn from_str(s: &str) -> std::result::Result<Self, String> {
-        Method::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
-                format!("unknown method `{s}`; the methods are {}", names.join(", "))
-            })
+        Method::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
+            let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
+            format!("unknown method `{s}`; the methods are {}", names.join(", "))
+        })
     }
 }
 

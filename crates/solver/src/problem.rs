@@ -352,9 +352,9 @@ impl ProblemBuilder {
     /// shape differs from the grid's, a wave on a free domain, and the geometry's and the
     /// operators' own checks.
     pub fn build(self) -> Result<ContactProblem> {
-        let e_star = self.modulus.ok_or(SolverError::Incomplete(
-            "the composite modulus E* [Pa]",
-        ))?;
+        let e_star = self
+            .modulus
+            .ok_or(SolverError::Incomplete("the composite modulus E* [Pa]"))?;
         if !(e_star.is_finite() && e_star > 0.0) {
             return Err(invalid("modulus", e_star, "must be a finite E* > 0 Pa"));
         }

@@ -2,14 +2,16 @@
 //! outer loops against each other, and rough periodic contact (force balance,
 //! complementarity, the adhesive law satisfied, adhesion enlarging the contact).
 
+mod common;
+
 use elastic::{Compliance, Domain, Free, Periodic};
 use ljadhesion::{AdhesionLaw, Cells, DugdaleLaw, ExponentialLaw, LennardJones, PointLaw, SurfaceLaw};
 use ndarray::Array2;
-use solver::adhesive::{OuterLoop, Start};
+use solver::cg::solve;
 use solver::geometry::{SphereProfile, flat_on_rough, sphere};
 use solver::{
-    AdhesiveOptions, AdhesiveState, Branch, ContactOptions, Control, CyclePoint, SweepPoint, Termination,
-    approach_cycle, solve, solve_adhesive, summarize, sweep,
+    AdhesiveState, Branch, ContactOptions, Control, CyclePoint, Iterations, Method, Mixing, Settings, Start,
+    SweepPoint, Termination, approach_cycle, summarize,
 };
 use std::f64::consts::PI;
 use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec, generate};
@@ -53,17 +55,15 @@ fn dmt_limit_pull_off_is_two_pi_r_w0() {
         // Into contact, then out in fine steps through the minimum of the load.
         let mut path = approaches([-2.0, -1.0, 0.0, 0.3].into_iter());
         path.extend(approaches((0..=30).map(|k| 0.3 - 0.02 * k as f64)));
-        let points = sweep(
-            &op,
-            &law,
-            g0.view(),
-            &path,
-            &AdhesiveOptions::default(),
-            None,
-            None,
-            &mut |_, _, _| true,
-        )
-        .unwrap();
+        let points = common::problem(&op, &law, g0.view())
+            .sweep(
+                &path,
+                None,
+                &Settings::with_method(Method::Accelerated),
+                None,
+                &mut common::steps(|_, _, _| true),
+            )
+            .unwrap();
         let summary = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
         assert!(summary.all_converged);
         let pull_off = summary.pull_off_force.unwrap() / (2.0 * PI * R * w0);
@@ -81,17 +81,15 @@ fn jkr_side_cycle_jumps_and_pull_off_near_maugis() {
         let (op, g0, law, w0) = sphere_case(mu, 128, 100.0);
         let mut path = approaches((0..=5).map(|k| -5.0 + k as f64));
         path.extend(approaches((1..=10).map(|k| 0.0 - 0.5 * k as f64)));
-        let points = sweep(
-            &op,
-            &law,
-            g0.view(),
-            &path,
-            &AdhesiveOptions::default(),
-            None,
-            None,
-            &mut |_, _, _| true,
-        )
-        .unwrap();
+        let points = common::problem(&op, &law, g0.view())
+            .sweep(
+                &path,
+                None,
+                &Settings::with_method(Method::Accelerated),
+                None,
+                &mut common::steps(|_, _, _| true),
+            )
+            .unwrap();
         let summary = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
         for p in &points {
             println!(
@@ -100,8 +98,8 @@ fn jkr_side_cycle_jumps_and_pull_off_near_maugis() {
                 p.report.approach / Z0,
                 p.report.load / (PI * R * w0),
                 p.report.contact_area_fraction,
-                p.report.outer_iterations,
-                p.report.inner_iterations
+                p.report.iterations.count(),
+                common::inner(&p.report.iterations)
             );
         }
         assert!(summary.all_converged);
@@ -138,22 +136,25 @@ fn jkr_side_cycle_jumps_and_pull_off_near_maugis() {
 fn dual_loop_and_accelerated_loop_agree() {
     pool().install(|| {
         let (op, g0, law, _) = sphere_case(1.0, 64, 60.0);
-        let mut options = AdhesiveOptions {
+        let mut options = Settings {
             tolerance: 1e-8,
-            ..AdhesiveOptions::default()
+            ..Settings::with_method(Method::Accelerated)
         };
         let control = Control::Approach(0.5 * Z0);
-        let (fast, fast_report) =
-            solve_adhesive(&op, &law, g0.view(), control, &options, Start::Unloading).unwrap();
-        options.outer_loop = OuterLoop::DualLoop;
-        let (slow, slow_report) =
-            solve_adhesive(&op, &law, g0.view(), control, &options, Start::Unloading).unwrap();
+        let (fast, fast_report) = common::problem(&op, &law, g0.view())
+            .solve(control, &options, Start::Unloading, &mut ())
+            .unwrap();
+        options.method = Method::DualLoop;
+        let (slow, slow_report) = common::problem(&op, &law, g0.view())
+            .solve(control, &options, Start::Unloading, &mut ())
+            .unwrap();
         println!(
             "outer iterations: accelerated {}, dual loop {}",
-            fast_report.outer_iterations, slow_report.outer_iterations
+            fast_report.iterations.count(),
+            slow_report.iterations.count()
         );
         assert!(fast_report.converged() && slow_report.converged());
-        assert!(fast_report.outer_iterations * 2 < slow_report.outer_iterations);
+        assert!(fast_report.iterations.count() * 2 < slow_report.iterations.count());
         assert!((fast_report.load / slow_report.load - 1.0).abs() < 1e-5);
         let scale = law.peak_pressure().abs();
         let diff = (&fast.adhesive_pressure - &slow.adhesive_pressure)
@@ -206,16 +207,15 @@ fn rough_adhesive_contact_balances_and_enlarges_the_area() {
         let domain = *op.domain();
         let law = ExponentialLaw::new(5e-3, 2.0 * domain.dx).unwrap();
         let mean_pressure = 1e5;
-        let options = AdhesiveOptions::default();
-        let (state, report) = solve_adhesive(
-            &op,
-            &law,
-            g0.view(),
-            Control::MeanPressure(mean_pressure),
-            &options,
-            Start::Loading,
-        )
-        .unwrap();
+        let options = Settings::with_method(Method::Accelerated);
+        let (state, report) = common::problem(&op, &law, g0.view())
+            .solve(
+                Control::MeanPressure(mean_pressure),
+                &options,
+                Start::Loading,
+                &mut (),
+            )
+            .unwrap();
         assert!(report.converged(), "{:?}", report.termination);
         // Force balance: the prescribed load is carried by compression minus adhesion.
         let cell = domain.cell_area();
@@ -262,14 +262,15 @@ fn rough_adhesive_contact_balances_and_enlarges_the_area() {
             Control::MeanPressure(mean_pressure),
             &ContactOptions::default(),
             None,
+            &mut (),
         )
         .unwrap();
         println!(
             "area: adhesive {:.4}, non-adhesive {:.4}; outer {}, inner {}",
             report.contact_area_fraction,
             dry.contact_area_fraction,
-            report.outer_iterations,
-            report.inner_iterations
+            report.iterations.count(),
+            common::inner(&report.iterations)
         );
         assert!(report.contact_area_fraction > 1.1 * dry.contact_area_fraction);
         assert!(report.attractive_area_fraction > 0.0);
@@ -323,38 +324,32 @@ fn energy_descent_and_the_dual_loop_agree_on_rough_contact() {
         let law = PointLaw(LennardJones::new(5e-3, 2.0 * domain.dx).unwrap());
         let approach = g0.mean().unwrap() - 3e-8;
         let solve_with = |outer_loop, tolerance| {
-            let options = AdhesiveOptions {
-                outer_loop,
+            let options = Settings {
+                method: outer_loop,
                 tolerance,
-                ..AdhesiveOptions::default()
+                ..Settings::with_method(Method::Accelerated)
             };
-            solve_adhesive(
-                &op,
-                &law,
-                g0.view(),
-                Control::Approach(approach),
-                &options,
-                Start::Loading,
-            )
-            .unwrap()
+            common::problem(&op, &law, g0.view())
+                .solve(Control::Approach(approach), &options, Start::Loading, &mut ())
+                .unwrap()
         };
-        let (energy, e_report) = solve_with(OuterLoop::EnergyDescent, 1e-8);
-        let (fixed_point, f_report) = solve_with(OuterLoop::Accelerated, 1e-9);
+        let (energy, e_report) = solve_with(Method::EnergyDescent, 1e-8);
+        let (fixed_point, f_report) = solve_with(Method::Accelerated, 1e-9);
         assert!(e_report.converged() && f_report.converged());
         println!(
             "energy descent: {} iterations, {} operator calls; dual loop (accelerated): {} / {}, {} calls; \
              loads {:.9e} / {:.9e} N; equations {:.1e} / {:.1e}",
-            e_report.inner_iterations,
+            common::inner(&e_report.iterations),
             e_report.operator_calls,
-            f_report.outer_iterations,
-            f_report.inner_iterations,
+            f_report.iterations.count(),
+            common::inner(&f_report.iterations),
             f_report.operator_calls,
             e_report.load,
             f_report.load,
             equilibrium_error(&op, &law, &g0, &energy),
             equilibrium_error(&op, &law, &g0, &fixed_point),
         );
-        assert_eq!(e_report.outer_iterations, 0);
+        assert!(matches!(e_report.iterations, Iterations::Descent { .. }));
         // Each solves the equations...
         assert!(equilibrium_error(&op, &law, &g0, &energy) < 1e-6);
         assert!(equilibrium_error(&op, &law, &g0, &fixed_point) < 1e-5);
@@ -377,16 +372,17 @@ fn energy_descent_under_load_control_balances_and_pulls_off() {
         let law = ExponentialLaw::new(5e-3, 2.0 * domain.dx).unwrap();
         let mean_pressure = 1e5;
         let solve_with = |outer_loop, control| {
-            let options = AdhesiveOptions {
-                outer_loop,
+            let options = Settings {
+                method: outer_loop,
                 tolerance: 1e-8,
-                ..AdhesiveOptions::default()
+                ..Settings::with_method(Method::Accelerated)
             };
-            solve_adhesive(&op, &law, g0.view(), control, &options, Start::Loading).unwrap()
+            common::problem(&op, &law, g0.view())
+                .solve(control, &options, Start::Loading, &mut ())
+                .unwrap()
         };
-        let (energy, e_report) = solve_with(OuterLoop::EnergyDescent, Control::MeanPressure(mean_pressure));
-        let (fixed_point, f_report) =
-            solve_with(OuterLoop::Accelerated, Control::MeanPressure(mean_pressure));
+        let (energy, e_report) = solve_with(Method::EnergyDescent, Control::MeanPressure(mean_pressure));
+        let (fixed_point, f_report) = solve_with(Method::Accelerated, Control::MeanPressure(mean_pressure));
         assert!(e_report.converged() && f_report.converged());
         // The load is carried, the equations hold, and both solvers find the same state.
         assert!((e_report.mean_pressure / mean_pressure - 1.0).abs() < 1e-6);
@@ -397,7 +393,7 @@ fn energy_descent_under_load_control_balances_and_pulls_off() {
             fixed_point.contact.pressure.mapv(|p| p > 0.0)
         );
         // Pulling harder than the attraction can hold flies apart, and says so.
-        let (_, apart) = solve_with(OuterLoop::EnergyDescent, Control::MeanPressure(-1e7));
+        let (_, apart) = solve_with(Method::EnergyDescent, Control::MeanPressure(-1e7));
         assert_eq!(apart.termination, Termination::PulledOff);
     });
 }
@@ -415,29 +411,28 @@ fn rough_energy_cycle(
     let law = ExponentialLaw::new(5e-3, 1e-9).unwrap();
     let mean = g0.mean().unwrap();
     let path = approach_cycle(mean - 8e-8, mean - 1.5e-8, steps);
-    let options = AdhesiveOptions {
-        outer_loop: OuterLoop::EnergyDescent,
+    let options = Settings {
+        method: Method::EnergyDescent,
         tolerance,
-        ..AdhesiveOptions::default()
+        ..Settings::with_method(Method::Accelerated)
     };
-    let points = sweep(
-        &op,
-        &law,
-        g0.view(),
-        &path,
-        &options,
-        max_step,
-        None,
-        &mut |_, _, _| true,
-    )
-    .unwrap();
+    let points = common::problem(&op, &law, g0.view())
+        .sweep(
+            &path,
+            max_step,
+            &options,
+            None,
+            &mut common::steps(|_, _, _| true),
+        )
+        .unwrap();
     (path, points)
 }
 
 #[test]
 fn an_energy_descent_cycle_shows_adhesive_hysteresis() {
     pool().install(|| {
-        let (path, points) = rough_energy_cycle(10, None, AdhesiveOptions::default().tolerance);
+        let (path, points) =
+            rough_energy_cycle(10, None, Settings::with_method(Method::Accelerated).tolerance);
         assert!(points.iter().all(|p| p.report.converged()));
         let cycle: Vec<CyclePoint> = points.iter().map(CyclePoint::from).collect();
         let summary = summarize(&cycle);
@@ -455,10 +450,10 @@ fn an_energy_descent_cycle_shows_adhesive_hysteresis() {
                 load.approach,
                 load.load,
                 load.contact_area_fraction,
-                load.inner_iterations,
+                common::inner(&load.iterations),
                 unload.load,
                 unload.contact_area_fraction,
-                unload.inner_iterations
+                common::inner(&unload.iterations)
             );
             assert!(unload.load <= load.load + 1e-6 * scale);
             assert!(unload.contact_area_fraction >= load.contact_area_fraction);
@@ -530,22 +525,14 @@ fn a_step_that_orbits_is_retried_in_shorter_substeps() {
     // path reaches.
     pool().install(|| {
         let (op, g0, law, w0) = sphere_case(3.0, 64, 100.0);
-        let options = AdhesiveOptions {
-            max_outer_iterations: 2000,
-            ..AdhesiveOptions::default()
+        let options = Settings {
+            max_iterations: 2000,
+            ..Settings::with_method(Method::Accelerated)
         };
         let run = |path: &[Control], max_step| {
-            sweep(
-                &op,
-                &law,
-                g0.view(),
-                path,
-                &options,
-                max_step,
-                None,
-                &mut |_, _, _| true,
-            )
-            .unwrap()
+            common::problem(&op, &law, g0.view())
+                .sweep(path, max_step, &options, None, &mut common::steps(|_, _, _| true))
+                .unwrap()
         };
         let path = approaches([0.0, 0.5].into_iter());
         let long = run(&path, None);
@@ -573,15 +560,14 @@ fn load_control_past_pull_off_says_so() {
     pool().install(|| {
         let (op, g0, law, w0) = sphere_case(0.1, 64, 80.0);
         // Far more tension than the sphere's pull-off (2 pi R w0) can hold.
-        let (_, report) = solve_adhesive(
-            &op,
-            &law,
-            g0.view(),
-            Control::Force(-10.0 * PI * R * w0),
-            &AdhesiveOptions::default(),
-            Start::Unloading,
-        )
-        .unwrap();
+        let (_, report) = common::problem(&op, &law, g0.view())
+            .solve(
+                Control::Force(-10.0 * PI * R * w0),
+                &Settings::with_method(Method::Accelerated),
+                Start::Unloading,
+                &mut (),
+            )
+            .unwrap();
         assert_eq!(report.termination, Termination::PulledOff);
         assert!(!report.converged());
     });
@@ -590,94 +576,86 @@ fn load_control_past_pull_off_says_so() {
 #[test]
 fn bad_input_is_refused() {
     let (op, g0, law, _) = sphere_case(0.1, 16, 80.0);
-    let bad = |control, options: AdhesiveOptions| {
-        solve_adhesive(&op, &law, g0.view(), control, &options, Start::Loading).is_err()
+    let bad = |control, options: Settings| {
+        common::problem(&op, &law, g0.view())
+            .solve(control, &options, Start::Loading, &mut ())
+            .is_err()
     };
-    assert!(bad(Control::Approach(f64::NAN), AdhesiveOptions::default()));
-    assert!(bad(Control::CentralGap(0.0), AdhesiveOptions::default()));
+    assert!(bad(
+        Control::Approach(f64::NAN),
+        Settings::with_method(Method::Accelerated)
+    ));
+    assert!(bad(
+        Control::CentralGap(0.0),
+        Settings::with_method(Method::Accelerated)
+    ));
     assert!(bad(
         Control::Approach(0.0),
-        AdhesiveOptions {
+        Settings {
             tolerance: 0.0,
-            ..AdhesiveOptions::default()
+            ..Settings::with_method(Method::Accelerated)
         }
     ));
     assert!(bad(
         Control::Approach(0.0),
-        AdhesiveOptions {
-            relaxation: Some(1.5),
-            ..AdhesiveOptions::default()
+        Settings {
+            mixing: Mixing {
+                relaxation: Some(1.5),
+                history: 8,
+            },
+            ..Settings::with_method(Method::Accelerated)
         }
     ));
     // The energy descent needs a local potential, and approach control on free domains.
-    let energy = AdhesiveOptions {
-        outer_loop: OuterLoop::EnergyDescent,
-        ..AdhesiveOptions::default()
+    let energy = Settings {
+        method: Method::EnergyDescent,
+        ..Settings::with_method(Method::Accelerated)
     };
     assert!(bad(Control::Approach(0.0), energy));
     let point = PointLaw(law.0);
-    let on_sphere = |control| solve_adhesive(&op, &point, g0.view(), control, &energy, Start::Loading);
+    let on_sphere =
+        |control| common::problem(&op, &point, g0.view()).solve(control, &energy, Start::Loading, &mut ());
     assert!(on_sphere(Control::Approach(0.0)).is_ok());
     assert!(on_sphere(Control::Force(1e-9)).is_err());
     assert!(on_sphere(Control::CentralGap(1e-9)).is_err());
     let (rough_op, rough_g0) = rough(32);
     let mean = rough_g0.mean().unwrap();
     let on_rough = |control| {
-        solve_adhesive(
-            &rough_op,
-            &point,
-            rough_g0.view(),
-            control,
-            &energy,
-            Start::Loading,
-        )
+        common::problem(&rough_op, &point, rough_g0.view()).solve(control, &energy, Start::Loading, &mut ())
     };
     assert!(on_rough(Control::Approach(mean - 1e-8)).is_ok());
     assert!(on_rough(Control::CentralGap(1e-9)).is_err());
     // ... and a mean gap left: past full contact, no state exists.
     assert!(on_rough(Control::Approach(mean)).is_err());
     // Newton takes the approach, and a law it can linearise.
-    let newton = AdhesiveOptions {
-        outer_loop: OuterLoop::Newton,
-        ..AdhesiveOptions::default()
+    let newton = Settings {
+        method: Method::Newton,
+        ..Settings::with_method(Method::Accelerated)
     };
     assert!(
-        solve_adhesive(
-            &op,
-            &law,
-            g0.view(),
-            Control::Approach(0.0),
-            &newton,
-            Start::Loading
-        )
-        .is_ok()
+        common::problem(&op, &law, g0.view())
+            .solve(Control::Approach(0.0), &newton, Start::Loading, &mut ())
+            .is_ok()
     );
     assert!(bad(Control::Force(1e-9), newton));
     assert!(bad(Control::CentralGap(1e-9), newton));
     let dugdale = DugdaleLaw::equivalent_to(&law.0);
     assert!(
-        solve_adhesive(
-            &op,
-            &dugdale,
-            g0.view(),
-            Control::Approach(0.0),
-            &newton,
-            Start::Loading
-        )
-        .is_err()
+        common::problem(&op, &dugdale, g0.view())
+            .solve(Control::Approach(0.0), &newton, Start::Loading, &mut ())
+            .is_err()
     );
     let mut nan = g0.clone();
     nan[(3, 4)] = f64::NAN;
     assert!(
-        solve_adhesive(
-            &op,
-            &law,
-            nan.view(),
-            Control::Approach(0.0),
-            &AdhesiveOptions::default(),
-            Start::Loading
-        )
-        .is_err()
+        common::problem(&op, &law, nan.view())
+            .solve(
+                Control::Approach(0.0),
+                &Settings::with_method(Method::Accelerated),
+                Start::Loading,
+                &mut ()
+            )
+            .is_err()
     );
 }
 
@@ -698,22 +676,23 @@ fn pull_off_mesh_study() {
         for n in [16, 32, 64, 128, 256] {
             let (op, g0, surface, w0) = sphere_case(mu, n, half_width);
             let lj = surface.0;
-            let laws: [&dyn AdhesionLaw; 3] = [&PointLaw(lj), &LineLaw(lj), &surface];
             let mut row = format!("| {n} | {:.2} |", 2.0 * half_width / n as f64);
-            for law in laws {
+            for problem in [
+                common::problem(&op, &PointLaw(lj), g0.view()),
+                common::problem(&op, &LineLaw(lj), g0.view()),
+                common::problem(&op, &surface, g0.view()),
+            ] {
                 let mut path = approaches((0..=3).map(|k| -3.0 + k as f64));
                 path.extend(approaches((1..=12).map(|k| -0.25 * k as f64)));
-                let points = sweep(
-                    &op,
-                    law,
-                    g0.view(),
-                    &path,
-                    &AdhesiveOptions::default(),
-                    None,
-                    None,
-                    &mut |_, _, _| true,
-                )
-                .unwrap();
+                let points = problem
+                    .sweep(
+                        &path,
+                        None,
+                        &Settings::with_method(Method::Accelerated),
+                        None,
+                        &mut common::steps(|_, _, _| true),
+                    )
+                    .unwrap();
                 let s = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
                 row += &format!(" {:.4} |", s.pull_off_force.unwrap() / (2.0 * PI * R * w0));
             }
@@ -746,17 +725,15 @@ fn sphere_curve_follows_greenwood() {
             };
             let mut path = approaches([-2.0, 0.0, 2.0, 1.0].into_iter());
             path.extend(approaches((0..=8).map(|k| 0.5 - 0.25 * k as f64)));
-            let points = sweep(
-                &op,
-                &law,
-                g0.view(),
-                &path,
-                &AdhesiveOptions::default(),
-                None,
-                None,
-                &mut |_, _, _| true,
-            )
-            .unwrap();
+            let points = common::problem(&op, &law, g0.view())
+                .sweep(
+                    &path,
+                    None,
+                    &Settings::with_method(Method::Accelerated),
+                    None,
+                    &mut common::steps(|_, _, _| true),
+                )
+                .unwrap();
             let cycle: Vec<CyclePoint> = points.iter().map(CyclePoint::from).collect();
             let pull_off = summarize(&cycle).pull_off_force.unwrap() / (2.0 * PI * R * w0);
             println!(
@@ -793,17 +770,15 @@ fn central_gap_control_traces_the_unstable_branch() {
         // cells resolve.
         let gaps: Vec<f64> = (0..=8).map(|k| 2.5 - 0.2 * k as f64).collect();
         let path: Vec<Control> = gaps.iter().map(|g| Control::CentralGap(g * Z0)).collect();
-        let points = sweep(
-            &op,
-            &law,
-            g0.view(),
-            &path,
-            &AdhesiveOptions::default(),
-            None,
-            None,
-            &mut |_, _, _| true,
-        )
-        .unwrap();
+        let points = common::problem(&op, &law, g0.view())
+            .sweep(
+                &path,
+                None,
+                &Settings::with_method(Method::Accelerated),
+                None,
+                &mut common::steps(|_, _, _| true),
+            )
+            .unwrap();
         let greenwood = theory::greenwood::Greenwood::new(mu, theory::greenwood::Mesh::default());
         let alphas: Vec<f64> = points.iter().map(|p| p.report.approach / Z0).collect();
         for (p, g) in points.iter().zip(&gaps) {
@@ -834,28 +809,26 @@ fn central_gap_control_traces_the_unstable_branch() {
 }
 
 /// A sweep and the largest error of its states in their equations (in ranges).
-fn checked_sweep(
-    op: &dyn Compliance,
-    law: &dyn AdhesionLaw,
+fn checked_sweep<O: Compliance + Clone + 'static, L: AdhesionLaw + Clone + 'static>(
+    op: &O,
+    law: &L,
     g0: &Array2<f64>,
     path: &[Control],
-    options: &AdhesiveOptions,
+    options: &Settings,
 ) -> (Vec<SweepPoint>, f64) {
     let mut worst = 0.0f64;
-    let points = sweep(
-        op,
-        law,
-        g0.view(),
-        path,
-        options,
-        None,
-        None,
-        &mut |_, _, state| {
-            worst = worst.max(equilibrium_error(op, law, g0, state));
-            true
-        },
-    )
-    .unwrap();
+    let points = common::problem(op, law, g0.view())
+        .sweep(
+            path,
+            None,
+            options,
+            None,
+            &mut common::steps(|_, _, state| {
+                worst = worst.max(equilibrium_error(op, law, g0, state));
+                true
+            }),
+        )
+        .unwrap();
     (points, worst)
 }
 
@@ -869,14 +842,14 @@ fn energy_descent_on_a_free_sphere_agrees_with_the_accelerated_loop() {
         let point = PointLaw(law.0);
         let path = approaches([-2.0, -1.0, 0.0, 1.0, 0.0, -1.0, -1.5].into_iter());
         let cycle = |outer_loop| {
-            let options = AdhesiveOptions {
-                outer_loop,
-                ..AdhesiveOptions::default()
+            let options = Settings {
+                method: outer_loop,
+                ..Settings::with_method(Method::Accelerated)
             };
             checked_sweep(&op, &point, &g0, &path, &options)
         };
         let ((energy, energy_error), (accelerated, _)) =
-            (cycle(OuterLoop::EnergyDescent), cycle(OuterLoop::Accelerated));
+            (cycle(Method::EnergyDescent), cycle(Method::Accelerated));
         println!("energy descent: equations met to {energy_error:e} of the range");
         assert!(energy_error < 1e-5);
         for (e, a) in energy.iter().zip(&accelerated) {
@@ -884,12 +857,12 @@ fn energy_descent_on_a_free_sphere_agrees_with_the_accelerated_loop() {
                 "a/z0 {:5.2} W/(pi R w0): energy {:9.6} ({} its), accelerated {:9.6}; area {:.4}",
                 e.report.approach / Z0,
                 e.report.load / (PI * R * w0),
-                e.report.inner_iterations,
+                common::inner(&e.report.iterations),
                 a.report.load / (PI * R * w0),
                 e.report.contact_area_fraction
             );
             assert!(e.report.converged() && a.report.converged());
-            assert_eq!(e.report.outer_iterations, 0);
+            assert!(matches!(e.report.iterations, Iterations::Descent { .. }));
             assert!((e.report.load - a.report.load).abs() < 1e-4 * PI * R * w0);
             assert_eq!(e.report.contact_area_fraction, a.report.contact_area_fraction);
         }
@@ -913,15 +886,14 @@ fn newton_and_the_energy_descent_agree_on_a_free_sphere() {
             // At mu = 0.1 the compressive load at 1 z0 is 12 times the adhesive scale pi R w0;
             // at the default tolerance the descent's is 1.2e-4 pi R w0 off (Newton's is not).
             let cycle = |outer_loop| {
-                let options = AdhesiveOptions {
-                    outer_loop,
+                let options = Settings {
+                    method: outer_loop,
                     tolerance: 1e-8,
-                    ..AdhesiveOptions::default()
+                    ..Settings::with_method(Method::Accelerated)
                 };
                 checked_sweep(&op, &point, &g0, &path, &options)
             };
-            let ((newton, newton_error), (energy, _)) =
-                (cycle(OuterLoop::Newton), cycle(OuterLoop::EnergyDescent));
+            let ((newton, newton_error), (energy, _)) = (cycle(Method::Newton), cycle(Method::EnergyDescent));
             println!("mu = {mu}: Newton meets the equations to {newton_error:e} of the range");
             assert!(newton_error < 1e-7);
             for (n, e) in newton.iter().zip(&energy) {
@@ -929,8 +901,8 @@ fn newton_and_the_energy_descent_agree_on_a_free_sphere() {
                     "a/z0 {:5.2} W/(pi R w0): Newton {:9.6} ({} steps, {} Krylov), energy {:9.6}; area {:.4}",
                     n.report.approach / Z0,
                     n.report.load / (PI * R * w0),
-                    n.report.outer_iterations,
-                    n.report.inner_iterations,
+                    n.report.iterations.count(),
+                    common::inner(&n.report.iterations),
                     e.report.load / (PI * R * w0),
                     n.report.contact_area_fraction
                 );
@@ -952,43 +924,34 @@ fn newton_solves_the_surface_law_as_the_accelerated_loop_does() {
     pool().install(|| {
         let (op, g0, law, w0) = sphere_case(3.0, 64, 60.0);
         let path = approaches([-4.0, -2.0, -1.0, 0.0, 1.0, 0.0, -1.0, -2.0, -3.0].into_iter());
-        let newton_options = AdhesiveOptions {
-            outer_loop: OuterLoop::Newton,
+        let newton_options = Settings {
+            method: Method::Newton,
             tolerance: 1e-7,
-            ..AdhesiveOptions::default()
+            ..Settings::with_method(Method::Accelerated)
         };
         let mut states = Vec::new();
-        let points = sweep(
-            &op,
-            &law,
-            g0.view(),
-            &path,
-            &newton_options,
-            None,
-            None,
-            &mut |_, _, state| {
+        let points = common::problem(&op, &law, g0.view()).sweep(&path, None, &newton_options, None, &mut common::steps(|_, _, state| {
                 states.push(state.clone());
                 true
-            },
-        )
+            }))
         .unwrap();
         // The accelerated loop does not finish the jump in here (80000 outer iterations);
         // Newton does, and each of its states is a fixed point of the paper's loop: started
         // there, the loop stays.
-        let accelerated = AdhesiveOptions::default();
+        let accelerated = Settings::with_method(Method::Accelerated);
         for (point, state) in points.iter().zip(&states) {
             let n = &point.report;
-            let (_, a) = solve_adhesive(&op, &law, g0.view(), point.control, &accelerated, Start::Warm(state)).unwrap();
+            let (_, a) = common::problem(&op, &law, g0.view()).solve(point.control, &accelerated, Start::Warm(state), &mut ()).unwrap();
             println!(
                 "a/z0 {:5.2} W/(pi R w0): Newton {:9.6} ({} steps, {} Krylov), equations {:.1e}; \
                  accelerated from there {:9.6} ({} outer); area {:.4}",
                 n.approach / Z0,
                 n.load / (PI * R * w0),
-                n.outer_iterations,
-                n.inner_iterations,
+                n.iterations.count(),
+                common::inner(&n.iterations),
                 equilibrium_error(&op, &law, &g0, state),
                 a.load / (PI * R * w0),
-                a.outer_iterations,
+                a.iterations.count(),
                 n.contact_area_fraction
             );
             assert!(n.converged() && a.converged());
@@ -1004,29 +967,22 @@ fn newton_solves_the_surface_law_as_the_accelerated_loop_does() {
         let law = SurfaceLaw(LennardJones::new(5e-3, 2.0 * domain.dx).unwrap());
         let approach = g0.mean().unwrap() - 3e-8;
         let solve_with = |outer_loop, tolerance| {
-            let options = AdhesiveOptions {
-                outer_loop,
+            let options = Settings {
+                method: outer_loop,
                 tolerance,
-                ..AdhesiveOptions::default()
+                ..Settings::with_method(Method::Accelerated)
             };
-            solve_adhesive(
-                &op,
-                &law,
-                g0.view(),
-                Control::Approach(approach),
-                &options,
-                Start::Loading,
-            )
+            common::problem(&op, &law, g0.view()).solve(Control::Approach(approach), &options, Start::Loading, &mut ())
             .unwrap()
         };
-        let (newton, n_report) = solve_with(OuterLoop::Newton, 1e-8);
-        let (accelerated, a_report) = solve_with(OuterLoop::Accelerated, 1e-9);
+        let (newton, n_report) = solve_with(Method::Newton, 1e-8);
+        let (accelerated, a_report) = solve_with(Method::Accelerated, 1e-9);
         println!(
             "rough: Newton {} steps, {} Krylov, {} calls; accelerated {} outer, {} calls; loads {:.9e} / {:.9e} N",
-            n_report.outer_iterations,
-            n_report.inner_iterations,
+            n_report.iterations.count(),
+            common::inner(&n_report.iterations),
             n_report.operator_calls,
-            a_report.outer_iterations,
+            a_report.iterations.count(),
             a_report.operator_calls,
             n_report.load,
             a_report.load
@@ -1052,9 +1008,9 @@ fn newton_converges_at_every_step_of_a_high_tabor_surface_law_cycle() {
     pool().install(|| {
         let (op, g0, law, w0) = sphere_case(5.0, 64, 62.5);
         let path = approaches([-4.0, -3.0, -2.0, -1.0, 0.0, 1.0, 0.0, -1.0, -2.0, -3.0, -4.0].into_iter());
-        let options = AdhesiveOptions {
-            outer_loop: OuterLoop::Newton,
-            ..AdhesiveOptions::default()
+        let options = Settings {
+            method: Method::Newton,
+            ..Settings::with_method(Method::Accelerated)
         };
         let (points, worst) = checked_sweep(&op, &law, &g0, &path, &options);
         for p in &points {
@@ -1064,8 +1020,8 @@ fn newton_converges_at_every_step_of_a_high_tabor_surface_law_cycle() {
                 p.report.approach / Z0,
                 p.report.load / (PI * R * w0),
                 p.report.contact_area_fraction,
-                p.report.outer_iterations,
-                p.report.inner_iterations
+                p.report.iterations.count(),
+                common::inner(&p.report.iterations)
             );
             assert!(p.report.converged());
             assert!(p.report.contact_area_fraction > 0.05);
@@ -1109,9 +1065,9 @@ fn newton_leaves_an_unstable_state_on_a_coarse_high_tabor_grid() {
             .rev()
             .map(|k| Control::Approach(format!("{k}e-9").parse().unwrap()))
             .collect();
-        let options = AdhesiveOptions {
-            outer_loop: OuterLoop::Newton,
-            ..AdhesiveOptions::default()
+        let options = Settings {
+            method: Method::Newton,
+            ..Settings::with_method(Method::Accelerated)
         };
         let (points, worst) = checked_sweep(&op, &law, &g0, &path, &options);
         for p in &points {
@@ -1119,7 +1075,7 @@ fn newton_leaves_an_unstable_state_on_a_coarse_high_tabor_grid() {
                 "a/z0 {:5.2} W/(pi R w0) {:9.6}: {} steps, {} retries",
                 p.report.approach / Z0,
                 p.report.load / (PI * radius * w0),
-                p.report.outer_iterations,
+                p.report.iterations.count(),
                 p.retries
             );
             assert!(p.report.converged() && p.retries == 0);
@@ -1133,9 +1089,9 @@ fn newton_leaves_an_unstable_state_on_a_coarse_high_tabor_grid() {
 fn high_tabor_cycle(n: usize, half_width: f64, path: &[Control]) -> (Vec<SweepPoint>, f64, f64) {
     let (op, g0, law, w0) = sphere_case(10.0, n, half_width);
     let point = PointLaw(law.0);
-    let options = AdhesiveOptions {
-        outer_loop: OuterLoop::EnergyDescent,
-        ..AdhesiveOptions::default()
+    let options = Settings {
+        method: Method::EnergyDescent,
+        ..Settings::with_method(Method::Accelerated)
     };
     let (points, worst) = checked_sweep(&op, &point, &g0, path, &options);
     (points, w0, worst)
@@ -1159,10 +1115,10 @@ fn a_high_tabor_sphere_converges_at_every_step_with_the_energy_descent() {
                 p.report.approach / Z0,
                 p.report.load / (PI * R * w0),
                 p.report.contact_area_fraction,
-                p.report.inner_iterations
+                common::inner(&p.report.iterations)
             );
         }
-        let iterations: usize = points.iter().map(|p| p.report.inner_iterations).sum();
+        let iterations: usize = points.iter().map(|p| common::inner(&p.report.iterations)).sum();
         println!("equations met to {worst:e} of the range in {iterations} iterations");
         assert!(summary.all_converged);
         // The descent is preconditioned by the curvature's diagonal: the law, just above the
@@ -1192,7 +1148,11 @@ fn high_tabor_mesh_study() {
         let started = std::time::Instant::now();
         let (points, w0, _) = high_tabor_cycle(n, 300.0, &path);
         let s = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
-        let its = points.iter().map(|p| p.report.inner_iterations).sum::<usize>() / points.len();
+        let its = points
+            .iter()
+            .map(|p| common::inner(&p.report.iterations))
+            .sum::<usize>()
+            / points.len();
         println!(
             "| {n} | {:.2} | {:.3} | {its} | {:.0} s |{}",
             600.0 / n as f64,
@@ -1236,15 +1196,17 @@ fn challenge_dual_loop_study() {
     let (op, g0, law) = challenge(n);
     let control = Control::MeanPressure(0.01 * 25e6);
     let solve_with = |outer_loop, start| {
-        let options = AdhesiveOptions {
-            outer_loop,
-            max_outer_iterations: 200_000,
-            ..AdhesiveOptions::default()
+        let options = Settings {
+            method: outer_loop,
+            max_iterations: 200_000,
+            ..Settings::with_method(Method::Accelerated)
         };
-        solve_adhesive(&op, &law, g0.view(), control, &options, start).unwrap()
+        common::problem(&op, &law, g0.view())
+            .solve(control, &options, start, &mut ())
+            .unwrap()
     };
-    let (fast, f) = solve_with(OuterLoop::Accelerated, Start::Loading);
-    let (slow, s) = solve_with(OuterLoop::DualLoop, Start::Loading);
+    let (fast, f) = solve_with(Method::Accelerated, Start::Loading);
+    let (slow, s) = solve_with(Method::DualLoop, Start::Loading);
     let mean_gap = |st: &AdhesiveState| st.contact.gap.mean().unwrap();
     let contact = |st: &AdhesiveState| st.contact.pressure.mapv(|p| p > 0.0);
     let flipped = |a: &AdhesiveState, b: &AdhesiveState| {
@@ -1265,8 +1227,8 @@ fn challenge_dual_loop_study() {
         println!(
             "  {name:>11}: {} outer, {} inner iterations, {:.0} s, residual {:.1e}, contact {:.6}, \
              attractive {:.6}, mean gap {:.6e} m, {:?}",
-            r.outer_iterations,
-            r.inner_iterations,
+            r.iterations.count(),
+            common::inner(&r.iterations),
             r.wall_time_s,
             r.residual,
             r.contact_area_fraction,
@@ -1289,14 +1251,10 @@ fn challenge_dual_loop_study() {
     assert!((mean_gap(&fast) - mean_gap(&slow)).abs() < 0.05 * law.range());
     // Each accepts the other's state: the same fixed point of the same equations.
     for (name, outer_loop, other) in [
-        (
-            "dual loop from the accelerated solution",
-            OuterLoop::DualLoop,
-            &fast,
-        ),
+        ("dual loop from the accelerated solution", Method::DualLoop, &fast),
         (
             "accelerated from the dual loop's solution",
-            OuterLoop::Accelerated,
+            Method::Accelerated,
             &slow,
         ),
     ] {
@@ -1304,12 +1262,12 @@ fn challenge_dual_loop_study() {
         println!(
             "  {name}: {} outer iterations, mean gap moved {:.2e} of the range, largest adhesive \
              pressure {:.2e} of the peak, {} cells changed contact",
-            r.outer_iterations,
+            r.iterations.count(),
             (mean_gap(&again) - mean_gap(other)).abs() / law.range(),
             largest(&again, other),
             flipped(&again, other)
         );
-        assert!(r.converged() && r.outer_iterations <= 2);
+        assert!(r.converged() && r.iterations.count() <= 2);
         assert!((mean_gap(&again) - mean_gap(other)).abs() < 1e-4 * law.range());
         assert!(largest(&again, other) < 1e-3);
         assert_eq!(flipped(&again, other), 0);
@@ -1321,33 +1279,29 @@ fn a_resumed_sweep_knows_its_branch() {
     // A sweep started from the state of a loading step that then moves apart is unloading from
     // its first step (a resumed `roughcontact sweep` labelled it loading).
     let (op, g0, law, _) = sphere_case(1.0, 16, 20.0);
-    let options = AdhesiveOptions::default();
+    let options = Settings::with_method(Method::Accelerated);
     let mut last = None;
-    sweep(
-        &op,
-        &law,
-        g0.view(),
-        &approaches([0.0, 1.0].into_iter()),
-        &options,
-        None,
-        None,
-        &mut |_, _, state| {
-            last = Some(state.clone());
-            true
-        },
-    )
-    .unwrap();
-    let points = sweep(
-        &op,
-        &law,
-        g0.view(),
-        &approaches([0.5, 0.8].into_iter()),
-        &options,
-        None,
-        last,
-        &mut |_, _, _| true,
-    )
-    .unwrap();
+    common::problem(&op, &law, g0.view())
+        .sweep(
+            &approaches([0.0, 1.0].into_iter()),
+            None,
+            &options,
+            None,
+            &mut common::steps(|_, _, state| {
+                last = Some(state.clone());
+                true
+            }),
+        )
+        .unwrap();
+    let points = common::problem(&op, &law, g0.view())
+        .sweep(
+            &approaches([0.5, 0.8].into_iter()),
+            None,
+            &options,
+            last,
+            &mut common::steps(|_, _, _| true),
+        )
+        .unwrap();
     assert_eq!(points[0].branch, Branch::Unloading);
     assert_eq!(points[1].branch, Branch::Loading);
 }

@@ -1,8 +1,9 @@
 //! Non-adhesive sphere on a free grid against Hertz.
 
 use elastic::{Domain, Free};
+use solver::cg::solve;
 use solver::geometry::{SphereProfile, sphere};
-use solver::{ContactOptions, Control, solve};
+use solver::{ContactOptions, Control};
 use std::f64::consts::PI;
 
 const E: f64 = 1e9;
@@ -34,7 +35,7 @@ fn hertz(diameter: usize) -> Errors {
         tolerance: 1e-10,
         ..Default::default()
     };
-    let (_, rep) = solve(&op, g0.view(), Control::Force(w), &opts, None).unwrap();
+    let (_, rep) = solve(&op, g0.view(), Control::Force(w), &opts, None, &mut ()).unwrap();
     assert!(
         rep.converged(),
         "{:?} after {} iterations",
@@ -45,7 +46,7 @@ fn hertz(diameter: usize) -> Errors {
     let radius = (rep.contact_area_fraction * (n * n) as f64 * d * d / PI).sqrt();
     let p0 = 3.0 * w / (2.0 * PI * a * a);
     // Displacement control at the Hertz approach gives the Hertz load back.
-    let (_, by_approach) = solve(&op, g0.view(), Control::Approach(a * a / R), &opts, None).unwrap();
+    let (_, by_approach) = solve(&op, g0.view(), Control::Approach(a * a / R), &opts, None, &mut ()).unwrap();
     assert!(by_approach.converged());
     Errors {
         approach: rep.approach / (a * a / R) - 1.0,

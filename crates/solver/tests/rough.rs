@@ -2,8 +2,9 @@
 
 use elastic::{Domain, Periodic};
 use ndarray::Array2;
+use solver::cg::solve;
 use solver::geometry::flat_on_rough;
-use solver::{ContactOptions, Control, solve};
+use solver::{ContactOptions, Control};
 use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec, generate};
 
 const E: f64 = 25e6;
@@ -46,7 +47,15 @@ fn force_balance_and_complementarity_hold() {
         tolerance: 1e-10,
         ..Default::default()
     };
-    let (state, rep) = solve(&op, g0.view(), Control::MeanPressure(p_mean), &opts, None).unwrap();
+    let (state, rep) = solve(
+        &op,
+        g0.view(),
+        Control::MeanPressure(p_mean),
+        &opts,
+        None,
+        &mut (),
+    )
+    .unwrap();
     assert!(rep.converged(), "{:?} {}", rep.termination, rep.residual);
     assert!((rep.mean_pressure / p_mean - 1.0).abs() < 1e-13, "force balance");
     // Complementarity: the gap recomputed from the displacement vanishes in contact and is
@@ -67,7 +76,15 @@ fn force_balance_and_complementarity_hold() {
         }
     }
     // Displacement control at the found approach reproduces the load.
-    let (_, again) = solve(&op, g0.view(), Control::Approach(rep.approach), &opts, None).unwrap();
+    let (_, again) = solve(
+        &op,
+        g0.view(),
+        Control::Approach(rep.approach),
+        &opts,
+        None,
+        &mut (),
+    )
+    .unwrap();
     assert!(again.converged());
     assert!(
         (again.mean_pressure / p_mean - 1.0).abs() < 1e-6,
@@ -87,8 +104,24 @@ fn warm_starts_converge_faster() {
     let op = Periodic::new(dom, E).unwrap();
     let g0 = flat_on_rough(h.view()).unwrap();
     let opts = ContactOptions::default();
-    let (s1, cold) = solve(&op, g0.view(), Control::MeanPressure(0.02 * E), &opts, None).unwrap();
-    let (_, warm) = solve(&op, g0.view(), Control::MeanPressure(0.021 * E), &opts, Some(&s1)).unwrap();
+    let (s1, cold) = solve(
+        &op,
+        g0.view(),
+        Control::MeanPressure(0.02 * E),
+        &opts,
+        None,
+        &mut (),
+    )
+    .unwrap();
+    let (_, warm) = solve(
+        &op,
+        g0.view(),
+        Control::MeanPressure(0.021 * E),
+        &opts,
+        Some(&s1),
+        &mut (),
+    )
+    .unwrap();
     assert!(cold.converged() && warm.converged());
     assert!(
         warm.iterations < cold.iterations,
@@ -117,6 +150,7 @@ fn small_load_area_slope_is_near_two() {
             Control::MeanPressure(reduced * E * g_bar),
             &ContactOptions::default(),
             None,
+            &mut (),
         )
         .unwrap();
         assert!(rep.converged());
@@ -144,6 +178,7 @@ fn results_do_not_depend_on_the_number_of_threads() {
                     Control::MeanPressure(0.03 * E),
                     &ContactOptions::default(),
                     None,
+                    &mut (),
                 )
                 .unwrap()
             })
@@ -160,8 +195,8 @@ fn bad_input_is_refused_and_non_convergence_reported() {
     let op = Periodic::new(dom, E).unwrap();
     let g0 = flat_on_rough(h.view()).unwrap();
     let opts = ContactOptions::default();
-    assert!(solve(&op, g0.view(), Control::MeanPressure(-1.0), &opts, None).is_err());
-    assert!(solve(&op, g0.view(), Control::Approach(-1e-9), &opts, None).is_err());
+    assert!(solve(&op, g0.view(), Control::MeanPressure(-1.0), &opts, None, &mut ()).is_err());
+    assert!(solve(&op, g0.view(), Control::Approach(-1e-9), &opts, None, &mut ()).is_err());
     assert!(
         solve(
             &op,
@@ -171,7 +206,8 @@ fn bad_input_is_refused_and_non_convergence_reported() {
                 tolerance: 1e-16,
                 ..opts
             },
-            None
+            None,
+            &mut ()
         )
         .is_err()
     );
@@ -187,10 +223,11 @@ fn bad_input_is_refused_and_non_convergence_reported() {
             ..opts
         },
         None,
+        &mut (),
     )
     .unwrap();
     assert!(!rep.converged() && rep.iterations == 2);
-    let (state, rep) = solve(&op, g0.view(), Control::MeanPressure(0.0), &opts, None).unwrap();
+    let (state, rep) = solve(&op, g0.view(), Control::MeanPressure(0.0), &opts, None, &mut ()).unwrap();
     assert_eq!(rep.termination, solver::Termination::NoContact);
     assert!(state.pressure.iter().all(|&p| p == 0.0));
 }

@@ -3,8 +3,9 @@
 
 use elastic::{Domain, Periodic};
 use ndarray::Array2;
+use solver::cg::solve;
 use solver::geometry::flat_on_rough;
-use solver::{ContactOptions, Control, solve};
+use solver::{ContactOptions, Control};
 use std::path::Path;
 use surfgen::io::{ReadOptions, read};
 
@@ -45,7 +46,7 @@ fn same_contact_set_as_tamaas_pixel_for_pixel() {
         tolerance: 1e-10,
         ..Default::default()
     };
-    let (state, rep) = solve(&op, g0.view(), Control::MeanPressure(0.04), &opts, None).unwrap();
+    let (state, rep) = solve(&op, g0.view(), Control::MeanPressure(0.04), &opts, None, &mut ()).unwrap();
     assert!(rep.converged());
     let differ = state
         .pressure
@@ -80,7 +81,7 @@ fn as_accurate_as_tamaas_in_no_more_iterations() {
             tolerance,
             ..Default::default()
         };
-        let (state, rep) = solve(&op, g0.view(), Control::MeanPressure(0.04), &opts, None).unwrap();
+        let (state, rep) = solve(&op, g0.view(), Control::MeanPressure(0.04), &opts, None, &mut ()).unwrap();
         assert!(rep.converged());
         (state, rep.iterations)
     };

@@ -2,12 +2,13 @@
 //! adhesion functional, on the same surface at the same mean gap (data/tamaas-adhesion-256,
 //! see its README).
 
+mod common;
+
 use elastic::{Domain, Periodic};
 use ljadhesion::ExponentialLaw;
 use ndarray::Array2;
-use solver::adhesive::Start;
 use solver::geometry::flat_on_rough;
-use solver::{AdhesiveOptions, Control, OuterLoop, solve_adhesive};
+use solver::{Control, Method, Settings, Start};
 use std::path::Path;
 
 fn load(name: &str) -> Array2<f64> {
@@ -19,15 +20,15 @@ fn load(name: &str) -> Array2<f64> {
 
 #[test]
 fn exponential_adhesion_agrees_with_tamaas() {
-    agrees_with_tamaas(OuterLoop::Accelerated);
+    agrees_with_tamaas(Method::Accelerated);
 }
 
 #[test]
 fn energy_descent_agrees_with_tamaas() {
-    agrees_with_tamaas(OuterLoop::EnergyDescent);
+    agrees_with_tamaas(Method::EnergyDescent);
 }
 
-fn agrees_with_tamaas(outer_loop: OuterLoop) {
+fn agrees_with_tamaas(outer_loop: Method) {
     let h = load("surface.npy");
     let reference = load("tamaas_pressure.npy");
     let reference_gap = load("tamaas_gap.npy");
@@ -46,39 +47,33 @@ fn agrees_with_tamaas(outer_loop: OuterLoop) {
     let mean_gap = 0.08;
     let approach = g0.mean().unwrap() - mean_gap;
     let law = ExponentialLaw::new(1e-3, 2.0 / n as f64).unwrap();
-    let options = AdhesiveOptions {
+    let options = Settings {
         tolerance: 1e-9,
-        outer_loop,
-        ..AdhesiveOptions::default()
+        method: outer_loop,
+        ..Settings::with_method(Method::Accelerated)
     };
     let (state, report) = rayon::ThreadPoolBuilder::new().build().unwrap().install(|| {
-        solve_adhesive(
-            &op,
-            &law,
-            g0.view(),
-            Control::Approach(approach),
-            &options,
-            Start::Loading,
-        )
-        .unwrap()
+        common::problem(&op, &law, g0.view())
+            .solve(Control::Approach(approach), &options, Start::Loading, &mut ())
+            .unwrap()
     });
     assert!(report.converged());
-    if outer_loop == OuterLoop::EnergyDescent {
+    if outer_loop == Method::EnergyDescent {
         // One application for the direction and one for the trial gap per iteration, and one
         // for the preconditioner: no step cut. (Restoring the mean gap used to lift the whole
         // contact set off the wall by a round-off gap; the next direction pressed it back in
         // and 19 cuts followed here.)
         assert!(
-            report.operator_calls <= 2 * report.inner_iterations + 2,
+            report.operator_calls <= 2 * common::inner(&report.iterations) + 2,
             "{} operator calls in {} iterations",
             report.operator_calls,
-            report.inner_iterations
+            common::inner(&report.iterations)
         );
     }
     println!(
         "outer {}, inner {}, {:.2} s; mean pressure {:.6e} (Tamaas {:.6e})",
-        report.outer_iterations,
-        report.inner_iterations,
+        report.iterations.count(),
+        common::inner(&report.iterations),
         report.wall_time_s,
         report.mean_pressure,
         reference.mean().unwrap()

@@ -3,14 +3,15 @@
 //! adhesive process zone many times over (a wavelength of thousands of cells costs little in
 //! one dimension).
 
+mod common;
+
 use elastic::{Compliance, Domain, Periodic};
-use ljadhesion::{AdhesionLaw, LennardJones, PointLaw, SurfaceLaw};
+use ljadhesion::{LennardJones, PointLaw, SurfaceLaw};
 use ndarray::Array2;
-use solver::adhesive::OuterLoop;
+use solver::cg::solve;
 use solver::geometry::wave;
 use solver::{
-    AdhesiveOptions, AdhesiveReport, Branch, ContactOptions, Control, CyclePoint, SweepPoint, solve,
-    summarize, sweep,
+    AdhesiveReport, Branch, ContactOptions, Control, CyclePoint, Method, Settings, SweepPoint, summarize,
 };
 use std::f64::consts::PI;
 use theory::wavy::Wave;
@@ -61,6 +62,7 @@ fn a_pressed_wave_is_westergaards() {
             Control::Approach(approach * Z0),
             &ContactOptions::default(),
             None,
+            &mut (),
         )
         .unwrap();
         let a = 0.5 * report.contact_area_fraction * theory.wavelength;
@@ -95,20 +97,16 @@ enum Law {
 fn wave_cycle(op: &Periodic, g0: &Array2<f64>, law: Law, top: i32, bottom: i32) -> Vec<SweepPoint> {
     let lj = LennardJones::new(W0, Z0).unwrap();
     let (point, surface) = (PointLaw(lj), SurfaceLaw(lj));
-    let (law, outer_loop): (&dyn AdhesionLaw, _) = match law {
-        Law::Point => (&point, OuterLoop::EnergyDescent),
-        Law::Surface => (&surface, OuterLoop::Newton),
+    let (problem, method) = match law {
+        Law::Point => (common::problem(op, &point, g0.view()), Method::EnergyDescent),
+        Law::Surface => (common::problem(op, &surface, g0.view()), Method::Newton),
     };
     let mut path: Vec<Control> = (bottom..=top).map(|k| Control::Approach(k as f64 * Z0)).collect();
     path.extend((bottom..top).rev().map(|k| Control::Approach(k as f64 * Z0)));
-    let options = AdhesiveOptions {
-        outer_loop,
-        ..AdhesiveOptions::default()
-    };
-    sweep(op, law, g0.view(), &path, &options, None, None, &mut |_, _, _| {
-        true
-    })
-    .unwrap()
+    let options = Settings::with_method(method);
+    problem
+        .sweep(&path, None, &options, None, &mut common::steps(|_, _, _| true))
+        .unwrap()
 }
 
 /// How a wave's cycle compares with Johnson's JKR solution.

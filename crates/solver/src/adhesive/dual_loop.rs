@@ -13,7 +13,9 @@
 //! tolerance: the mean gap error that the pending adhesive correction would cause locally.
 
 use super::anderson::Anderson;
-use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start, assemble, cells};
+use super::{
+    AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start, assemble, cells,
+};
 use crate::cg::{Scratch, solve_in};
 use crate::error::Result;
 use crate::options::{ContactOptions, Control};
@@ -43,7 +45,11 @@ impl AdhesiveMethod for DualLoop {
         Ok(())
     }
 
-    fn solve(&self, job: &Job, observer: &mut dyn FnMut(usize, f64)) -> Result<(AdhesiveState, AdhesiveReport)> {
+    fn solve(
+        &self,
+        job: &Job,
+        observer: &mut dyn FnMut(usize, f64),
+    ) -> Result<(AdhesiveState, AdhesiveReport)> {
         solve(job, self.accelerated, observer)
     }
 }

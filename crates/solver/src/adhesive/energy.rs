@@ -33,7 +33,9 @@
 //! Two operator applications per iteration (the direction and the trial gap), against one per
 //! inner iteration times many inner iterations per outer one in the dual loop.
 
-use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start, assemble, cells};
+use super::{
+    AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start, assemble, cells,
+};
 use crate::error::{Result, SolverError, invalid};
 use crate::options::Control;
 use crate::report::Termination;
@@ -649,7 +651,11 @@ impl AdhesiveMethod for EnergyDescent {
         potential(job).map(|_| ())
     }
 
-    fn solve(&self, job: &Job, observer: &mut dyn FnMut(usize, f64)) -> Result<(AdhesiveState, AdhesiveReport)> {
+    fn solve(
+        &self,
+        job: &Job,
+        observer: &mut dyn FnMut(usize, f64),
+    ) -> Result<(AdhesiveState, AdhesiveReport)> {
         solve(job, potential(job)?, observer)
     }
 }

@@ -238,7 +238,11 @@ pub(crate) trait AdhesiveMethod {
     fn check(&self, job: &Job) -> Result<()>;
 
     /// Solves `job`, calling `observer(iteration, residual)` after every iteration.
-    fn solve(&self, job: &Job, observer: &mut dyn FnMut(usize, f64)) -> Result<(AdhesiveState, AdhesiveReport)>;
+    fn solve(
+        &self,
+        job: &Job,
+        observer: &mut dyn FnMut(usize, f64),
+    ) -> Result<(AdhesiveState, AdhesiveReport)>;
 }
 
 fn implementation(method: Method) -> &'static dyn AdhesiveMethod {

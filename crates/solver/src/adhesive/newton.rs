@@ -393,7 +393,11 @@ impl AdhesiveMethod for Newton {
         Ok(())
     }
 
-    fn solve(&self, job: &Job, observer: &mut dyn FnMut(usize, f64)) -> Result<(AdhesiveState, AdhesiveReport)> {
+    fn solve(
+        &self,
+        job: &Job,
+        observer: &mut dyn FnMut(usize, f64),
+    ) -> Result<(AdhesiveState, AdhesiveReport)> {
         solve(job, observer)
     }
 }
@@ -490,10 +494,7 @@ fn iterate(
         if residual < 0.9 * best {
             (best, improved_at) = (residual, steps);
         }
-        if steps == settings.max_iterations
-            || steps - improved_at > patience
-            || (give_up && dt <= MIN_DT)
-        {
+        if steps == settings.max_iterations || steps - improved_at > patience || (give_up && dt <= MIN_DT) {
             break;
         }
         steps += 1;
