@@ -1,6 +1,6 @@
 //! `cargo xtask figures`: Figures 5-14 of Ghanbarzadeh, Faraji & Neville (2020) rebuilt from
 //! nothing, as PNG + SVG with their data as CSV, and `FIGURES.md` saying what was computed and
-//! how well each figure agrees with its reference (method.md section 7).
+//! how well each figure agrees with its reference (docs/method.md section 7).
 //!
 //! Each figure is a module (`fig05` ... `fig14`) that asks for its runs, draws itself and
 //! reports. The runs are shared physics (`sphere`, `challenge`, `rough_sphere`): cached on

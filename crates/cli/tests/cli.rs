@@ -944,7 +944,7 @@ fn auto_picks_the_librarys_method_for_every_built_in_example() {
         ("hertz", vec!["--n", "16", "--steps", "1"]),
         ("jkr-sphere", vec!["--n", "16", "--steps", "1"]),
         ("dmt-sphere", vec!["--n", "16", "--steps", "1"]),
-        ("rough-sphere", vec!["--n", "16", "--steps", "1"]),
+        ("rough-sphere", vec!["--n", "32", "--steps", "1"]),
         ("challenge-small", vec!["--n", "32", "--mean-pressures", "1.25e5"]),
         ("wavy-jkr", vec!["--n", "64", "--steps", "1"]),
     ] {

@@ -3,7 +3,7 @@
 //! The normal surface displacement `u` [m] of an elastic half-space of composite modulus `E*`
 //! [Pa] under a normal pressure `p` [Pa] (positive = compressive, pushing the surface in, so
 //! `u > 0` under a compressive load) that is uniform over each cell of a regular grid
-//! (method.md section 1, the paper's Eqs. 1-2):
+//! (docs/method.md section 1, the paper's Eqs. 1-2):
 //!
 //! - [`Periodic`]: the spectral kernel `u(q) = 2 p(q) / (E* |q|)`, mean displacement zero;
 //! - [`Free`]: Love's exact influence coefficients for rectangular cells, applied as a linear

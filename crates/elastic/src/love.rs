@@ -26,7 +26,7 @@ fn corner(x: f64, y: f64) -> f64 {
 
 /// Normal surface displacement [m] at `(x, y)` [m] of an elastic half-space of composite
 /// modulus `e_star` [Pa] under the uniform pressure `p` [Pa] on the rectangle `|x'| <= a`,
-/// `|y'| <= b` (half-sides `a`, `b` [m]), Love's solution (method.md section 1):
+/// `|y'| <= b` (half-sides `a`, `b` [m]), Love's solution (docs/method.md section 1):
 /// `u = p / (pi E*) [F(x+a, y+b) - F(x+a, y-b) - F(x-a, y+b) + F(x-a, y-b)]`
 /// with `F(s, t) = s ln(t + r) + t ln(s + r)`, `r = sqrt(s^2 + t^2)`.
 ///

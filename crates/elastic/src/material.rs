@@ -1,4 +1,4 @@
-//! Elastic constants and the composite modulus (method.md section 1).
+//! Elastic constants and the composite modulus (docs/method.md section 1).
 
 use crate::error::{ElasticError, Result};
 

@@ -204,7 +204,7 @@ impl LocalPotential for ExponentialLaw {
 
 /// The Dugdale (Maugis) law: a constant pull `sigma0 = w0 / h0` for `0 <= g < h0` and none
 /// beyond, at the node. With `h0 = 0.974 z0` and `sigma0` the Lennard-Jones peak it is the
-/// Dugdale model equivalent to the Lennard-Jones law (method.md section 8.3).
+/// Dugdale model equivalent to the Lennard-Jones law (docs/method.md section 8.3).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DugdaleLaw {
     w0: f64,

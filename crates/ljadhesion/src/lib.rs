@@ -1,7 +1,7 @@
 //! # ljadhesion: adhesive pressure on a boundary-element grid
 //!
 //! Maps a field of gaps `g >= 0` [m] to a field of adhesive pressures `p <= 0` [Pa] (negative
-//! = attractive; the solver crate's conventions). The laws (method.md sections 2 and 3, the
+//! = attractive; the solver crate's conventions). The laws (docs/method.md sections 2 and 3, the
 //! paper's Eqs. 5-12):
 //!
 //! | law | cell pressure |

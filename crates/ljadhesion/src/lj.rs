@@ -1,4 +1,4 @@
-//! The Lennard-Jones 9-3 law between parallel half-spaces (method.md section 2, Eqs. 5-6, 12).
+//! The Lennard-Jones 9-3 law between parallel half-spaces (docs/method.md section 2, Eqs. 5-6, 12).
 //!
 //! `p(z) = (8 w0 / (3 z0)) [ (z0/z)^9 - (z0/z)^3 ]` [Pa], positive = repulsive, at atomic
 //! separation `z = g + z0` for a continuum gap `g >= 0`. Its antiderivative

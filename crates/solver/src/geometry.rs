@@ -3,7 +3,7 @@
 //! Every geometry is reduced to one field, the initial gap `g0` [m], shifted so that its
 //! minimum is 0: the bodies touch first where `g0 = 0`, and the gap under an approach
 //! `delta` [m] (positive = pushing together) with surface displacement `u` is
-//! `g = g0 - delta + u` (method.md section 1).
+//! `g = g0 - delta + u` (docs/method.md section 1).
 
 use crate::error::{Result, SolverError, invalid};
 use elastic::Domain;

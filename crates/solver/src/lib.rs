@@ -1,6 +1,6 @@
 //! # solver: normal contact of an elastic half-space with a rigid counterface
 //!
-//! Conventions, used by every crate of the workspace (method.md section 1): SI units; arrays
+//! Conventions, used by every crate of the workspace (docs/method.md section 1): SI units; arrays
 //! of shape `(ny, nx)`; gap `g >= 0` [m]; pressure `p > 0` compressive [Pa] (adhesive
 //! pressure `p_a <= 0`); approach `delta > 0` [m] pushes the bodies together, measured from
 //! first touch of the undeformed surfaces; surface displacement `u` [m] positive away from
@@ -60,3 +60,8 @@ pub use problem::{ContactProblem, ProblemBuilder, Shape};
 pub use report::{ContactReport, Termination};
 pub use state::ContactState;
 pub use sweep::{Branch, CyclePoint, CycleSummary, RETRIES, SweepPoint, approach_cycle, substeps, summarize};
+
+/// The README's library example, run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;

@@ -1,4 +1,4 @@
-//! Random periodic self-affine surfaces (method.md section 5, the paper's Eq. 13).
+//! Random periodic self-affine surfaces (docs/method.md section 5, the paper's Eq. 13).
 //!
 //! Each Fourier coefficient gets the amplitude `sqrt(C(q))` (exactly, or times a Rayleigh
 //! variate) and a uniformly random phase; the coefficients of `kx = 0` and of the Nyquist

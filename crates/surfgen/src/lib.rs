@@ -1,7 +1,7 @@
 //! # surfgen: self-affine rough surfaces and their statistics
 //!
 //! Periodic, zero-mean random surfaces with the power spectrum of the paper's Eq. 13
-//! (method.md section 5): flat below the roll-off wavevector `q_r`, the power law
+//! (docs/method.md section 5): flat below the roll-off wavevector `q_r`, the power law
 //! `(q/q_r)^(-2(1+H))` up to the short cut-off `q_s`, zero outside (and below an optional
 //! long-wavelength cut-off), optionally anisotropic. A `u64` seed fixes a surface bit for bit
 //! on every platform and for every number of threads.

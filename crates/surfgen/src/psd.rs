@@ -1,4 +1,4 @@
-//! The power spectral density of a self-affine surface (method.md section 5, the paper's Eq. 13).
+//! The power spectral density of a self-affine surface (docs/method.md section 5, the paper's Eq. 13).
 //!
 //! Convention (Persson's): a periodic surface `h(x) = sum_q h_q exp(i q.x)` over the nominal
 //! area `A` has the 2-D isotropic spectrum `C(q) = A / (2 pi)^2 <|h_q|^2>` [m^4], so that

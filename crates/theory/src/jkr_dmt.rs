@@ -1,5 +1,5 @@
 //! JKR and DMT for a sphere of radius `r` [m], work of adhesion `w0` [J/m^2], modulus
-//! `e_star` [Pa] (method.md section 8.3).
+//! `e_star` [Pa] (docs/method.md section 8.3).
 
 use std::f64::consts::PI;
 

@@ -2,7 +2,7 @@
 //!
 //! Plain numbers in, numbers out; no dependency on the rest of the workspace. SI units unless
 //! a function says it works in the dimensionless units of its model. Sign conventions: load
-//! `P > 0` compressive, approach `delta > 0` pushing the bodies together (method.md
+//! `P > 0` compressive, approach `delta > 0` pushing the bodies together (docs/method.md
 //! sections 6 and 8).
 
 pub mod greenwood;
@@ -20,7 +20,7 @@ pub fn tabor_parameter(r: f64, w0: f64, e_star: f64, z0: f64) -> f64 {
 
 /// Maugis' parameter equivalent to a Lennard-Jones law of Tabor parameter `mu`: the Dugdale
 /// law with the same work of adhesion and peak stress gives `lambda = 1.157 mu`
-/// (method.md section 8.3).
+/// (docs/method.md section 8.3).
 pub fn maugis_parameter_of_tabor(mu: f64) -> f64 {
     // lambda = 2 sigma0 (R / (pi w0 K^2))^(1/3), sigma0 = 16 w0 / (9 sqrt 3 z0), K = 4 E*/3.
     let sigma0_factor = 16.0 / (9.0 * 3f64.sqrt());

@@ -1,4 +1,4 @@
-//! The Maugis-Dugdale model (Maugis 1992) in its dimensionless units (method.md section 8.3):
+//! The Maugis-Dugdale model (Maugis 1992) in its dimensionless units (docs/method.md section 8.3):
 //! `A = a / (pi w0 R^2 / K)^(1/3)`, `P = load / (pi w0 R)`,
 //! `D = delta / (pi^2 w0^2 R / K^2)^(1/3)`, `K = 4 E*/3`, with the transition parameter
 //! `lambda = 2 sigma0 (R / (pi w0 K^2))^(1/3)`. The curve is parameterised by `m = c/a > 1`,

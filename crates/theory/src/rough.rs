@@ -1,4 +1,4 @@
-//! Contact-area and stickiness formulas for rough surfaces (method.md sections 6 and 8).
+//! Contact-area and stickiness formulas for rough surfaces (docs/method.md sections 6 and 8).
 
 use std::f64::consts::PI;
 
