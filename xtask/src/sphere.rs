@@ -560,6 +560,16 @@ fn fmt_cell(c: f64) -> String {
     format!("{c:.2}")
 }
 
+/// Hands every step's state to a closure.
+struct States<'a>(&'a mut dyn FnMut(usize, &AdhesiveState));
+
+impl Observer for States<'_> {
+    fn step(&mut self, k: usize, _: &SweepPoint, state: &AdhesiveState) -> bool {
+        (self.0)(k, state);
+        true
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -611,15 +621,5 @@ mod tests {
         // Between 0.5 and 2.0 on the last (increasing) segment.
         assert_eq!(interpolate(pts[2..].iter().copied(), 1.25), Some(2.5));
         assert_eq!(interpolate(pts.iter().copied(), 5.0), None);
-    }
-}
-
-/// Hands every step's state to a closure.
-struct States<'a>(&'a mut dyn FnMut(usize, &AdhesiveState));
-
-impl Observer for States<'_> {
-    fn step(&mut self, k: usize, _: &SweepPoint, state: &AdhesiveState) -> bool {
-        (self.0)(k, state);
-        true
     }
 }

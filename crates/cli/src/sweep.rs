@@ -553,7 +553,7 @@ impl Observer for StepWriter<'_> {
             );
             self.quiet_since = Instant::now();
         }
-        if iteration % 10 == 0 {
+        if iteration.is_multiple_of(10) {
             self.bar.set_message(format!(
                 "iteration {iteration}, residual {residual:.2e}  {}",
                 self.last
