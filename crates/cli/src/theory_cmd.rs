@@ -186,36 +186,17 @@ fn area(a: &TheoryArgs, k: f64, max: f64) -> Result<()> {
     Ok(())
 }
 
-#[allow(clippy::too_many_arguments)]
+/// The stickiness criteria for a material (`w0` [J/m^2], `e` = E* [Pa]) and a self-affine
+/// spectrum whose longest wavelength is `long` [m].
 fn sticky(
     a: &TheoryArgs,
     w0: f64,
     e: f64,
-    rq: f64,
-    hurst: f64,
     long: f64,
-    rolloff: Option<f64>,
-    short: f64,
+    spectrum: &theory::rough::SelfAffineSpectrum,
 ) -> Result<()> {
-    use std::f64::consts::PI;
-    use theory::rough::{
-        SelfAffineSpectrum, ciavarella_sticky, ciavarella_variable, johnson_parameter, persson_tosatti_work,
-    };
-    let rolloff = rolloff.unwrap_or(long);
-    let all = [w0, e, rq, long, rolloff, short];
-    if all.iter().any(|v| !(v.is_finite() && *v > 0.0))
-        || !(short < rolloff && rolloff <= long)
-        || !(hurst > 0.0 && hurst < 1.0)
-    {
-        bail!("need positive finite inputs, short < roll-off <= long wavelength and 0 < H < 1");
-    }
-    let spectrum = SelfAffineSpectrum {
-        hurst,
-        q_long: 2.0 * PI / long,
-        q_rolloff: 2.0 * PI / rolloff,
-        q_short: 2.0 * PI / short,
-        rms_height: rq,
-    };
+    use theory::rough::{ciavarella_sticky, ciavarella_variable, johnson_parameter, persson_tosatti_work};
+    let (rq, hurst) = (spectrum.rms_height, spectrum.hurst);
     let gradient = spectrum.moment(2.0).sqrt();
     let johnson = johnson_parameter(w0, e, rq, spectrum.q_long, spectrum.q_short, hurst);
     let ciavarella = ciavarella_variable(rq, e, long, w0);
@@ -472,16 +453,30 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
             rolloff_wavelength,
             short_wavelength,
         } => {
-            return sticky(
-                &a,
+            use std::f64::consts::PI;
+            let (w0, e, rq, long, short) = (
                 work_of_adhesion,
                 modulus,
                 rms_height,
-                hurst,
                 long_wavelength,
-                rolloff_wavelength,
                 short_wavelength,
             );
+            let rolloff = rolloff_wavelength.unwrap_or(long);
+            let all = [w0, e, rq, long, rolloff, short];
+            if all.iter().any(|v| !(v.is_finite() && *v > 0.0))
+                || !(short < rolloff && rolloff <= long)
+                || !(hurst > 0.0 && hurst < 1.0)
+            {
+                bail!("need positive finite inputs, short < roll-off <= long wavelength and 0 < H < 1");
+            }
+            let spectrum = theory::rough::SelfAffineSpectrum {
+                hurst,
+                q_long: 2.0 * PI / long,
+                q_rolloff: 2.0 * PI / rolloff,
+                q_short: 2.0 * PI / short,
+                rms_height: rq,
+            };
+            return sticky(&a, w0, e, long, &spectrum);
         }
         _ => {}
     }

@@ -46,6 +46,26 @@ pub struct AdhesiveState {
 }
 
 impl AdhesiveState {
+    fn is_standard_layout(&self) -> bool {
+        let c = &self.contact;
+        [&c.pressure, &c.gap, &c.displacement, &self.adhesive_pressure]
+            .iter()
+            .all(|a| a.is_standard_layout())
+    }
+
+    fn to_standard_layout(&self) -> AdhesiveState {
+        let standard = |a: &Array2<f64>| a.as_standard_layout().into_owned();
+        AdhesiveState {
+            contact: ContactState {
+                pressure: standard(&self.contact.pressure),
+                gap: standard(&self.contact.gap),
+                displacement: standard(&self.contact.displacement),
+                approach: self.contact.approach,
+            },
+            adhesive_pressure: standard(&self.adhesive_pressure),
+        }
+    }
+
     /// The total pressure `p_c + p_a` [Pa].
     pub fn total_pressure(&self) -> Array2<f64> {
         &self.contact.pressure + &self.adhesive_pressure
@@ -264,7 +284,9 @@ pub(crate) fn solve(
 ) -> Result<(AdhesiveState, AdhesiveReport)> {
     let op = problem.operator.as_ref();
     let shape = op.domain().shape();
-    let g0 = problem.initial_gap.view();
+    // The methods work on contiguous rows: any other layout is copied into one here.
+    let g0 = problem.initial_gap.as_standard_layout();
+    let g0 = g0.view();
     if g0.dim() != shape {
         return Err(SolverError::ShapeMismatch {
             what: "initial gap",
@@ -302,6 +324,14 @@ pub(crate) fn solve(
             }
         }
     }
+    let standard;
+    let start = match start {
+        Start::Warm(s) if !s.is_standard_layout() => {
+            standard = s.to_standard_layout();
+            Start::Warm(&standard)
+        }
+        other => other,
+    };
     let law = problem.law.as_ref();
     let method = settings.method.resolve(law, control);
     let job = Job {
