@@ -12,33 +12,9 @@ use crate::options::{ContactOptions, Control};
 use crate::report::{ContactReport, Termination, count_clusters};
 use crate::state::ContactState;
 use elastic::Compliance;
-use ndarray::{Array2, ArrayView2, Axis, Zip};
+use ndarray::{Array2, ArrayView2, Zip};
 use rayon::prelude::*;
 use std::time::Instant;
-
-/// `sum f(a, b, c)` over all cells, summed row by row in a fixed order so that the result does
-/// not depend on the number of threads.
-fn sum3(
-    a: ArrayView2<f64>,
-    b: ArrayView2<f64>,
-    c: ArrayView2<f64>,
-    f: impl Fn(f64, f64, f64) -> f64 + Sync,
-) -> f64 {
-    let rows: Vec<f64> = a
-        .axis_iter(Axis(0))
-        .into_par_iter()
-        .zip(b.axis_iter(Axis(0)))
-        .zip(c.axis_iter(Axis(0)))
-        .map(|((ra, rb), rc)| {
-            ra.iter()
-                .zip(rb.iter())
-                .zip(rc.iter())
-                .map(|((x, y), z)| f(*x, *y, *z))
-                .sum::<f64>()
-        })
-        .collect();
-    rows.iter().sum()
-}
 
 /// Solves the normal contact of the half-space `op` with the initial gap `g0` [m] (minimum 0,
 /// see [`crate::geometry`]) under `control`, telling `observer` each iteration's residual.
@@ -347,7 +323,7 @@ pub(crate) fn solve_in(
         op.apply(t.view(), r.view_mut(), ws)?;
         calls += 1;
         // Pass D: curvature along t.
-        let rt = sum3(p.view(), r.view(), t.view(), |p, r, t| {
+        let rt = crate::sum::rows3(p.view(), r.view(), t.view(), |p, r, t| {
             if p > 0.0 { r * (t - t_mean) } else { 0.0 }
         });
         let tau = if rt > 0.0 { gt / rt } else { 0.0 };

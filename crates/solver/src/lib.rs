@@ -50,6 +50,7 @@ pub mod options;
 pub mod problem;
 pub mod report;
 pub mod state;
+mod sum;
 pub mod sweep;
 
 pub use adhesive::{AdhesiveReport, AdhesiveState, Iterations, Start};

@@ -2,20 +2,10 @@
 //! point `x = G(x)`: from the last `depth` iterates and residuals `f = G(x) - x` it takes the
 //! combination whose linearised residual is smallest, then a relaxed step from it.
 
-use ndarray::{Array2, ArrayView2, Axis, Zip};
-use rayon::prelude::*;
+use ndarray::{Array2, ArrayView2, Zip};
 use std::collections::VecDeque;
 
-/// `<a, b>`, summed row by row in a fixed order (independent of the number of threads).
-pub(crate) fn dot(a: ArrayView2<f64>, b: ArrayView2<f64>) -> f64 {
-    let rows: Vec<f64> = a
-        .axis_iter(Axis(0))
-        .into_par_iter()
-        .zip(b.axis_iter(Axis(0)))
-        .map(|(ra, rb)| ra.iter().zip(rb.iter()).map(|(x, y)| x * y).sum::<f64>())
-        .collect();
-    rows.iter().sum()
-}
+use crate::sum::dot_rows as dot;
 
 /// The mixing history: differences of iterates and of residuals, and their Gram matrix.
 pub(crate) struct Anderson {

@@ -49,16 +49,6 @@ use std::time::Instant;
 /// Cuts of a step that would raise the energy before the solve gives up.
 const MAX_CUTS: usize = 40;
 
-/// Sums of `K` quantities computed row by row in parallel and added in row order: the result
-/// does not depend on the number of threads.
-fn row_sums<const K: usize>(ny: usize, row: impl Fn(usize) -> [f64; K] + Sync) -> [f64; K] {
-    let parts: Vec<[f64; K]> = (0..ny).into_par_iter().map(&row).collect();
-    parts.iter().fold([0.0; K], |mut acc, p| {
-        acc.iter_mut().zip(p).for_each(|(a, b)| *a += b);
-        acc
-    })
-}
-
 /// One admissible point and what the solver needs of it. Fields have the unknown's shape.
 pub(super) struct Point {
     /// The unknown: the gap [m] on the domain's block, the displacement [m] in the padding.
@@ -205,7 +195,7 @@ impl Problem<'_> {
         let mut c = 0.0;
         // A prescribed mean gap is periodic: the unknown is the gap everywhere.
         for _ in 0..if self.mean_gap.is_some() { 100 } else { 0 } {
-            let [sum, free] = row_sums(self.ny, |j| {
+            let [sum, free] = crate::sum::ordered(self.ny, |j| {
                 let (f, d) = (&fs[j * nx..][..nx], &ds[j * nx..][..nx]);
                 f.iter().zip(d).fold([0.0, 0.0], |[s, k], (&f, &d)| {
                     let v = f + step * d + c;
@@ -429,7 +419,7 @@ impl Problem<'_> {
             }
         };
         let mu = if self.mean_gap.is_some() {
-            let [a, b] = row_sums(self.my, |j| {
+            let [a, b] = crate::sum::ordered(self.my, |j| {
                 let mut sums = [0.0; 2];
                 for i in 0..mx {
                     let k = j * mx + i;
@@ -741,7 +731,7 @@ pub(super) fn solve<'a>(
             s_direction.as_slice().expect("layout"),
             x.curvature.as_slice().expect("layout"),
         );
-        let [elastic_curv, law_curv, law_pos] = row_sums(my, |j| {
+        let [elastic_curv, law_curv, law_pos] = crate::sum::ordered(my, |j| {
             let mut sums = [0.0; 3];
             for k in j * mx..(j + 1) * mx {
                 let d2 = ds[k] * ds[k];

@@ -71,15 +71,13 @@ const CHUNK: usize = 4096;
 /// Halvings of a step that raises the residual before a new direction is sought.
 const BACKTRACKS: usize = 3;
 
-/// `<a, b>`, summed in chunks of fixed size and added in order: independent of the threads.
+/// `<a, b>` in chunks of [`CHUNK`] values added in order.
 fn dot(a: &Array2<f64>, b: &Array2<f64>) -> f64 {
-    let (a, b) = (a.as_slice().expect("layout"), b.as_slice().expect("layout"));
-    let parts: Vec<f64> = a
-        .par_chunks(CHUNK)
-        .zip(b.par_chunks(CHUNK))
-        .map(|(a, b)| a.iter().zip(b).map(|(x, y)| x * y).sum())
-        .collect();
-    parts.iter().sum()
+    crate::sum::dot_chunks(
+        a.as_slice().expect("layout"),
+        b.as_slice().expect("layout"),
+        CHUNK,
+    )
 }
 
 /// Subtracts from `out` its mean over the moving cells (those where `mask > 0`), which
