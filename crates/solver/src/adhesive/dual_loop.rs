@@ -24,11 +24,8 @@ use crate::state::ContactState;
 use ndarray::{Array2, Zip};
 use std::time::Instant;
 
-/// The inner solve's gap error as a fraction of the outer residual. 0.1 was enough while the
-/// inner solver also bounded its relative pressure change (which stopped it late); on its KKT
-/// residual alone, 0.1 let jumps into and out of contact stall the outer loop (two steps of
-/// `jkr-sphere` unconverged after 20000 outer iterations); 0.01 converges them all, in fewer
-/// outer and inner iterations overall.
+/// The inner solve's gap error as a fraction of the outer residual: looser lets jumps into
+/// and out of contact stall the outer loop (`docs/decisions.md`).
 const INNER_FACTOR: f64 = 0.01;
 
 /// Outer iterations without a 10 % improvement of the best residual that count as a stall.

@@ -45,9 +45,7 @@ const FIRST_DT: f64 = 1e6;
 const MAX_DT: f64 = 1e12;
 /// The smallest pseudo-time step, in units of the relaxation time of the mass (the elastic
 /// and the law's stable stiffness): each step then goes half way to the linearised solution
-/// of the stable modes. A floor of 0.1 let the steps of a snapping contact edge shrink with
-/// the residual it raises, and crawl (μ = 5, 128²: 2 of 21 steps unconverged after 800-2000
-/// Newton steps, against none and 17-880 steps with this floor, in half the time).
+/// of the stable modes; a lower floor lets a snapping edge crawl (`docs/decisions.md`).
 const MIN_DT: f64 = 1.0;
 /// A step may raise the residual by this factor (the relaxation can have to climb out of a
 /// well of the residual that holds no solution, past the fold of a branch); a larger rise
@@ -60,8 +58,7 @@ const MAX_MOVE: f64 = 2.0;
 const STALL: usize = 60;
 /// The same when nothing can take over (Newton correcting that prediction): the relaxation
 /// can take more than [`STALL`] steps of slowly rising residual to carry a cell of a contact
-/// edge over its snap (surface law on a wave at μ = 10, 4096 cells: with 60, 6 of the 124
-/// steps of a cycle ended unconverged after their retries; with 150, none).
+/// edge over its snap (`docs/decisions.md`).
 const PATIENCE: usize = 150;
 /// Consecutive steps raising the residual after which further rising steps do not count
 /// towards a stall (a two-cycle never makes two).
@@ -110,9 +107,8 @@ struct Linear {
     /// diagonal `S_ii + max(-dp/dg, 0)`, chosen at each Newton step from the law's stiffness
     /// at the moving cells' gaps: where the law is nowhere stiffer than a cell, the work
     /// is the elastic solve, which the stiffness's inverse (one more FFT a Krylov iteration)
-    /// does in far fewer iterations (`dmt-sphere`, μ = 0.1: 381 against 6843, 11 times less
-    /// time); where the law is stiffer, its stiff cells set the pace and the diagonal wins
-    /// (μ = 3: 3.7 times, μ = 5: 15 times less time than the elastic one).
+    /// does in far fewer iterations; where the law is stiffer, its stiff cells set the pace and
+    /// the diagonal wins (measured in `docs/decisions.md`).
     elastic: bool,
     /// The diagonal preconditioner on moving cells, 0 on held ones.
     inverse: Array2<f64>,
@@ -502,8 +498,7 @@ fn iterate(
         let (iterations, solved) = linear.solve(&mut problem, &x, eta)?;
         krylov += iterations;
         // Nor has it where its linearisation cannot be solved: at a jump on a large grid the
-        // first attempt otherwise spends up to its 60 steps in capped Krylov solves before the
-        // prediction takes over (sphere at μ = 10 on 512², surface law: 7.5 s each).
+        // first attempt would otherwise spend its steps in capped Krylov solves.
         if give_up && !solved {
             break;
         }
@@ -552,9 +547,8 @@ fn iterate(
             }
         };
         // A steady rise is the relaxation leaving an unstable equilibrium (where Newton had
-        // nearly converged) for a stable one, not a stall: the residual grows geometrically
-        // for a hundred steps or more before the snap lands (sphere at μ = 5 on 128², cells
-        // of 1.2 process zones: 180 steps from 3e-5 to 0.1, then converged 15 steps later).
+        // nearly converged) for a stable one, not a stall: the residual can grow for a hundred
+        // steps or more before the snap lands (`docs/decisions.md`, ESCAPE).
         rising = if trial_norm > norm { rising + 1 } else { 0 };
         if rising >= ESCAPE {
             improved_at += 1;
@@ -563,9 +557,7 @@ fn iterate(
         // Switched evolution relaxation: the pseudo-time step grows as the residual falls,
         // and shrinks with a cut step. A whole step that lowers the residual at least doubles
         // it: after cuts near a snapping edge the residual falls by a few per cent a step, and
-        // growing by that ratio alone left Newton crawling at the smallest steps (surface
-        // law on a wave at μ = 10, 4096 cells: 300-350 steps to a solve, against 430-6200 and
-        // 3 of 13 unconverged).
+        // growing by that ratio alone leaves Newton crawling (`docs/decisions.md`).
         let ratio = (norm / trial_norm).clamp(0.1, 10.0);
         let growth = if fraction == 1.0 && ratio > 1.0 {
             ratio.max(2.0)
