@@ -28,6 +28,7 @@ mod plot;
 pub mod report;
 pub mod rough_sphere;
 pub mod sphere;
+pub mod study;
 pub mod style;
 
 use anyhow::{Context as _, Result, bail};

@@ -1,4 +1,4 @@
-//! `cargo xtask figures [--quick] [--only N,...] [--out DIR]`.
+//! `cargo xtask figures [--quick] [--only N,...] [--out DIR]`; `cargo xtask study NAME`.
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -34,6 +34,15 @@ enum Command {
         #[arg(long)]
         fresh: bool,
     },
+    /// Run a study that prints a table of docs/validation.md (`--list` names them).
+    Study {
+        /// The study's name.
+        #[arg(required_unless_present = "list")]
+        name: Option<String>,
+        /// List the studies.
+        #[arg(long)]
+        list: bool,
+    },
 }
 
 fn main() -> ExitCode {
@@ -47,13 +56,24 @@ fn main() -> ExitCode {
 }
 
 fn run() -> Result<()> {
-    let Command::Figures {
-        quick,
-        only,
-        out,
-        challenge_surface,
-        fresh,
-    } = Cli::parse().command;
+    let (quick, only, out, challenge_surface, fresh) = match Cli::parse().command {
+        Command::Figures {
+            quick,
+            only,
+            out,
+            challenge_surface,
+            fresh,
+        } => (quick, only, out, challenge_surface, fresh),
+        Command::Study { name, list } => {
+            if list {
+                for (name, what) in xtask::study::STUDIES {
+                    println!("{name:16} {what}");
+                }
+                return Ok(());
+            }
+            return xtask::study::run(name.as_deref().unwrap_or_default());
+        }
+    };
     let out = out.unwrap_or_else(|| PathBuf::from(if quick { "figures-quick" } else { "figures" }));
     let reports = xtask::figures(xtask::Options {
         quick,

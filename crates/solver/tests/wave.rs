@@ -196,7 +196,7 @@ fn a_high_tabor_wave_follows_johnsons_jkr_solution() {
 }
 
 #[test]
-#[ignore = "a study: the mu = 10 wave on 2048 to 8192 cells, quoted in README"]
+#[ignore = "long: the mu = 10 wave converging from 2048 to 8192 cells (docs/validation.md)"]
 fn wave_mesh_study() {
     let mut previous: Option<Agreement> = None;
     for n in [2048, 4096, 8192] {
@@ -232,7 +232,7 @@ fn the_surface_law_converges_on_a_high_tabor_wave() {
 }
 
 #[test]
-#[ignore = "a study: the paper's surface law on the mu = 10 wave, 124 Newton solves (17 minutes), quoted in README"]
+#[ignore = "long: the paper's surface law on the mu = 10 wave, 124 Newton solves (17 minutes; docs/validation.md)"]
 fn the_surface_law_on_a_high_tabor_wave_follows_johnsons_jkr_solution() {
     // Measured: within 4.9e-3 (loading) and 4.7e-3 (unloading) p*, pull-off 2.4 % above
     // Johnson's. The point law on the same grid: 2.0e-3, 1.1e-3 and 0.8 %: the surface law's

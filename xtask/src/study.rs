@@ -1,0 +1,118 @@
+//! `cargo xtask study NAME`: studies that print the tables of `docs/validation.md` (mesh
+//! refinement and the like). They assert nothing and take minutes to hours, so they are not
+//! tests; each prints a Markdown table to stdout.
+
+use crate::sphere::{MODULUS, RADIUS, Z0};
+use anyhow::{Result, bail};
+use ljadhesion::{AdhesionLaw, LennardJones, LineLaw, PointLaw, SurfaceLaw};
+use solver::{ContactProblem, Control, CyclePoint, Method, Settings, summarize};
+use std::f64::consts::PI;
+use std::time::Instant;
+
+/// The studies, by name, with what each shows.
+pub const STUDIES: [(&str, &str); 2] = [
+    (
+        "pull-off-mesh",
+        "a sphere's pull-off at mu = 1 against the cell size, point, line and surface laws (minutes)",
+    ),
+    (
+        "high-tabor-mesh",
+        "a sphere's pull-off at mu = 10 against the cell size, point law (MESH=128,256,512; 512 takes ~40 min)",
+    ),
+];
+
+/// Runs the study `name`.
+pub fn run(name: &str) -> Result<()> {
+    match name {
+        "pull-off-mesh" => pull_off_mesh(),
+        "high-tabor-mesh" => high_tabor_mesh(),
+        _ => {
+            let names: Vec<_> = STUDIES.iter().map(|(n, _)| *n).collect();
+            bail!("unknown study `{name}`; the studies are {}", names.join(", "))
+        }
+    }
+}
+
+/// `w0` [J/m^2] of the smooth sphere (R, E*, z0 of [`crate::sphere`]) at Tabor parameter
+/// `mu`: `mu^3 = R w0^2 / (E*^2 z0^3)`.
+fn work_of_adhesion(mu: f64) -> f64 {
+    (mu.powi(3) / (RADIUS / Z0)).sqrt() * MODULUS * Z0
+}
+
+/// The smooth sphere on a free grid of `n^2` cells spanning `2 half_width` z0, under `law`.
+fn sphere(n: usize, half_width: f64, law: impl AdhesionLaw + 'static) -> Result<ContactProblem> {
+    let side = 2.0 * half_width * Z0;
+    Ok(ContactProblem::builder()
+        .grid(n, n, side, side)
+        .sphere(RADIUS)
+        .modulus(MODULUS)
+        .law(law)
+        .build()?)
+}
+
+fn approaches(values: impl Iterator<Item = f64>) -> Vec<Control> {
+    values.map(|a| Control::Approach(a * Z0)).collect()
+}
+
+/// Mesh refinement of the pull-off (mu = 1, R = 1000 z0, box 200 z0 wide) for the three
+/// Lennard-Jones laws, by the accelerated loop.
+fn pull_off_mesh() -> Result<()> {
+    let (mu, half_width) = (1.0, 100.0);
+    let w0 = work_of_adhesion(mu);
+    let lj = LennardJones::new(w0, Z0)?;
+    let g =
+        theory::greenwood::Greenwood::new(mu, theory::greenwood::Mesh::default()).curve(5.0, 1.0, 0.01)?;
+    println!("Greenwood's pull-off {:.4} (2 pi R w0)", g.pull_off_load_control);
+    println!("| cells | cell / z0 | point | line | surface |");
+    println!("|---|---|---|---|---|");
+    let mut path = approaches((0..=3).map(|k| -3.0 + k as f64));
+    path.extend(approaches((1..=12).map(|k| -0.25 * k as f64)));
+    let settings = Settings::with_method(Method::Accelerated);
+    for n in [16, 32, 64, 128, 256] {
+        let mut row = format!("| {n} | {:.2} |", 2.0 * half_width / n as f64);
+        for problem in [
+            sphere(n, half_width, PointLaw(lj))?,
+            sphere(n, half_width, LineLaw(lj))?,
+            sphere(n, half_width, SurfaceLaw(lj))?,
+        ] {
+            let points = problem.sweep(&path, None, &settings, None, &mut ())?;
+            let s = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
+            let pull_off = s.pull_off_force.unwrap_or(f64::NAN) / (2.0 * PI * RADIUS * w0);
+            row += &format!(
+                " {pull_off:.4}{} |",
+                if s.all_converged { "" } else { " (not converged)" }
+            );
+        }
+        println!("{row}");
+    }
+    Ok(())
+}
+
+/// Mesh refinement of the pull-off at mu = 10 (box 600 z0 wide), point law by the energy
+/// descent; the grids from the environment variable `MESH` (default 128,256).
+fn high_tabor_mesh() -> Result<()> {
+    let mesh = std::env::var("MESH").unwrap_or_else(|_| "128,256".into());
+    let w0 = work_of_adhesion(10.0);
+    let lj = LennardJones::new(w0, Z0)?;
+    let mut path = approaches((0..=24).map(|k| -2.0 + k as f64));
+    path.extend(approaches((1..=30).map(|k| 22.0 - 1.5 * k as f64)));
+    let settings = Settings::with_method(Method::EnergyDescent);
+    println!("| cells | cell / z0 | pull-off / (pi R w0) | iterations per step | time |");
+    println!("|---|---|---|---|---|");
+    for n in mesh.split(',') {
+        let n: usize = n.trim().parse()?;
+        let started = Instant::now();
+        let points = sphere(n, 300.0, PointLaw(lj))?.sweep(&path, None, &settings, None, &mut ())?;
+        let s = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
+        let iterations =
+            points.iter().map(|p| p.report.iterations.count()).sum::<usize>() / points.len().max(1);
+        println!(
+            "| {n} | {:.2} | {:.3} | {iterations} | {:.0} s |{}",
+            600.0 / n as f64,
+            -s.pull_off_force.unwrap_or(f64::NAN) / (PI * RADIUS * w0),
+            started.elapsed().as_secs_f64(),
+            if s.all_converged { "" } else { " not all converged" }
+        );
+    }
+    Ok(())
+}
