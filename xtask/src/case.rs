@@ -29,22 +29,22 @@ pub enum Law {
 pub struct Case {
     /// A topography file instead of a generated surface.
     pub surface: Option<PathBuf>,
-    /// Generated roughness, normalised by its RMS height [m] or RMS gradient [-].
+    /// Generated roughness, normalised by its RMS height \[m\] or RMS gradient [-].
     pub rms_height: Option<f64>,
     pub rms_gradient: Option<f64>,
-    /// Generated roughness: Hurst exponent [-], roll-off and cut-off wavelengths [m], seed.
+    /// Generated roughness: Hurst exponent [-], roll-off and cut-off wavelengths \[m\], seed.
     pub hurst: Option<f64>,
     pub rolloff_wavelength: Option<f64>,
     pub cutoff_wavelength: Option<f64>,
     pub seed: Option<u64>,
-    /// Cells per side, box side [m].
+    /// Cells per side, box side \[m\].
     pub n: Option<usize>,
     pub length: Option<f64>,
-    /// A rigid sphere's radius [m]: a free domain, else periodic.
+    /// A rigid sphere's radius \[m\]: a free domain, else periodic.
     pub sphere_radius: Option<f64>,
-    /// E* [Pa].
+    /// E* \[Pa\].
     pub modulus: f64,
-    /// The law, its work w0 [J/m^2], z0 [m] (Lennard-Jones) and range [m] (exponential).
+    /// The law, its work w0 [J/m^2], z0 \[m\] (Lennard-Jones) and range \[m\] (exponential).
     pub law: Option<Law>,
     pub work_of_adhesion: Option<f64>,
     pub z0: Option<f64>,
@@ -52,7 +52,7 @@ pub struct Case {
 }
 
 impl Case {
-    /// The roughness heights [m] with the box's sides [m], if the case has roughness.
+    /// The roughness heights \[m\] with the box's sides \[m\], if the case has roughness.
     pub fn heights(&self) -> Result<Option<(Array2<f64>, f64, f64)>> {
         if let Some(path) = &self.surface {
             let options = ReadOptions {

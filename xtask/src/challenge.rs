@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use solver::{AdhesiveState, ContactOptions, ContactState, Control, Settings, Start};
 use std::path::PathBuf;
 
-/// The challenge's box [m], modulus [Pa], and adhesion (work [J/m^2], exponential range [m]).
+/// The challenge's box \[m\], modulus \[Pa\], and adhesion (work [J/m^2], exponential range \[m\]).
 pub const LENGTH: f64 = 1e-4;
 pub const MODULUS: f64 = 25e6;
 pub const WORK: f64 = 0.05;
@@ -38,7 +38,7 @@ pub fn case(n: usize, g_bar: f64, surface: Option<&PathBuf>) -> Case {
     c
 }
 
-/// The short-wavelength cutoff used on an `n^2` grid [m].
+/// The short-wavelength cutoff used on an `n^2` grid \[m\].
 pub fn cutoff(n: usize) -> f64 {
     (1e-7f64).max(4.0 * LENGTH / n as f64)
 }
@@ -62,7 +62,7 @@ pub struct LoadPoint {
     pub reduced: f64,
     pub mean_pressure: f64,
     pub contact_area_fraction: f64,
-    /// Mean gap [m].
+    /// Mean gap \[m\].
     pub mean_gap: f64,
     pub converged: bool,
     pub iterations: usize,
@@ -75,9 +75,9 @@ pub struct Outcome {
     /// The unloading branch (empty unless asked for).
     #[serde(default)]
     pub unloading: Vec<LoadPoint>,
-    /// Gap [m] along the mid cross-section x = L/2 (column nx/2), against y.
+    /// Gap \[m\] along the mid cross-section x = L/2 (column nx/2), against y.
     pub profile: Vec<f64>,
-    /// Measured RMS gradient and local radius (inverse RMS curvature) [m] of the surface.
+    /// Measured RMS gradient and local radius (inverse RMS curvature) \[m\] of the surface.
     pub rms_gradient: f64,
     pub local_radius: f64,
     pub rms_height: f64,
@@ -183,19 +183,19 @@ pub fn adhesive(mut case: Case, w0: f64) -> Case {
     case
 }
 
-/// The adhesive process-zone length `E* w0 / sigma0^2` [m] of the exponential law of work `w0`
+/// The adhesive process-zone length `E* w0 / sigma0^2` \[m\] of the exponential law of work `w0`
 /// (peak stress `sigma0 = w0 / rho`).
 pub fn process_zone(w0: f64) -> f64 {
     MODULUS * RANGE * RANGE / w0
 }
 
 /// Müser's Tabor-like parameter of the exponential law, `(R w0^2 / (E*^2 rho^3))^(1/3)`, with
-/// the local radius `R` [m].
+/// the local radius `R` \[m\].
 pub fn tabor(local_radius: f64, w0: f64) -> f64 {
     (local_radius * w0 * w0 / (MODULUS * MODULUS * RANGE.powi(3))).cbrt()
 }
 
-/// The work of adhesion [J/m^2] that gives Tabor parameter `mu` at local radius `R` [m].
+/// The work of adhesion [J/m^2] that gives Tabor parameter `mu` at local radius `R` \[m\].
 pub fn work_for_tabor(local_radius: f64, mu: f64) -> f64 {
     (mu.powi(3) * MODULUS * MODULUS * RANGE.powi(3) / local_radius).sqrt()
 }

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, Serialize, Deserialize)]
 struct Field {
     n: usize,
-    /// Total pressure p_c + p_a [Pa], row-major (ny, nx).
+    /// Total pressure p_c + p_a \[Pa\], row-major (ny, nx).
     pressure: Vec<f64>,
     compressive: Vec<f64>,
     approach: f64,

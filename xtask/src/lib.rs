@@ -154,7 +154,7 @@ pub fn figures(options: Options) -> Result<Vec<FigureReport>> {
 }
 
 /// Statistics of the roughness behind `case` (its heights alone, periodic): RMS gradient
-/// [-], local radius (inverse RMS curvature) [m], Rq [m], cell [m].
+/// [-], local radius (inverse RMS curvature) \[m\], Rq \[m\], cell \[m\].
 pub fn surface_statistics(case: &case::Case) -> Result<(f64, f64, f64, f64)> {
     let (h, lx, ly) = case.heights()?.context("the case has no roughness")?;
     let (ny, nx) = h.dim();

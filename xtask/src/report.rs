@@ -53,9 +53,9 @@ pub struct FigureReport {
     /// Measured agreement with the reference, with numbers.
     pub agreement: Vec<String>,
     pub tables: Vec<Table>,
-    /// Solver time summed over the figure's runs (cached runs included) [s].
+    /// Solver time summed over the figure's runs (cached runs included) \[s\].
     pub solver_seconds: f64,
-    /// Wall time of building the figure in this invocation [s].
+    /// Wall time of building the figure in this invocation \[s\].
     pub seconds: f64,
 }
 

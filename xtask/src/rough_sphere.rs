@@ -33,7 +33,7 @@ pub fn tabor(mu: u32) -> f64 {
     theory::tabor_parameter(RADIUS, work_of_adhesion(mu), MODULUS, Z0)
 }
 
-/// The adhesive process-zone length `E* w0 / sigma0^2` [m] (sigma0 = 16 w0 / (9 sqrt 3 z0), the
+/// The adhesive process-zone length `E* w0 / sigma0^2` \[m\] (sigma0 = 16 w0 / (9 sqrt 3 z0), the
 /// Lennard-Jones peak stress): the cell must not exceed it, or cells turn bistable and the
 /// solution is neither mesh-converged nor, often, found.
 pub fn process_zone(mu: u32) -> f64 {
@@ -47,9 +47,9 @@ pub fn process_zone(mu: u32) -> f64 {
 pub struct Job {
     /// Nominal Tabor parameter (2, 5, 7).
     pub mu: u32,
-    /// RMS roughness [z0]; 0 for the smooth sphere.
+    /// RMS roughness \[z0\]; 0 for the smooth sphere.
     pub rq: f64,
-    /// Short-wavelength cutoff [cells].
+    /// Short-wavelength cutoff \[cells\].
     pub cutoff_cells: f64,
     /// Roll-off wavelength [box sides]. Left out of the serialised job at the usual half box,
     /// so that runs cached before it existed keep their keys.
@@ -57,7 +57,7 @@ pub struct Job {
     pub rolloff: f64,
     pub seed: u64,
     pub n: usize,
-    /// Outer tolerance (mean gap error [z0]).
+    /// Outer tolerance (mean gap error \[z0\]).
     pub tolerance: f64,
 }
 
@@ -71,12 +71,12 @@ fn is_half_box(rolloff: &f64) -> bool {
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Outcome {
-    /// Pull-off force [N] (positive: the tensile force needed).
+    /// Pull-off force \[N\] (positive: the tensile force needed).
     pub pull_off: f64,
-    /// Measured RMS roughness [m], RMS gradient [-] of the roughness.
+    /// Measured RMS roughness \[m\], RMS gradient [-] of the roughness.
     pub rq: f64,
     pub rms_gradient: f64,
-    /// Box side [m] and cutoff wavelength [m].
+    /// Box side \[m\] and cutoff wavelength \[m\].
     pub length: f64,
     pub cutoff: f64,
     pub steps: usize,
@@ -102,23 +102,23 @@ impl Job {
         work_of_adhesion(self.mu)
     }
 
-    /// The JKR contact radius at zero load, (9 pi w0 R^2 / (2 E*))^(1/3) [m]: sets the box.
+    /// The JKR contact radius at zero load, (9 pi w0 R^2 / (2 E*))^(1/3) \[m\]: sets the box.
     pub fn jkr_radius(&self) -> f64 {
         (9.0 * PI * self.w0() * RADIUS * RADIUS / (2.0 * MODULUS)).cbrt()
     }
 
-    /// Box side: 3.5 JKR radii [m]; at the preload the undeformed gap at the box's edge is
+    /// Box side: 3.5 JKR radii \[m\]; at the preload the undeformed gap at the box's edge is
     /// still about ten z0 for mu = 2 and more for the stickier cases.
     pub fn length(&self) -> f64 {
         3.5 * self.jkr_radius()
     }
 
-    /// Preload approach [z0]: the smooth sphere's a0^2/(2R), plus three RMS roughnesses.
+    /// Preload approach \[z0\]: the smooth sphere's a0^2/(2R), plus three RMS roughnesses.
     pub fn preload(&self) -> f64 {
         self.jkr_radius().powi(2) / (2.0 * RADIUS) / Z0 + 3.0 * self.rq
     }
 
-    /// The pull-off scale pi R w0 [N].
+    /// The pull-off scale pi R w0 \[N\].
     pub fn force_unit(&self) -> f64 {
         PI * RADIUS * self.w0()
     }
@@ -251,11 +251,11 @@ pub struct Plan {
     /// (mu = 7 needs it: about 4 min a run here); quick mode: 64, mu = 2 only.
     pub max_n: usize,
     pub seeds: Vec<u64>,
-    /// RMS roughnesses [z0] of Figs. 11, 13, 14.
+    /// RMS roughnesses \[z0\] of Figs. 11, 13, 14.
     pub rqs: Vec<f64>,
     /// Roll-off wavelengths [box sides] of Fig. 12 (at Rq = 2 z0).
     pub rolloffs: Vec<f64>,
-    /// Outer tolerance [z0]: 1e-5 (the paper's 1e-6 stalls on some steps of these bistable
+    /// Outer tolerance \[z0\]: 1e-5 (the paper's 1e-6 stalls on some steps of these bistable
     /// problems and moves the pull-off by less than 1e-4 relative where both converge).
     pub tolerance: f64,
     /// The Tabor parameters of Figs. 11, 12 and 13-14: the paper's in full mode, mu = 2 only in
@@ -333,16 +333,16 @@ impl Plan {
 pub struct Spec {
     /// Nominal Tabor parameter (2, 5, 7).
     pub mu: u32,
-    /// RMS roughness [z0]; 0 for the smooth sphere.
+    /// RMS roughness \[z0\]; 0 for the smooth sphere.
     pub rq: f64,
-    /// Short-wavelength cutoff [cells].
+    /// Short-wavelength cutoff \[cells\].
     pub cutoff_cells: f64,
     /// Roll-off wavelength [box sides].
     pub rolloff: f64,
 }
 
 impl Spec {
-    /// Roughness `rq` [z0] cut off at 4 cells and rolled off at half the box (Figs. 11, 13, 14).
+    /// Roughness `rq` \[z0\] cut off at 4 cells and rolled off at half the box (Figs. 11, 13, 14).
     pub fn new(mu: u32, rq: f64) -> Spec {
         Spec {
             mu,

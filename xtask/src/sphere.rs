@@ -18,7 +18,7 @@ pub struct Setup {
     pub mu: f64,
     /// Cells per side.
     pub n: usize,
-    /// Half the box side [z0].
+    /// Half the box side \[z0\].
     pub half_width: f64,
 }
 
@@ -28,7 +28,7 @@ impl Setup {
         (self.mu.powi(3) * Z0.powi(3) * MODULUS * MODULUS / RADIUS).sqrt()
     }
 
-    /// Cell size [z0].
+    /// Cell size \[z0\].
     pub fn cell(&self) -> f64 {
         2.0 * self.half_width / self.n as f64
     }
@@ -46,7 +46,7 @@ impl Setup {
         }
     }
 
-    /// The load unit 2 pi R w0 [N].
+    /// The load unit 2 pi R w0 \[N\].
     pub fn load_unit(&self) -> f64 {
         2.0 * PI * RADIUS * self.work_of_adhesion()
     }
@@ -55,9 +55,9 @@ impl Setup {
 /// How a path is prescribed.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
 pub enum By {
-    /// Approach alpha [z0].
+    /// Approach alpha \[z0\].
     Approach,
-    /// Gap at the apex [z0]: traces the unstable middle of an S-curve.
+    /// Gap at the apex \[z0\]: traces the unstable middle of an S-curve.
     CentralGap,
 }
 
@@ -208,7 +208,7 @@ impl Greenwood {
     }
 
     /// The load at approach `alpha` on the branch whose central separation is nearest to
-    /// `separation` [z0]: where the S-curve has three equilibria at one approach, the one the
+    /// `separation` \[z0\]: where the S-curve has three equilibria at one approach, the one the
     /// BEM state is on (attached or apart), whatever its compressive contact area.
     pub fn load_on_branch(&self, alpha: f64, separation: f64) -> Option<f64> {
         self.points

@@ -324,7 +324,7 @@ impl Chart {
     }
 }
 
-/// A field on an `lx` by `ly` [m] box as a colour map (one rectangle per cell, so that the SVG
+/// A field on an `lx` by `ly` \[m\] box as a colour map (one rectangle per cell, so that the SVG
 /// stays exact) with a colour bar; `(vf, vu)` scales the values for the colour-bar axis.
 pub fn map(
     dir: &Path,

@@ -1,7 +1,7 @@
 //! # elastic: surface operators of an elastic half-space
 //!
-//! The normal surface displacement `u` [m] of an elastic half-space of composite modulus `E*`
-//! [Pa] under a normal pressure `p` [Pa] (positive = compressive, pushing the surface in, so
+//! The normal surface displacement `u` \[m\] of an elastic half-space of composite modulus `E*`
+//! \[Pa\] under a normal pressure `p` \[Pa\] (positive = compressive, pushing the surface in, so
 //! `u > 0` under a compressive load) that is uniform over each cell of a regular grid
 //! (docs/method.md section 1, the paper's Eqs. 1-2):
 //!
@@ -49,9 +49,9 @@ pub struct Domain {
     pub nx: usize,
     /// Cells along y (rows).
     pub ny: usize,
-    /// Cell size along x [m].
+    /// Cell size along x \[m\].
     pub dx: f64,
-    /// Cell size along y [m].
+    /// Cell size along y \[m\].
     pub dy: f64,
     /// Periodic (the pattern repeats every `nx dx` by `ny dy`) or free (isolated).
     pub periodic: bool,
@@ -96,13 +96,13 @@ pub trait Compliance: Sync + Send {
     /// The grid it acts on.
     fn domain(&self) -> &Domain;
 
-    /// Composite modulus E* [Pa].
+    /// Composite modulus E* \[Pa\].
     fn e_star(&self) -> f64;
 
     /// Buffers for [`Compliance::apply`]; make one per concurrent caller and reuse it.
     fn make_workspace(&self) -> Workspace;
 
-    /// Writes the displacement [m] caused by `pressure` [Pa] into `displacement`.
+    /// Writes the displacement \[m\] caused by `pressure` \[Pa\] into `displacement`.
     ///
     /// # Errors
     /// [`ElasticError::ShapeMismatch`] if a field is not `(ny, nx)`.
@@ -121,7 +121,7 @@ pub trait Compliance: Sync + Send {
     /// `mx my` [m/Pa]: for preconditioners.
     fn fourier_compliance(&self) -> ArrayView2<'_, f64>;
 
-    /// Elastic energy `(1/2) sum p u dx dy` [J] stored by `pressure`, given its displacement.
+    /// Elastic energy `(1/2) sum p u dx dy` \[J\] stored by `pressure`, given its displacement.
     fn energy(&self, pressure: ArrayView2<f64>, displacement: ArrayView2<f64>) -> f64 {
         let mut sum = 0.0;
         Zip::from(pressure)

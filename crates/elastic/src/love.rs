@@ -24,9 +24,9 @@ fn corner(x: f64, y: f64) -> f64 {
     term(x, y) + term(y, x)
 }
 
-/// Normal surface displacement [m] at `(x, y)` [m] of an elastic half-space of composite
-/// modulus `e_star` [Pa] under the uniform pressure `p` [Pa] on the rectangle `|x'| <= a`,
-/// `|y'| <= b` (half-sides `a`, `b` [m]), Love's solution (docs/method.md section 1):
+/// Normal surface displacement \[m\] at `(x, y)` \[m\] of an elastic half-space of composite
+/// modulus `e_star` \[Pa\] under the uniform pressure `p` \[Pa\] on the rectangle `|x'| <= a`,
+/// `|y'| <= b` (half-sides `a`, `b` \[m\]), Love's solution (docs/method.md section 1):
 /// `u = p / (pi E*) [F(x+a, y+b) - F(x+a, y-b) - F(x-a, y+b) + F(x-a, y-b)]`
 /// with `F(s, t) = s ln(t + r) + t ln(s + r)`, `r = sqrt(s^2 + t^2)`.
 ///
@@ -46,8 +46,8 @@ pub fn rectangle_displacement(x: f64, y: f64, a: f64, b: f64, p: f64, e_star: f6
 /// (measured against quadrature; the closed form's error keeps growing with distance).
 const FAR: f64 = 64.0;
 
-/// Displacement [m] at `(x, y)` [m] under unit pressure (1 Pa) on the rectangle of half-sides
-/// `a`, `b` [m] centred at the origin: [`rectangle_displacement`] near the rectangle, and its
+/// Displacement \[m\] at `(x, y)` \[m\] under unit pressure (1 Pa) on the rectangle of half-sides
+/// `a`, `b` \[m\] centred at the origin: [`rectangle_displacement`] near the rectangle, and its
 /// multipole expansion far from it, which is faster and more accurate there:
 /// `u = 4ab/(pi E*) [1/r + (a^2 d_xx + b^2 d_yy)(1/r)/6
 ///      + (a^4/5 d_xxxx + 6 a^2 b^2/9 d_xxyy + b^4/5 d_yyyy)(1/r)/24 + O((a/r)^6 / r)]`.

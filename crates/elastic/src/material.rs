@@ -2,7 +2,7 @@
 
 use crate::error::{ElasticError, Result};
 
-/// An isotropic elastic material: Young's modulus `e` [Pa] and Poisson's ratio `nu` [-].
+/// An isotropic elastic material: Young's modulus `e` \[Pa\] and Poisson's ratio `nu` [-].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material {
     pub e: f64,
@@ -45,7 +45,7 @@ impl Material {
     }
 }
 
-/// Composite (contact) modulus `E* = 1 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2)` [Pa] of two bodies
+/// Composite (contact) modulus `E* = 1 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2)` \[Pa\] of two bodies
 /// ([`Material::RIGID`] for a rigid one).
 ///
 /// ```

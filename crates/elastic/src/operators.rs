@@ -45,7 +45,7 @@ pub struct Periodic {
 
 impl Periodic {
     /// The operator on `domain` (its `periodic` flag must be set) for composite modulus
-    /// `e_star` [Pa]. Plans are made once here.
+    /// `e_star` \[Pa\]. Plans are made once here.
     pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
@@ -79,7 +79,7 @@ pub struct PeriodicStiffness {
 }
 
 impl PeriodicStiffness {
-    /// The operator on the periodic `domain` for composite modulus `e_star` [Pa].
+    /// The operator on the periodic `domain` for composite modulus `e_star` \[Pa\].
     pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
@@ -104,7 +104,7 @@ impl PeriodicStiffness {
         Workspace(self.conv.make_workspace())
     }
 
-    /// Writes the pressure [Pa] (zero mean) that holds the surface at `displacement` [m].
+    /// Writes the pressure \[Pa\] (zero mean) that holds the surface at `displacement` \[m\].
     ///
     /// # Errors
     /// [`ElasticError::ShapeMismatch`] if a field is not `(ny, nx)`.
@@ -121,7 +121,7 @@ impl PeriodicStiffness {
         Ok(())
     }
 
-    /// Writes the displacement [m] (zero mean) under `pressure` [Pa], whose mean is ignored:
+    /// Writes the displacement \[m\] (zero mean) under `pressure` \[Pa\], whose mean is ignored:
     /// the inverse of [`PeriodicStiffness::apply`] on fields of zero mean (for preconditioning
     /// solvers over the displacement).
     ///
@@ -152,7 +152,7 @@ pub struct Free {
 }
 
 impl Free {
-    /// The operator on `domain` for composite modulus `e_star` [Pa]. Computes the influence
+    /// The operator on `domain` for composite modulus `e_star` \[Pa\]. Computes the influence
     /// coefficients and their spectrum once (the most expensive step: about 1.3 s at 4096^2).
     pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
@@ -198,8 +198,8 @@ fn free_convolution(domain: &Domain, e_star: f64, output: (usize, usize)) -> Con
 
 /// The free half-space's stiffness on its padded grid, for solvers whose unknown is the
 /// displacement: the inverse of the `2nx` by `2ny` circulant compliance whose first `(ny, nx)`
-/// block is [`Free`]. A displacement `U` [m] of the whole padded grid is held by the pressure
-/// `S U` [Pa] on the whole padded grid; where `S U` vanishes outside the first block, `U`'s
+/// block is [`Free`]. A displacement `U` \[m\] of the whole padded grid is held by the pressure
+/// `S U` \[Pa\] on the whole padded grid; where `S U` vanishes outside the first block, `U`'s
 /// first block is exactly the free displacement under `S U`'s first block (the padding
 /// keeps the periodic images from reaching it), so minimising over `U` with no pressure
 /// allowed in the padding solves the free problem. Fields have shape `(2ny, 2nx)`; the
@@ -215,7 +215,7 @@ pub struct FreeStiffness {
 }
 
 impl FreeStiffness {
-    /// The operator for the free `domain` and composite modulus `e_star` [Pa].
+    /// The operator for the free `domain` and composite modulus `e_star` \[Pa\].
     ///
     /// # Errors
     /// A bad domain or modulus, or a kernel spectrum that is not positive (not seen on any
@@ -257,7 +257,7 @@ impl FreeStiffness {
         &self.domain
     }
 
-    /// Composite modulus E* [Pa].
+    /// Composite modulus E* \[Pa\].
     pub fn e_star(&self) -> f64 {
         self.e_star
     }
@@ -272,7 +272,7 @@ impl FreeStiffness {
         Workspace(self.stiffness.make_workspace())
     }
 
-    /// Writes the padded pressure [Pa] that holds the padded surface at `displacement` [m].
+    /// Writes the padded pressure \[Pa\] that holds the padded surface at `displacement` \[m\].
     ///
     /// # Errors
     /// [`ElasticError::ShapeMismatch`] if a field is not `(2ny, 2nx)`.
@@ -289,7 +289,7 @@ impl FreeStiffness {
         Ok(())
     }
 
-    /// Writes the padded displacement [m] under the padded `pressure` [Pa]: the circulant
+    /// Writes the padded displacement \[m\] under the padded `pressure` \[Pa\]: the circulant
     /// compliance, the exact inverse of [`FreeStiffness::apply`] on the padded grid (for
     /// preconditioning solvers over the displacement).
     ///
@@ -308,7 +308,7 @@ impl FreeStiffness {
         Ok(())
     }
 
-    /// Writes the padded displacement [m] under `pressure` [Pa] on the `(ny, nx)` domain (none
+    /// Writes the padded displacement \[m\] under `pressure` \[Pa\] on the `(ny, nx)` domain (none
     /// in the padding): the inverse of [`FreeStiffness::apply`], whose first block is [`Free`]'s
     /// displacement. For starting a minimisation from a known pressure.
     ///

@@ -23,7 +23,7 @@ fn locate_bad_gap(gap: &ArrayView2<f64>) -> Result<()> {
     }
 }
 
-/// `out[i] = f(gap[i])`.
+/// `out\[i\] = f(gap\[i\])`.
 pub(crate) fn nodal(
     gap: ArrayView2<f64>,
     mut out: ArrayViewMut2<f64>,
@@ -37,7 +37,7 @@ pub(crate) fn nodal(
     Ok(())
 }
 
-/// `out[i] = cell(g1, g2, g3, t1, t2)` with node 1 = the cell's own node `(y, x)`, node 2 its
+/// `out\[i\] = cell(g1, g2, g3, t1, t2)` with node 1 = the cell's own node `(y, x)`, node 2 its
 /// +x neighbour and node 3 its +y neighbour, and `t = node(g)` worked out once per node (a
 /// division, say) rather than once per cell that uses it. Periodic cells wrap around; on free
 /// edges the missing neighbour is the mirror image of the one on the other side (`x - 1`,

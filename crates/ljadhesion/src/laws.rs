@@ -136,7 +136,7 @@ impl AdhesionLaw for SurfaceLaw {
 }
 
 /// The exponential law of the contact-mechanics challenge, with a hard wall:
-/// `sigma(g) = -(w0 / rho) exp(-g / rho)` [Pa] for `g >= 0` (negative gaps count as contact),
+/// `sigma(g) = -(w0 / rho) exp(-g / rho)` \[Pa\] for `g >= 0` (negative gaps count as contact),
 /// at the node. Its integral over `g >= 0` is `-w0`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ExponentialLaw {
@@ -145,7 +145,7 @@ pub struct ExponentialLaw {
 }
 
 impl ExponentialLaw {
-    /// Work of adhesion `w0` [J/m^2] and range `rho` [m], both > 0.
+    /// Work of adhesion `w0` [J/m^2] and range `rho` \[m\], both > 0.
     pub fn new(w0: f64, rho: f64) -> Result<Self> {
         Ok(ExponentialLaw {
             w0: positive("work_of_adhesion", w0)?,
@@ -153,7 +153,7 @@ impl ExponentialLaw {
         })
     }
 
-    /// `sigma(g)` [Pa].
+    /// `sigma(g)` \[Pa\].
     pub fn pressure(&self, gap: f64) -> f64 {
         let g = if gap < 0.0 { 0.0 } else { gap }; // NaN stays NaN
         -(self.w0 / self.rho) * (-g / self.rho).exp()
@@ -212,7 +212,7 @@ pub struct DugdaleLaw {
 }
 
 impl DugdaleLaw {
-    /// Work of adhesion `w0` [J/m^2] and range `h0` [m], both > 0.
+    /// Work of adhesion `w0` [J/m^2] and range `h0` \[m\], both > 0.
     pub fn new(w0: f64, range: f64) -> Result<Self> {
         Ok(DugdaleLaw {
             w0: positive("work_of_adhesion", w0)?,
@@ -229,7 +229,7 @@ impl DugdaleLaw {
         }
     }
 
-    /// `sigma(g)` [Pa].
+    /// `sigma(g)` \[Pa\].
     pub fn pressure(&self, gap: f64) -> f64 {
         if gap < self.range {
             -self.w0 / self.range

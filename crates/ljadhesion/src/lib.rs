@@ -1,6 +1,6 @@
 //! # ljadhesion: adhesive pressure on a boundary-element grid
 //!
-//! Maps a field of gaps `g >= 0` [m] to a field of adhesive pressures `p <= 0` [Pa] (negative
+//! Maps a field of gaps `g >= 0` \[m\] to a field of adhesive pressures `p <= 0` \[Pa\] (negative
 //! = attractive; the solver crate's conventions). The laws (docs/method.md sections 2 and 3, the
 //! paper's Eqs. 5-12):
 //!
@@ -20,7 +20,7 @@
 //! ```
 //! use ljadhesion::{AdhesionLaw, Cells, LennardJones, PointLaw, SurfaceLaw};
 //! use ndarray::Array2;
-//! let lj = LennardJones::new(0.05, 2.071e-9)?;            // w0 [J/m^2], z0 [m]
+//! let lj = LennardJones::new(0.05, 2.071e-9)?;            // w0 [J/m^2], z0 \[m\]
 //! let gap = Array2::from_elem((8, 8), 1e-9);              // flat, 1 nm
 //! let cells = Cells { dx: 1e-8, dy: 1e-8, periodic: true };
 //! let (mut a, mut b) = (Array2::zeros((8, 8)), Array2::zeros((8, 8)));
@@ -41,12 +41,12 @@ pub use lj::LennardJones;
 
 use ndarray::{ArrayView2, ArrayViewMut2};
 
-/// The grid cells a gap field lives on: spacings [m] and whether the field wraps around.
+/// The grid cells a gap field lives on: spacings \[m\] and whether the field wraps around.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cells {
-    /// Spacing along x (columns) [m].
+    /// Spacing along x (columns) \[m\].
     pub dx: f64,
-    /// Spacing along y (rows) [m].
+    /// Spacing along y (rows) \[m\].
     pub dy: f64,
     /// Whether neighbours wrap around the edges (periodic domain) or are mirrored (free edges).
     pub periodic: bool,
@@ -54,8 +54,8 @@ pub struct Cells {
 
 /// An adhesive law on a grid: gap field in, adhesive pressure field out.
 pub trait AdhesionLaw: Sync + Send {
-    /// Writes the adhesive pressure [Pa] (<= 0 for the attractive laws) of every cell into
-    /// `out`, given the gaps `gap` [m] (shape `(ny, nx)`, the same as `out`).
+    /// Writes the adhesive pressure \[Pa\] (<= 0 for the attractive laws) of every cell into
+    /// `out`, given the gaps `gap` \[m\] (shape `(ny, nx)`, the same as `out`).
     ///
     /// # Errors
     /// [`AdhesionError::ShapeMismatch`] and [`AdhesionError::NonFiniteGap`]; `out` is then
@@ -68,11 +68,11 @@ pub trait AdhesionLaw: Sync + Send {
     /// Work of adhesion w0 [J/m^2]: minus the integral of the law over the gap.
     fn work_of_adhesion(&self) -> f64;
 
-    /// The law's length scale [m]: `z0` for Lennard-Jones, `rho` for the exponential law, `h0`
+    /// The law's length scale \[m\]: `z0` for Lennard-Jones, `rho` for the exponential law, `h0`
     /// for Dugdale. Gaps are resolved relative to it (solver tolerances, grid checks).
     fn range(&self) -> f64;
 
-    /// The most attractive pressure the law gives on a flat gap field [Pa] (< 0): the
+    /// The most attractive pressure the law gives on a flat gap field \[Pa\] (< 0): the
     /// Lennard-Jones peak `-16 w0 / (9 sqrt(3) z0)`, `-w0/rho`, `-w0/h0`.
     fn peak_pressure(&self) -> f64;
 
@@ -98,12 +98,12 @@ pub trait AdhesionLaw: Sync + Send {
 }
 
 /// A law given by an interaction energy per area `V(g)` [J/m^2] of each cell's own gap `g >= 0`
-/// [m]: `V(0) = -w0`, `V -> 0` far apart, pressure `p = -dV/dg` [Pa] (<= 0 attractive, the
+/// \[m\]: `V(0) = -w0`, `V -> 0` far apart, pressure `p = -dV/dg` \[Pa\] (<= 0 attractive, the
 /// [`AdhesionLaw::pressure_field`] of every cell). Negative gaps count as contact (`g = 0`).
 pub trait LocalPotential: Sync + Send {
     /// `V(g)` [J/m^2].
     fn energy(&self, gap: f64) -> f64;
-    /// `p(g) = -dV/dg` [Pa].
+    /// `p(g) = -dV/dg` \[Pa\].
     fn pressure(&self, gap: f64) -> f64;
     /// `d^2V/dg^2 = -dp/dg` [Pa/m]: positive where the law stiffens the contact (the
     /// Lennard-Jones tail just outside contact), negative where it softens it.

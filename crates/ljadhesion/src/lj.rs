@@ -1,6 +1,6 @@
 //! The Lennard-Jones 9-3 law between parallel half-spaces (docs/method.md section 2, Eqs. 5-6, 12).
 //!
-//! `p(z) = (8 w0 / (3 z0)) [ (z0/z)^9 - (z0/z)^3 ]` [Pa], positive = repulsive, at atomic
+//! `p(z) = (8 w0 / (3 z0)) [ (z0/z)^9 - (z0/z)^3 ]` \[Pa\], positive = repulsive, at atomic
 //! separation `z = g + z0` for a continuum gap `g >= 0`. Its antiderivative
 //! `Phi(z) = (w0 / (3 z0)) (4 z0^3 / z^2 - z0^9 / z^8)` (`Phi' = p`, `Phi(z0) = w0`,
 //! `Phi(inf) = 0`) gives `integral_{z0}^{inf} p dz = -w0` and the interaction energy per
@@ -9,7 +9,7 @@
 use crate::error::{Result, positive};
 
 /// The Lennard-Jones 9-3 law with work of adhesion `w0` [J/m^2] and equilibrium separation
-/// `z0` [m].
+/// `z0` \[m\].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LennardJones {
     w0: f64,
@@ -30,18 +30,18 @@ impl LennardJones {
         self.w0
     }
 
-    /// Equilibrium separation z0 [m].
+    /// Equilibrium separation z0 \[m\].
     pub fn z0(&self) -> f64 {
         self.z0
     }
 
-    /// Atomic separation `z = g + z0` [m] of a continuum gap `g` [m], clamped to `z >= z0`
+    /// Atomic separation `z = g + z0` \[m\] of a continuum gap `g` \[m\], clamped to `z >= z0`
     /// (a NaN gap stays NaN, so that it is reported rather than taken for contact).
     pub fn separation(&self, gap: f64) -> f64 {
         if gap < 0.0 { self.z0 } else { gap + self.z0 }
     }
 
-    /// Pressure `p(z)` [Pa] at atomic separation `z` [m] (positive = repulsive).
+    /// Pressure `p(z)` \[Pa\] at atomic separation `z` \[m\] (positive = repulsive).
     ///
     /// ```
     /// let lj = ljadhesion::LennardJones::new(0.05, 2e-9)?;
@@ -70,7 +70,7 @@ impl LennardJones {
         -self.phi(z)
     }
 
-    /// `-dp/dz` [Pa/m] at atomic separation `z` [m]:
+    /// `-dp/dz` [Pa/m] at atomic separation `z` \[m\]:
     /// `(8 w0 / (z0 z)) (3 (z0/z)^9 - (z0/z)^3)`, `16 w0 / z0^2` at `z = z0`, zero at the peak
     /// pull, negative beyond.
     pub fn curvature(&self, z: f64) -> f64 {
@@ -79,12 +79,12 @@ impl LennardJones {
         8.0 * self.w0 / (self.z0 * z) * (3.0 * v3 * v3 * v3 - v3)
     }
 
-    /// The most negative pressure, `-16 w0 / (9 sqrt(3) z0)` [Pa], reached at `z = 3^(1/6) z0`.
+    /// The most negative pressure, `-16 w0 / (9 sqrt(3) z0)` \[Pa\], reached at `z = 3^(1/6) z0`.
     pub fn min_pressure(&self) -> f64 {
         -16.0 * self.w0 / (9.0 * 3f64.sqrt() * self.z0)
     }
 
-    /// Mean of `p` over the separations between `z1` and `z2` [m] (either order), i.e. the
+    /// Mean of `p` over the separations between `z1` and `z2` \[m\] (either order), i.e. the
     /// divided difference `(Phi(z2) - Phi(z1)) / (z2 - z1)`, and `p(z1)` when they coincide.
     ///
     /// Written with `v = z0/z` as
@@ -109,8 +109,8 @@ impl LennardJones {
         16.0 * self.w0 / (self.z0 * self.z0)
     }
 
-    /// Tabor parameter `mu = (R w0^2 / (E*^2 z0^3))^(1/3)` of a sphere of radius `radius` [m]
-    /// on a half-space of composite modulus `e_star` [Pa].
+    /// Tabor parameter `mu = (R w0^2 / (E*^2 z0^3))^(1/3)` of a sphere of radius `radius` \[m\]
+    /// on a half-space of composite modulus `e_star` \[Pa\].
     pub fn tabor_parameter(&self, radius: f64, e_star: f64) -> f64 {
         (radius * self.w0 * self.w0 / (e_star * e_star * self.z0.powi(3))).cbrt()
     }

@@ -16,7 +16,7 @@ use ndarray::{Array2, ArrayView2, Zip};
 use rayon::prelude::*;
 use std::time::Instant;
 
-/// Solves the normal contact of the half-space `op` with the initial gap `g0` [m] (minimum 0,
+/// Solves the normal contact of the half-space `op` with the initial gap `g0` \[m\] (minimum 0,
 /// see [`crate::geometry`]) under `control`, telling `observer` each iteration's residual.
 /// `warm` (a previous state on the same grid) seeds the pressure; otherwise the solve starts
 /// cold. Returns the new state and its report; a solve that reaches the iteration limit

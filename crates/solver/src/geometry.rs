@@ -1,8 +1,8 @@
 //! The undeformed separation between the counterface and the elastic half-space.
 //!
-//! Every geometry is reduced to one field, the initial gap `g0` [m], shifted so that its
+//! Every geometry is reduced to one field, the initial gap `g0` \[m\], shifted so that its
 //! minimum is 0: the bodies touch first where `g0 = 0`, and the gap under an approach
-//! `delta` [m] (positive = pushing together) with surface displacement `u` is
+//! `delta` \[m\] (positive = pushing together) with surface displacement `u` is
 //! `g = g0 - delta + u` (docs/method.md section 1).
 
 use crate::error::{Result, SolverError, invalid};
@@ -36,15 +36,15 @@ fn shift_to_zero(mut g0: Array2<f64>) -> Array2<f64> {
     g0
 }
 
-/// A rigid flat against a rough surface of `heights` [m] (peaks towards the flat):
+/// A rigid flat against a rough surface of `heights` \[m\] (peaks towards the flat):
 /// `g0 = max(H) - H`.
 pub fn flat_on_rough(heights: ArrayView2<f64>) -> Result<Array2<f64>> {
     check_finite("height", heights)?;
     Ok(shift_to_zero(heights.mapv(|h| -h)))
 }
 
-/// A rigid sphere of radius `radius` [m] centred on the grid (optionally carrying the
-/// roughness `heights` [m], peaks towards the half-space): `g0 = h(r) - H`, shifted to
+/// A rigid sphere of radius `radius` \[m\] centred on the grid (optionally carrying the
+/// roughness `heights` \[m\], peaks towards the half-space): `g0 = h(r) - H`, shifted to
 /// first touch.
 pub fn sphere(
     domain: &Domain,
@@ -92,9 +92,9 @@ fn with_roughness(mut g0: Array2<f64>, heights: Option<ArrayView2<f64>>) -> Resu
     Ok(shift_to_zero(g0))
 }
 
-/// A rigid one-dimensional wave of amplitude `amplitude` [m] (half its peak-to-valley
+/// A rigid one-dimensional wave of amplitude `amplitude` \[m\] (half its peak-to-valley
 /// height) and one wavelength across the domain's x side, crest centred on the grid
-/// (optionally carrying the roughness `heights` [m], peaks towards the half-space):
+/// (optionally carrying the roughness `heights` \[m\], peaks towards the half-space):
 /// `g0 = amplitude (1 - cos(2 pi (x - x_c) / length_x)) - H`, shifted to first touch. On a
 /// periodic domain the smooth wave is the Westergaard / Johnson (1995) problem of a wavy
 /// surface (`theory::wavy`).

@@ -1,9 +1,9 @@
 //! # solver: normal contact of an elastic half-space with a rigid counterface
 //!
 //! Conventions, used by every crate of the workspace (docs/method.md section 1): SI units; arrays
-//! of shape `(ny, nx)`; gap `g >= 0` [m]; pressure `p > 0` compressive [Pa] (adhesive
-//! pressure `p_a <= 0`); approach `delta > 0` [m] pushes the bodies together, measured from
-//! first touch of the undeformed surfaces; surface displacement `u` [m] positive away from
+//! of shape `(ny, nx)`; gap `g >= 0` \[m\]; pressure `p > 0` compressive \[Pa\] (adhesive
+//! pressure `p_a <= 0`); approach `delta > 0` \[m\] pushes the bodies together, measured from
+//! first touch of the undeformed surfaces; surface displacement `u` \[m\] positive away from
 //! the counterface, so that `g = g0 - delta + u` with the initial gap `g0` of
 //! [`geometry`] (minimum 0).
 //!
@@ -23,7 +23,7 @@
 //! use solver::{ContactProblem, Settings, approach_cycle, summarize, CyclePoint};
 //!
 //! let (n, side, z0) = (32, 100e-9, 1e-9);
-//! // A gentle roughness of 0.3 z0 (any heights [m] of shape (ny, nx) will do).
+//! // A gentle roughness of 0.3 z0 (any heights \[m\] of shape (ny, nx) will do).
 //! let heights = Array2::from_shape_fn((n, n), |(j, i)| {
 //!     0.3 * z0 * ((i as f64 * 0.7).sin() * (j as f64 * 0.9).cos())
 //! });

@@ -3,14 +3,14 @@
 /// The control of a normal contact problem.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Control {
-    /// Mean pressure over the whole grid [Pa] (load control).
+    /// Mean pressure over the whole grid \[Pa\] (load control).
     MeanPressure(f64),
-    /// Total normal force [N] (load control).
+    /// Total normal force \[N\] (load control).
     Force(f64),
-    /// Approach `delta` [m] from first touch, positive pushing the bodies together
+    /// Approach `delta` \[m\] from first touch, positive pushing the bodies together
     /// (displacement control).
     Approach(f64),
-    /// Gap at the centre cell `(ny/2, nx/2)` [m], > 0; the approach follows. Adhesive solver
+    /// Gap at the centre cell `(ny/2, nx/2)` \[m\], > 0; the approach follows. Adhesive solver
     /// only: it traces the unstable middle of an S-shaped load-approach curve (Greenwood 1997).
     CentralGap(f64),
 }

@@ -10,7 +10,6 @@ use crate::method::{Observer, Settings};
 use crate::options::{ContactOptions, Control};
 use crate::report::ContactReport;
 use crate::state::ContactState;
-use crate::sweep::SweepPoint;
 use elastic::{Compliance, Domain, Free, Periodic};
 use ljadhesion::{AdhesionLaw, NoAdhesion};
 use ndarray::Array2;
@@ -22,9 +21,9 @@ pub enum Shape {
     /// A flat: the roughness alone makes the gap.
     #[default]
     Flat,
-    /// A sphere of radius `radius` [m] centred on the grid ([`crate::geometry::sphere`]).
+    /// A sphere of radius `radius` \[m\] centred on the grid ([`crate::geometry::sphere`]).
     Sphere {
-        /// Radius [m].
+        /// Radius \[m\].
         radius: f64,
         /// Paraboloid or exact profile.
         profile: SphereProfile,
@@ -32,19 +31,19 @@ pub enum Shape {
     /// A wave `amplitude (1 - cos(2 pi x / L))`, one wavelength across the box along x
     /// ([`crate::geometry::wave`]); periodic domains only.
     Wave {
-        /// Amplitude [m], half the peak-to-valley height.
+        /// Amplitude \[m\], half the peak-to-valley height.
         amplitude: f64,
     },
 }
 
 /// A normal contact problem: an elastic half-space (its operator knows the grid and the
-/// composite modulus), the initial gap `g0` [m] to the rigid counterface (minimum 0, shape
+/// composite modulus), the initial gap `g0` \[m\] to the rigid counterface (minimum 0, shape
 /// `(ny, nx)`), an adhesive law ([`NoAdhesion`] for none), and warnings about the set-up.
 #[derive(Clone)]
 pub struct ContactProblem {
     /// The half-space's compliance on the grid: [`Periodic`] or [`Free`].
     pub operator: Arc<dyn Compliance>,
-    /// The initial gap `g0` [m].
+    /// The initial gap `g0` \[m\].
     pub initial_gap: Array2<f64>,
     /// The adhesive law.
     pub law: Arc<dyn AdhesionLaw>,
@@ -113,7 +112,7 @@ impl ContactProblem {
         *self.operator.domain()
     }
 
-    /// The composite modulus E* [Pa].
+    /// The composite modulus E* \[Pa\].
     pub fn e_star(&self) -> f64 {
         self.operator.e_star()
     }
@@ -141,24 +140,6 @@ impl ContactProblem {
         crate::adhesive::solve(self, control, settings, start, &mut |i, r| {
             observer.iteration(0, i, r)
         })
-    }
-
-    /// Solves every control of `path` in order, each warm-started from the last (the first
-    /// from `start`, else from apart); see [`crate::sweep::sweep`] for the splitting of long
-    /// steps (`max_step` [m]) and the retries. `observer` hears every iteration and every
-    /// step, and can stop the sweep.
-    ///
-    /// # Errors
-    /// As [`ContactProblem::solve`]; a `max_step` that is not positive and finite.
-    pub fn sweep(
-        &self,
-        path: &[Control],
-        max_step: Option<f64>,
-        settings: &Settings,
-        start: Option<AdhesiveState>,
-        observer: &mut dyn Observer,
-    ) -> Result<Vec<SweepPoint>> {
-        crate::sweep::sweep(self, path, max_step, settings, start, observer)
     }
 
     /// Solves the contact as if the law were switched off, by the constrained conjugate
@@ -285,21 +266,21 @@ pub struct ProblemBuilder {
 }
 
 impl ProblemBuilder {
-    /// The composite modulus E* [Pa] (required).
+    /// The composite modulus E* \[Pa\] (required).
     pub fn modulus(mut self, e_star: f64) -> Self {
         self.modulus = Some(e_star);
         self
     }
 
-    /// A grid of `nx` by `ny` cells spanning `length_x` by `length_y` [m]; with roughness, its
+    /// A grid of `nx` by `ny` cells spanning `length_x` by `length_y` \[m\]; with roughness, its
     /// shape must match the heights'.
     pub fn grid(mut self, nx: usize, ny: usize, length_x: f64, length_y: f64) -> Self {
         self.grid = Some((nx, ny, length_x, length_y));
         self
     }
 
-    /// Roughness heights [m] of shape `(ny, nx)` (peaks towards the half-space) spanning
-    /// `length_x` by `length_y` [m]: they set the grid.
+    /// Roughness heights \[m\] of shape `(ny, nx)` (peaks towards the half-space) spanning
+    /// `length_x` by `length_y` \[m\]: they set the grid.
     pub fn roughness(mut self, heights: Array2<f64>, length_x: f64, length_y: f64) -> Self {
         let (ny, nx) = heights.dim();
         self.grid = Some((nx, ny, length_x, length_y));
@@ -313,7 +294,7 @@ impl ProblemBuilder {
         self
     }
 
-    /// A paraboloidal sphere of radius `radius` [m].
+    /// A paraboloidal sphere of radius `radius` \[m\].
     pub fn sphere(self, radius: f64) -> Self {
         self.shape(Shape::Sphere {
             radius,
@@ -321,7 +302,7 @@ impl ProblemBuilder {
         })
     }
 
-    /// A wave of amplitude `amplitude` [m].
+    /// A wave of amplitude `amplitude` \[m\].
     pub fn wave(self, amplitude: f64) -> Self {
         self.shape(Shape::Wave { amplitude })
     }

@@ -20,19 +20,19 @@ pub enum Termination {
 /// Scalars of a contact solution and the history of the solve. SI units.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactReport {
-    /// Total normal force [N] (positive = compressive).
+    /// Total normal force \[N\] (positive = compressive).
     pub load: f64,
-    /// Load over the nominal area [Pa].
+    /// Load over the nominal area \[Pa\].
     pub mean_pressure: f64,
-    /// Approach from first touch [m].
+    /// Approach from first touch \[m\].
     pub approach: f64,
     /// Fraction of cells with positive pressure [-].
     pub contact_area_fraction: f64,
     /// Number of contact clusters (4-connected, wrapping around on periodic grids).
     pub clusters: usize,
-    /// Largest pressure [Pa].
+    /// Largest pressure \[Pa\].
     pub max_pressure: f64,
-    /// Elastic energy `(1/2) sum p u dA` [J].
+    /// Elastic energy `(1/2) sum p u dA` \[J\].
     pub elastic_energy: f64,
     /// Iterations run.
     pub iterations: usize,
@@ -48,7 +48,7 @@ pub struct ContactReport {
     pub termination: Termination,
     /// Calls to the elastic operator.
     pub operator_calls: usize,
-    /// Wall time of the solve [s].
+    /// Wall time of the solve \[s\].
     pub wall_time_s: f64,
 }
 

@@ -5,13 +5,13 @@ use ndarray::Array2;
 /// The state of a normal contact: all fields have the grid's shape `(ny, nx)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactState {
-    /// Contact pressure [Pa], `>= 0` (compressive).
+    /// Contact pressure \[Pa\], `>= 0` (compressive).
     pub pressure: Array2<f64>,
-    /// Gap [m], `>= 0`; zero where in contact.
+    /// Gap \[m\], `>= 0`; zero where in contact.
     pub gap: Array2<f64>,
-    /// Normal surface displacement of the half-space [m] (positive away from the counterface).
+    /// Normal surface displacement of the half-space \[m\] (positive away from the counterface).
     pub displacement: Array2<f64>,
-    /// Approach [m] from first touch (positive = pushed together).
+    /// Approach \[m\] from first touch (positive = pushed together).
     pub approach: f64,
 }
 

@@ -34,7 +34,7 @@ pub struct SweepPoint {
     pub control: Control,
     /// Its direction.
     pub branch: Branch,
-    /// The solve's report. When the step was split (see [`sweep`]), its iteration counts and
+    /// The solve's report. When the step was split (see [`ContactProblem::sweep`]), its iteration counts and
     /// wall time include the substeps'.
     pub report: AdhesiveReport,
     /// Intermediate solves taken before this control (0 when the step was not split), in the
@@ -43,14 +43,14 @@ pub struct SweepPoint {
     /// How many of those intermediate solves missed their tolerance.
     pub unconverged_substeps: usize,
     /// Times the step was solved again in finer substeps because it did not converge (see
-    /// [`sweep`]); 0 when the first attempt converged.
+    /// [`ContactProblem::sweep`]); 0 when the first attempt converged.
     pub retries: usize,
 }
 
-/// Times [`sweep`] halves the substeps of a step that does not converge.
+/// Times [`ContactProblem::sweep`] halves the substeps of a step that does not converge.
 pub const RETRIES: usize = 3;
 
-/// The approaches `from -> to` in `steps` equal steps and back again (`2 steps + 1` values) [m].
+/// The approaches `from -> to` in `steps` equal steps and back again (`2 steps + 1` values) \[m\].
 pub fn approach_cycle(from: f64, to: f64, steps: usize) -> Vec<Control> {
     let steps = steps.max(1);
     let at = |k: usize| from + (to - from) * k as f64 / steps as f64;
@@ -88,138 +88,141 @@ pub fn branches(path: &[Control]) -> Vec<Branch> {
     out
 }
 
-/// Solves every control of `path` in order on `problem` (each warm-started from the previous
-/// step; the first from `start`, else from apart), telling `observer` every iteration and
-/// every step; its [`Observer::step`] returns `false` to stop early. Returns the solved points.
-///
-/// A step of approach that does not converge is solved again from the state before it, in
-/// twice as many substeps, up to [`RETRIES`] times (down to an eighth): near a jump a long
-/// step can leave a ring of cells cycling in and out of contact for ever, which shorter steps,
-/// each warm-started closer to its answer, avoid. Central-gap steps are not retried: the ones
-/// that fail sit at the fold of a jump out, where finer substeps did not help
-/// (`docs/decisions.md`). The solves of a retry share one iteration limit
-/// ([`Settings::max_iterations`]), so a step costs at most `1 + RETRIES` limits. The failed
-/// attempts' iterations and time are counted in the step's report. A step that still does not
-/// converge (or a load or central-gap step) is reported (in its
-/// [`AdhesiveReport::termination`]) and the sweep goes on from it.
-///
-/// `max_step` [m] keeps the sweep quasi-static: a step of approach (or of central gap) longer
-/// than it is split into equal substeps no longer than it, each solved and warm-started in
-/// turn, and only the last is returned. Without it a long unloading step jumps across the
-/// attached states the surfaces would pass through and can land on a less attached branch.
-/// How fine is fine enough depends on the problem (`docs/decisions.md`). Load-controlled
-/// steps are never split.
-///
-/// # Errors
-/// As [`ContactProblem::solve`]; a `max_step` that is not positive and finite.
-pub fn sweep(
-    problem: &ContactProblem,
-    path: &[Control],
-    max_step: Option<f64>,
-    settings: &Settings,
-    start: Option<AdhesiveState>,
-    observer: &mut dyn Observer,
-) -> Result<Vec<SweepPoint>> {
-    if let Some(h) = max_step
-        && !(h.is_finite() && h > 0.0)
-    {
-        return Err(invalid(
-            "max_step",
-            h,
-            "the largest sweep step must be positive and finite [m]",
-        ));
-    }
-    // Where the start state stands, for splitting the first step too.
-    let mut previous = match (&start, path.first()) {
-        (Some(s), Some(Control::Approach(_))) => Some(Control::Approach(s.contact.approach)),
-        (Some(s), Some(Control::CentralGap(_))) => {
-            let (ny, nx) = s.contact.gap.dim();
-            Some(Control::CentralGap(s.contact.gap[[ny / 2, nx / 2]]))
+impl ContactProblem {
+    /// Solves every control of `path` in order (each warm-started from the previous
+    /// step; the first from `start`, else from apart), telling `observer` every iteration and
+    /// every step; its [`Observer::step`] returns `false` to stop early. Returns the solved points.
+    ///
+    /// A step of approach that does not converge is solved again from the state before it, in
+    /// twice as many substeps, up to [`RETRIES`] times (down to an eighth): near a jump a long
+    /// step can leave a ring of cells cycling in and out of contact for ever, which shorter steps,
+    /// each warm-started closer to its answer, avoid. Central-gap steps are not retried: the ones
+    /// that fail sit at the fold of a jump out, where finer substeps did not help
+    /// (`docs/decisions.md`). The solves of a retry share one iteration limit
+    /// ([`Settings::max_iterations`]), so a step costs at most `1 + RETRIES` limits. The failed
+    /// attempts' iterations and time are counted in the step's report. A step that still does not
+    /// converge (or a load or central-gap step) is reported (in its
+    /// [`AdhesiveReport::termination`]) and the sweep goes on from it.
+    ///
+    /// `max_step` \[m\] keeps the sweep quasi-static: a step of approach (or of central gap) longer
+    /// than it is split into equal substeps no longer than it, each solved and warm-started in
+    /// turn, and only the last is returned. Without it a long unloading step jumps across the
+    /// attached states the surfaces would pass through and can land on a less attached branch.
+    /// How fine is fine enough depends on the problem (`docs/decisions.md`). Load-controlled
+    /// steps are never split.
+    ///
+    /// # Errors
+    /// As [`ContactProblem::solve`]; a `max_step` that is not positive and finite.
+    pub fn sweep(
+        &self,
+        path: &[Control],
+        max_step: Option<f64>,
+        settings: &Settings,
+        start: Option<AdhesiveState>,
+        observer: &mut dyn Observer,
+    ) -> Result<Vec<SweepPoint>> {
+        let problem = self;
+        if let Some(h) = max_step
+            && !(h.is_finite() && h > 0.0)
+        {
+            return Err(invalid(
+                "max_step",
+                h,
+                "the largest sweep step must be positive and finite [m]",
+            ));
         }
-        _ => None,
-    };
-    // The first step's branch follows from where the start state stands (a resumed sweep).
-    let branch = match previous {
-        Some(p) => branches(&[&[p], path].concat())[1..].to_vec(),
-        None => branches(path),
-    };
-    let mut state = start;
-    let mut points = Vec::with_capacity(path.len());
-    for (k, &control) in path.iter().enumerate() {
-        let mut limit = max_step;
-        let mut spent: Option<(crate::adhesive::Iterations, usize, f64)> = None;
-        let mut retries = 0;
-        let (next, mut report, between, unconverged_substeps) = loop {
-            let between = substeps(previous, control, limit);
-            let mut unconverged_substeps = 0;
-            let mut current: Option<AdhesiveState> = None;
-            // A retry's solves share one iteration limit, so that a step no substeps can save
-            // costs at most `1 + RETRIES` limits.
-            let mut budget = settings.max_iterations;
-            let mut solve = |sub: Control, current: &Option<AdhesiveState>| {
-                let from = current
-                    .as_ref()
-                    .or(state.as_ref())
-                    .map_or(Start::Loading, Start::Warm);
-                let limited = Settings {
-                    max_iterations: budget,
-                    ..*settings
-                };
-                let used = if retries == 0 { settings } else { &limited };
-                let (next, report) = crate::adhesive::solve(problem, sub, used, from, &mut |i, r| {
-                    observer.iteration(k, i, r)
-                })?;
-                budget = budget.saturating_sub(report.iterations.count());
-                match &mut spent {
-                    Some((iterations, calls, time)) => {
-                        iterations.accumulate(&report.iterations);
-                        *calls += report.operator_calls;
-                        *time += report.wall_time_s;
+        // Where the start state stands, for splitting the first step too.
+        let mut previous = match (&start, path.first()) {
+            (Some(s), Some(Control::Approach(_))) => Some(Control::Approach(s.contact.approach)),
+            (Some(s), Some(Control::CentralGap(_))) => {
+                let (ny, nx) = s.contact.gap.dim();
+                Some(Control::CentralGap(s.contact.gap[[ny / 2, nx / 2]]))
+            }
+            _ => None,
+        };
+        // The first step's branch follows from where the start state stands (a resumed sweep).
+        let branch = match previous {
+            Some(p) => branches(&[&[p], path].concat())[1..].to_vec(),
+            None => branches(path),
+        };
+        let mut state = start;
+        let mut points = Vec::with_capacity(path.len());
+        for (k, &control) in path.iter().enumerate() {
+            let mut limit = max_step;
+            let mut spent: Option<(crate::adhesive::Iterations, usize, f64)> = None;
+            let mut retries = 0;
+            let (next, mut report, between, unconverged_substeps) = loop {
+                let between = substeps(previous, control, limit);
+                let mut unconverged_substeps = 0;
+                let mut current: Option<AdhesiveState> = None;
+                // A retry's solves share one iteration limit, so that a step no substeps can save
+                // costs at most `1 + RETRIES` limits.
+                let mut budget = settings.max_iterations;
+                let mut solve = |sub: Control, current: &Option<AdhesiveState>| {
+                    let from = current
+                        .as_ref()
+                        .or(state.as_ref())
+                        .map_or(Start::Loading, Start::Warm);
+                    let limited = Settings {
+                        max_iterations: budget,
+                        ..*settings
+                    };
+                    let used = if retries == 0 { settings } else { &limited };
+                    let (next, report) = crate::adhesive::solve(problem, sub, used, from, &mut |i, r| {
+                        observer.iteration(k, i, r)
+                    })?;
+                    budget = budget.saturating_sub(report.iterations.count());
+                    match &mut spent {
+                        Some((iterations, calls, time)) => {
+                            iterations.accumulate(&report.iterations);
+                            *calls += report.operator_calls;
+                            *time += report.wall_time_s;
+                        }
+                        None => spent = Some((report.iterations, report.operator_calls, report.wall_time_s)),
                     }
-                    None => spent = Some((report.iterations, report.operator_calls, report.wall_time_s)),
+                    Ok::<_, SolverError>((next, report))
+                };
+                for &sub in &between {
+                    let (next, report) = solve(sub, &current)?;
+                    unconverged_substeps += usize::from(!report.converged());
+                    current = Some(next);
                 }
-                Ok::<_, SolverError>((next, report))
+                let (next, report) = solve(control, &current)?;
+                // Halve the substeps of a step that did not converge, from the state before it.
+                let length = previous.and_then(|p| retried_length(p, control)).unwrap_or(0.0);
+                if report.converged() || retries == RETRIES || length <= 0.0 {
+                    break (next, report, between, unconverged_substeps);
+                }
+                retries += 1;
+                limit = Some(length / (2 * (between.len() + 1)) as f64);
             };
-            for &sub in &between {
-                let (next, report) = solve(sub, &current)?;
-                unconverged_substeps += usize::from(!report.converged());
-                current = Some(next);
+            if let Some((iterations, calls, time)) = spent {
+                report.iterations = iterations;
+                report.operator_calls = calls;
+                report.wall_time_s = time;
             }
-            let (next, report) = solve(control, &current)?;
-            // Halve the substeps of a step that did not converge, from the state before it.
-            let length = previous.and_then(|p| retried_length(p, control)).unwrap_or(0.0);
-            if report.converged() || retries == RETRIES || length <= 0.0 {
-                break (next, report, between, unconverged_substeps);
+            let point = SweepPoint {
+                control,
+                branch: branch[k],
+                report,
+                substeps: between.len(),
+                unconverged_substeps,
+                retries,
+            };
+            let go_on = observer.step(k, &point, &next);
+            points.push(point);
+            state = Some(next);
+            previous = Some(control);
+            if !go_on {
+                break;
             }
-            retries += 1;
-            limit = Some(length / (2 * (between.len() + 1)) as f64);
-        };
-        if let Some((iterations, calls, time)) = spent {
-            report.iterations = iterations;
-            report.operator_calls = calls;
-            report.wall_time_s = time;
         }
-        let point = SweepPoint {
-            control,
-            branch: branch[k],
-            report,
-            substeps: between.len(),
-            unconverged_substeps,
-            retries,
-        };
-        let go_on = observer.step(k, &point, &next);
-        points.push(point);
-        state = Some(next);
-        previous = Some(control);
-        if !go_on {
-            break;
-        }
+        Ok(points)
     }
-    Ok(points)
 }
 
-/// The length of the step `previous -> next` [m] when both are approaches: the steps
-/// [`sweep`] retries.
+/// The length of the step `previous -> next` \[m\] when both are approaches: the steps
+/// [`ContactProblem::sweep`] retries.
 fn retried_length(previous: Control, next: Control) -> Option<f64> {
     match (previous, next) {
         (Control::Approach(a), Control::Approach(b)) => Some((b - a).abs()),
@@ -228,8 +231,8 @@ fn retried_length(previous: Control, next: Control) -> Option<f64> {
 }
 
 /// The controls strictly between `previous` and `next` that split the step into equal parts
-/// no longer than `max_step` [m] (none for load control, a change of kind, or no positive
-/// limit): the substeps [`sweep`] solves before `next`.
+/// no longer than `max_step` \[m\] (none for load control, a change of kind, or no positive
+/// limit): the substeps [`ContactProblem::sweep`] solves before `next`.
 pub fn substeps(previous: Option<Control>, next: Control, max_step: Option<f64>) -> Vec<Control> {
     let (Some(previous), Some(h)) = (previous, max_step.filter(|h| h.is_finite() && *h > 0.0)) else {
         return Vec::new();
@@ -250,23 +253,23 @@ pub fn substeps(previous: Option<Control>, next: Control, max_step: Option<f64>)
 /// What a load-approach cycle shows. Loads in N, approaches in m.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CycleSummary {
-    /// The most negative load on the unloading branch [N] (the pull-off force under
+    /// The most negative load on the unloading branch \[N\] (the pull-off force under
     /// displacement control; reported as a negative number), if there is a tensile load on an
     /// unloading branch.
     pub pull_off_force: Option<f64>,
-    /// The approach at which it occurred [m].
+    /// The approach at which it occurred \[m\].
     pub pull_off_approach: Option<f64>,
-    /// The first loading step attached after a step apart [m] (the jump into contact lies
+    /// The first loading step attached after a step apart \[m\] (the jump into contact lies
     /// between it and the step before); attached means some cell within the law's range
     /// ([`CyclePoint::attached_area_fraction`]), so that an adhesive neck without compressive
     /// contact counts. Reported only when the branches differ in load (by more than 1e-4 of
     /// the largest load) at some approach solved on both (hysteresis): a contact that grows
     /// from a point and shrinks back to it the same way is no jump.
     pub jump_in_approach: Option<f64>,
-    /// The first unloading step apart after an attached step [m] (same condition).
+    /// The first unloading step apart after an attached step \[m\] (same condition).
     pub jump_out_approach: Option<f64>,
     /// Work lost over the cycle: the work `sum W d(delta)` done on the bodies along the path
-    /// (trapezoidal rule) [J], >= 0 for a dissipative cycle; meaningful when the path returns to
+    /// (trapezoidal rule) \[J\], >= 0 for a dissipative cycle; meaningful when the path returns to
     /// its start.
     pub hysteresis_energy: f64,
     /// Whether every step converged.
@@ -277,9 +280,9 @@ pub struct CycleSummary {
 /// summarised too). SI units.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CyclePoint {
-    /// Approach [m].
+    /// Approach \[m\].
     pub approach: f64,
-    /// Total load [N].
+    /// Total load \[N\].
     pub load: f64,
     /// Fraction of cells in contact [-].
     pub contact_area_fraction: f64,

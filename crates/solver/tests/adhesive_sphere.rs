@@ -24,7 +24,7 @@ fn dmt_limit_pull_off_is_two_pi_r_w0() {
                 None,
                 &Settings::with_method(Method::Accelerated),
                 None,
-                &mut common::steps(|_, _, _| true),
+                &mut (),
             )
             .unwrap();
         let summary = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
@@ -50,7 +50,7 @@ fn jkr_side_cycle_jumps_and_pull_off_near_maugis() {
                 None,
                 &Settings::with_method(Method::Accelerated),
                 None,
-                &mut common::steps(|_, _, _| true),
+                &mut (),
             )
             .unwrap();
         let summary = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
@@ -125,7 +125,7 @@ fn sphere_curve_follows_greenwood() {
                     None,
                     &Settings::with_method(Method::Accelerated),
                     None,
-                    &mut common::steps(|_, _, _| true),
+                    &mut (),
                 )
                 .unwrap();
             let cycle: Vec<CyclePoint> = points.iter().map(CyclePoint::from).collect();
@@ -170,7 +170,7 @@ fn central_gap_control_traces_the_unstable_branch() {
                 None,
                 &Settings::with_method(Method::Accelerated),
                 None,
-                &mut common::steps(|_, _, _| true),
+                &mut (),
             )
             .unwrap();
         let greenwood = theory::greenwood::Greenwood::new(mu, theory::greenwood::Mesh::default());

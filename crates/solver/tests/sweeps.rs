@@ -73,7 +73,7 @@ fn a_step_that_orbits_is_retried_in_shorter_substeps() {
         };
         let run = |path: &[Control], max_step| {
             common::problem(&op, &law, g0.view())
-                .sweep(path, max_step, &options, None, &mut common::steps(|_, _, _| true))
+                .sweep(path, max_step, &options, None, &mut ())
                 .unwrap()
         };
         let path = approaches([0.0, 0.5].into_iter());
@@ -135,13 +135,7 @@ fn a_resumed_sweep_knows_its_branch() {
         )
         .unwrap();
     let points = common::problem(&op, &law, g0.view())
-        .sweep(
-            &approaches([0.5, 0.8].into_iter()),
-            None,
-            &options,
-            last,
-            &mut common::steps(|_, _, _| true),
-        )
+        .sweep(&approaches([0.5, 0.8].into_iter()), None, &options, last, &mut ())
         .unwrap();
     assert_eq!(points[0].branch, Branch::Unloading);
     assert_eq!(points[1].branch, Branch::Loading);

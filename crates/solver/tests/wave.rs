@@ -104,9 +104,7 @@ fn wave_cycle(op: &Periodic, g0: &Array2<f64>, law: Law, top: i32, bottom: i32) 
     let mut path: Vec<Control> = (bottom..=top).map(|k| Control::Approach(k as f64 * Z0)).collect();
     path.extend((bottom..top).rev().map(|k| Control::Approach(k as f64 * Z0)));
     let options = Settings::with_method(method);
-    problem
-        .sweep(&path, None, &options, None, &mut common::steps(|_, _, _| true))
-        .unwrap()
+    problem.sweep(&path, None, &options, None, &mut ()).unwrap()
 }
 
 /// How a wave's cycle compares with Johnson's JKR solution.

@@ -36,11 +36,11 @@ pub enum Amplitudes {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Normalization {
-    /// Root-mean-square height Rq [m].
+    /// Root-mean-square height Rq \[m\].
     RmsHeight(f64),
     /// Root-mean-square gradient `sqrt(<|grad h|^2>)` [-], computed spectrally.
     RmsGradient(f64),
-    /// Peak-to-valley height `max - min` [m].
+    /// Peak-to-valley height `max - min` \[m\].
     PeakToValley(f64),
     /// The plateau `C0` of the spectrum [m^4] (see [`crate::psd`] for the convention).
     Prefactor(f64),
@@ -60,7 +60,7 @@ pub struct SurfaceSpec {
 /// A generated surface with what was learnt while making it.
 #[derive(Clone, Debug)]
 pub struct Generated {
-    /// Heights [m], shape `(ny, nx)`, zero mean.
+    /// Heights \[m\], shape `(ny, nx)`, zero mean.
     pub heights: Array2<f64>,
     /// Spectral moments and radial PSD (10 bins per decade) of the final surface, exact,
     /// from its own spectrum.

@@ -14,9 +14,9 @@ pub struct Grid {
     pub nx: usize,
     /// Number of points along y (rows).
     pub ny: usize,
-    /// Lateral size along x [m].
+    /// Lateral size along x \[m\].
     pub length_x: f64,
-    /// Lateral size along y [m].
+    /// Lateral size along y \[m\].
     pub length_y: f64,
 }
 
@@ -45,17 +45,17 @@ impl Grid {
         })
     }
 
-    /// A square grid of `n` by `n` points and side `length` [m].
+    /// A square grid of `n` by `n` points and side `length` \[m\].
     pub fn square(n: usize, length: f64) -> Result<Self> {
         Self::new(n, n, length, length)
     }
 
-    /// Spacing along x [m].
+    /// Spacing along x \[m\].
     pub fn dx(&self) -> f64 {
         self.length_x / self.nx as f64
     }
 
-    /// Spacing along y [m].
+    /// Spacing along y \[m\].
     pub fn dy(&self) -> f64 {
         self.length_y / self.ny as f64
     }

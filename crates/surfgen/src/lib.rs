@@ -13,7 +13,7 @@
 //! use surfgen::{generate, statistics, Amplitudes, Grid, Normalization, Psd, SurfaceSpec};
 //! let spec = SurfaceSpec {
 //!     grid: Grid::square(128, 1e-4)?,                  // 128^2 points over 0.1 mm
-//!     psd: Psd::self_affine(0.8, 2e-5, 4e-6),          // H, roll-off, cut-off [m]
+//!     psd: Psd::self_affine(0.8, 2e-5, 4e-6),          // H, roll-off, cut-off \[m\]
 //!     normalization: Normalization::RmsGradient(1.0),
 //!     amplitudes: Amplitudes::Exact,
 //!     seed: 1,

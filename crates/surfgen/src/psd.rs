@@ -20,7 +20,7 @@ use std::f64::consts::PI;
 pub struct Anisotropy {
     /// Ratio of correlation lengths along and across the principal direction (> 0, 1 = isotropic).
     pub ratio: f64,
-    /// Angle of the principal direction from the x axis [rad].
+    /// Angle of the principal direction from the x axis \[rad\].
     pub angle: f64,
 }
 
@@ -42,11 +42,11 @@ impl Default for Anisotropy {
 pub struct Psd {
     /// Hurst exponent H, in (0, 1); the fractal dimension is 3 - H.
     pub hurst: f64,
-    /// Roll-off wavelength lambda_r [m]: the spectrum is flat at longer wavelengths.
+    /// Roll-off wavelength lambda_r \[m\]: the spectrum is flat at longer wavelengths.
     pub rolloff_wavelength: f64,
-    /// Short-wavelength cut-off lambda_s [m]: no roughness at shorter wavelengths.
+    /// Short-wavelength cut-off lambda_s \[m\]: no roughness at shorter wavelengths.
     pub cutoff_wavelength: f64,
-    /// Optional long-wavelength cut-off lambda_L [m]: no roughness at longer wavelengths.
+    /// Optional long-wavelength cut-off lambda_L \[m\]: no roughness at longer wavelengths.
     pub long_cutoff_wavelength: Option<f64>,
     /// Stretch and rotation of the spectrum (isotropic by default).
     #[serde(default)]

@@ -89,7 +89,7 @@ impl SpectralMoments {
         }
     }
 
-    /// RMS height Rq [m].
+    /// RMS height Rq \[m\].
     pub fn rms_height(&self) -> f64 {
         self.m0.sqrt()
     }
@@ -295,16 +295,16 @@ impl HurstFit {
     }
 }
 
-/// Height distribution: mean [m], RMS height Rq [m], extremes [m], skewness and kurtosis [-].
+/// Height distribution: mean \[m\], RMS height Rq \[m\], extremes \[m\], skewness and kurtosis [-].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct HeightStats {
-    /// `<h>` [m].
+    /// `<h>` \[m\].
     pub mean: f64,
-    /// `Rq = sqrt(<(h - <h>)^2>)` [m].
+    /// `Rq = sqrt(<(h - <h>)^2>)` \[m\].
     pub rms_height: f64,
     pub min: f64,
     pub max: f64,
-    /// `max - min` [m].
+    /// `max - min` \[m\].
     pub peak_to_valley: f64,
     /// `<(h - <h>)^3> / Rq^3` [-].
     pub skewness: f64,
@@ -417,7 +417,7 @@ pub struct Statistics {
     pub curvature: Curvatures,
     /// Finite-difference curvatures [1/m].
     pub curvature_fd: Curvatures,
-    /// Inverse RMS mean curvature `1 / rms_curvature` [m], the local radius of the asperities.
+    /// Inverse RMS mean curvature `1 / rms_curvature` \[m\], the local radius of the asperities.
     pub local_radius: f64,
     /// Hurst exponent fitted to the radial PSD ([`RadialPsd::fit_hurst`]); `None` when the
     /// spectrum has too few bins in the fit range.
@@ -510,7 +510,7 @@ pub fn statistics_with(
 
 /// The bearing-area (Abbott-Firestone, material ratio) curve: for `levels` heights equally
 /// spaced from the maximum down to the minimum, the fraction of points with `h >= level`.
-/// Returns `(level [m], ratio [-])` pairs, ratio rising from `1/N` (or more, for ties) to 1.
+/// Returns `(level \[m\], ratio [-])` pairs, ratio rising from `1/N` (or more, for ties) to 1.
 ///
 /// # Panics
 /// If `levels < 2`.

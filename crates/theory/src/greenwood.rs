@@ -122,7 +122,7 @@ pub struct Greenwood {
     influence: Vec<f64>,
 }
 
-/// A Newton solve that failed, at this central separation [z0].
+/// A Newton solve that failed, at this central separation \[z0\].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NoConvergence {
     pub central_separation: f64,

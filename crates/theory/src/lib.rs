@@ -12,8 +12,8 @@ pub mod maugis;
 pub mod rough;
 pub mod wavy;
 
-/// Tabor parameter `mu = (R w0^2 / (E*^2 z0^3))^(1/3)` of a sphere of radius `r` [m] with
-/// work of adhesion `w0` [J/m^2] and range `z0` [m] on a half-space of modulus `e_star` [Pa].
+/// Tabor parameter `mu = (R w0^2 / (E*^2 z0^3))^(1/3)` of a sphere of radius `r` \[m\] with
+/// work of adhesion `w0` [J/m^2] and range `z0` \[m\] on a half-space of modulus `e_star` \[Pa\].
 pub fn tabor_parameter(r: f64, w0: f64, e_star: f64, z0: f64) -> f64 {
     (r * w0 * w0 / (e_star * e_star * z0.powi(3))).cbrt()
 }

@@ -22,7 +22,7 @@ pub fn muser_area(reduced: f64, k: f64) -> f64 {
 }
 
 /// Modified Johnson parameter (Li, Pohrt & Popov 2019; the paper's Eq. 15):
-/// `alpha* = (4 w0 q1^(0.8H - 1) / (pi E* h^2 q0^(0.8H)))^2`, with the RMS roughness `h` [m],
+/// `alpha* = (4 w0 q1^(0.8H - 1) / (pi E* h^2 q0^(0.8H)))^2`, with the RMS roughness `h` \[m\],
 /// smallest and largest wavevectors `q0`, `q1` [rad/m] and Hurst exponent `hurst`.
 pub fn johnson_parameter(w0: f64, e_star: f64, h: f64, q0: f64, q1: f64, hurst: f64) -> f64 {
     (4.0 * w0 * q1.powf(0.8 * hurst - 1.0) / (PI * e_star * h * h * q0.powf(0.8 * hurst))).powi(2)
@@ -103,7 +103,7 @@ impl SelfAffineSpectrum {
 /// Persson & Tosatti's (2001) effective work of adhesion [J/m^2]: the adhesion gained over the
 /// true (larger) area in full contact, `w0 (1 + g_bar^2 / 2)`, minus the elastic energy per
 /// nominal area stored by flattening the roughness, `(E*/4) integral d^2q |q| C(q)`
-/// (`moment_1` [m], e.g. [`SelfAffineSpectrum::moment`]`(1.0)`). The surfaces stick
+/// (`moment_1` \[m\], e.g. [`SelfAffineSpectrum::moment`]`(1.0)`). The surfaces stick
 /// (full contact holds without load) when it is positive.
 pub fn persson_tosatti_work(w0: f64, e_star: f64, moment_1: f64, rms_gradient: f64) -> f64 {
     w0 * (1.0 + 0.5 * rms_gradient * rms_gradient) - 0.25 * e_star * moment_1

@@ -1,9 +1,9 @@
 //! A rigid one-dimensional wave `h(x) = amplitude cos(2 pi x / wavelength)` pressed onto an
-//! elastic half-space (plane strain, modulus `e_star` [Pa]): Westergaard's non-adhesive
+//! elastic half-space (plane strain, modulus `e_star` \[Pa\]): Westergaard's non-adhesive
 //! solution and Johnson's (1995) JKR solution with work of adhesion `w0` [J/m^2].
 //!
-//! Each crest makes a contact strip of half-width `a` [m] per wavelength; the mean pressure
-//! `p` [Pa] (compressive > 0) is the load per wavelength over the wavelength. With
+//! Each crest makes a contact strip of half-width `a` \[m\] per wavelength; the mean pressure
+//! `p` \[Pa\] (compressive > 0) is the load per wavelength over the wavelength. With
 //! `psi = pi a / wavelength`, `p* = pi E* amplitude / wavelength` (the mean pressure that
 //! flattens the wave) and Johnson's parameter `alpha = sqrt(2 wavelength w0 / (pi^2 E* amplitude^2))`:
 //!
@@ -22,18 +22,18 @@ use std::f64::consts::PI;
 /// A wave in contact, in SI units.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wave {
-    /// Amplitude `Delta` [m] (half the peak-to-valley height).
+    /// Amplitude `Delta` \[m\] (half the peak-to-valley height).
     pub amplitude: f64,
-    /// Wavelength `lambda` [m].
+    /// Wavelength `lambda` \[m\].
     pub wavelength: f64,
-    /// Contact modulus `E*` [Pa].
+    /// Contact modulus `E*` \[Pa\].
     pub e_star: f64,
     /// Work of adhesion `w0` [J/m^2] (0 for Westergaard's problem).
     pub work_of_adhesion: f64,
 }
 
 impl Wave {
-    /// The mean pressure of complete contact `p* = pi E* Delta / lambda` [Pa].
+    /// The mean pressure of complete contact `p* = pi E* Delta / lambda` \[Pa\].
     pub fn full_contact_pressure(&self) -> f64 {
         PI * self.e_star * self.amplitude / self.wavelength
     }
@@ -44,32 +44,32 @@ impl Wave {
             .sqrt()
     }
 
-    /// The crests' curvature radius `R = lambda^2 / (4 pi^2 Delta)` [m].
+    /// The crests' curvature radius `R = lambda^2 / (4 pi^2 Delta)` \[m\].
     pub fn crest_radius(&self) -> f64 {
         self.wavelength.powi(2) / (4.0 * PI * PI * self.amplitude)
     }
 
-    /// Westergaard's mean pressure [Pa] at contact half-width `a` [m], `0 <= a <= lambda/2`.
+    /// Westergaard's mean pressure \[Pa\] at contact half-width `a` \[m\], `0 <= a <= lambda/2`.
     pub fn westergaard_pressure(&self, a: f64) -> f64 {
         self.full_contact_pressure() * (PI * a / self.wavelength).sin().powi(2)
     }
 
-    /// Johnson's JKR mean pressure [Pa] at contact half-width `a` [m], `0 <= a < lambda/2`.
+    /// Johnson's JKR mean pressure \[Pa\] at contact half-width `a` \[m\], `0 <= a < lambda/2`.
     pub fn jkr_pressure(&self, a: f64) -> f64 {
         let psi = PI * a / self.wavelength;
         self.full_contact_pressure() * (psi.sin().powi(2) - self.johnson_alpha() * psi.tan().sqrt())
     }
 
     /// The JKR curve's minimum on the strip's branch (below the snap to complete contact):
-    /// the pull-off mean pressure under load control [Pa] (< 0 for `w0 > 0`) and the
-    /// half-width [m] where it is reached.
+    /// the pull-off mean pressure under load control \[Pa\] (< 0 for `w0 > 0`) and the
+    /// half-width \[m\] where it is reached.
     pub fn jkr_pull_off(&self) -> (f64, f64) {
         let (_, a_max) = self.jkr_snap_to_full_contact();
         self.jkr_extremum(|p| -p, PI * a_max / self.wavelength)
     }
 
     /// The JKR curve's maximum, past which the contact snaps to complete under load control:
-    /// the mean pressure [Pa] and the half-width [m]. (For `alpha` above about 0.57 the
+    /// the mean pressure \[Pa\] and the half-width \[m\]. (For `alpha` above about 0.57 the
     /// maximum is negative: the wave sticks fully once it touches.)
     pub fn jkr_snap_to_full_contact(&self) -> (f64, f64) {
         self.jkr_extremum(|p| p, 0.5 * PI)

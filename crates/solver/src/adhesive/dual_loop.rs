@@ -56,15 +56,8 @@ fn solve(
     accelerated: bool,
     observer: &mut dyn FnMut(usize, f64),
 ) -> Result<(AdhesiveState, AdhesiveReport)> {
-    let Job {
-        op,
-        law,
-        g0,
-        control,
-        settings,
-        start,
-        ..
-    } = *job;
+    let (op, law, g0, settings) = (job.op, job.law, job.g0, job.settings);
+    let (control, start) = (job.control, job.start);
     let started = Instant::now();
     let domain = *op.domain();
     let shape = domain.shape();

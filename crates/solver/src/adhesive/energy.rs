@@ -7,7 +7,7 @@
 //! mean gap is fixed, `mean(g) = mean(g0) - delta`, and the total energy per area is
 //! `E(g) = (1/2) <g - g0, S (g - g0)> / N + mean(V(g))` over `g >= 0` with that mean, `S` the
 //! periodic stiffness ([`elastic::PeriodicStiffness`]) and `V` the law's interaction energy.
-//! Its gradient `r = S (g - g0) - p(g)` [Pa] balances the mean-pressure multiplier where
+//! Its gradient `r = S (g - g0) - p(g)` \[Pa\] balances the mean-pressure multiplier where
 //! `g > 0` and is the contact pressure where `g = 0`. Under load control (mean pressure
 //! `p_m` given) the mean gap is free and the load's potential `p_m mean(g)` joins `E`.
 //!
@@ -51,22 +51,22 @@ const MAX_CUTS: usize = 40;
 
 /// One admissible point and what the solver needs of it. Fields have the unknown's shape.
 pub(super) struct Point {
-    /// The unknown: the gap [m] on the domain's block, the displacement [m] in the padding.
+    /// The unknown: the gap \[m\] on the domain's block, the displacement \[m\] in the padding.
     pub(super) gap: Array2<f64>,
-    /// `S (gap - base)` [Pa]: the pressure that holds the surface's displacement.
+    /// `S (gap - base)` \[Pa\]: the pressure that holds the surface's displacement.
     pub(super) elastic: Array2<f64>,
-    /// `p(g)` [Pa].
+    /// `p(g)` \[Pa\].
     pub(super) law: Array2<f64>,
     /// `V''(g)`, or without a potential the law's probed stiffness `-dp/dg` [Pa/m].
     pub(super) curvature: Array2<f64>,
-    /// The gradient `S (g - g0) - p(g)` [Pa], then projected ([`Problem::project_gradient`]).
+    /// The gradient `S (g - g0) - p(g)` \[Pa\], then projected ([`Problem::project_gradient`]).
     pub(super) gradient: Array2<f64>,
     /// Elastic energy, and interaction energy plus the load's potential `p_mean mean(g)`, per
     /// area [J/m^2].
     energy: (f64, f64),
     /// The gradient's sum over the cells off the wall, and their number.
     free: (f64, f64),
-    /// The smallest gap [m] (on the domain's block).
+    /// The smallest gap \[m\] (on the domain's block).
     min_gap: f64,
 }
 
@@ -92,9 +92,9 @@ impl Point {
 
 /// What the solver needs of a projected gradient `rho`.
 pub(super) struct GradientSums {
-    /// The mean-pressure multiplier [Pa].
+    /// The mean-pressure multiplier \[Pa\].
     pub(super) lambda: f64,
-    /// `max |rho|` [Pa].
+    /// `max |rho|` \[Pa\].
     pub(super) max: f64,
 }
 
@@ -145,7 +145,7 @@ pub(super) struct Problem<'a> {
     /// The block's gap shifted by a probe, and the law's pressure there (laws without a
     /// potential; empty otherwise).
     probe: (Array2<f64>, Array2<f64>),
-    /// The unknown less the surface displacement [m] (up to its mean, periodic): `g0` periodic;
+    /// The unknown less the surface displacement \[m\] (up to its mean, periodic): `g0` periodic;
     /// `g0 - delta` on the domain's block and zero in the padding, free.
     base: Array2<f64>,
     /// Columns and rows of the unknown: `(nx, ny)` periodic, `(2nx, 2ny)` free.
@@ -154,9 +154,9 @@ pub(super) struct Problem<'a> {
     /// Columns and rows of the domain's block, where the unknown is the gap.
     pub(super) nx: usize,
     pub(super) ny: usize,
-    /// The prescribed mean gap [m] (periodic approach control; free domains have none).
+    /// The prescribed mean gap \[m\] (periodic approach control; free domains have none).
     pub(super) mean_gap: Option<f64>,
-    /// The prescribed mean pressure [Pa] (periodic load control: the mean gap is free).
+    /// The prescribed mean pressure \[Pa\] (periodic load control: the mean gap is free).
     load: Option<f64>,
     scratch: Array2<f64>,
     pub(super) calls: usize,
@@ -171,7 +171,7 @@ impl Problem<'_> {
     /// step onto the constraints within the current face. `c` comes from Newton on the
     /// convex, piecewise-linear mean (exact after finitely many steps). Also leaves
     /// `gap - base` in the scratch field, for [`Problem::evaluate`]. With `hold` (periodic),
-    /// cells of `from` with a gap at most `hold` [m] stay where they are and only the others
+    /// cells of `from` with a gap at most `hold` \[m\] stay where they are and only the others
     /// shift (a warm start's first guess).
     pub(super) fn step_and_project(
         &mut self,
@@ -471,9 +471,9 @@ pub(super) struct Setup<'a> {
     pub(super) problem: Problem<'a>,
     /// The first admissible point, evaluated (its gradient not yet projected).
     pub(super) x: Point,
-    /// The approach [m] (approach control; else 0).
+    /// The approach \[m\] (approach control; else 0).
     pub(super) delta: f64,
-    /// The mean pressure [Pa] (load control; else `None`).
+    /// The mean pressure \[Pa\] (load control; else `None`).
     pub(super) load: Option<f64>,
 }
 
@@ -481,15 +481,8 @@ pub(super) struct Setup<'a> {
 /// (`Control::Approach`) or, periodic only, load control (`Control::Force`,
 /// `Control::MeanPressure`), with the law's `potential` if it has one; see the module docs.
 pub(super) fn setup<'a>(job: &Job<'a>, potential: Option<&'a dyn LocalPotential>) -> Result<Setup<'a>> {
-    let Job {
-        op,
-        law,
-        g0,
-        control,
-        settings,
-        start,
-        ..
-    } = *job;
+    let (op, law, g0, settings) = (job.op, job.law, job.g0, job.settings);
+    let (control, start) = (job.control, job.start);
     let domain = *op.domain();
     let shape = domain.shape();
     let (ny, nx) = shape;

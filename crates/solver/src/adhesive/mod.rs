@@ -2,9 +2,9 @@
 //! `docs/solvers.md` for the methods).
 //!
 //! The pressure is split into a compressive part `p_c >= 0` (the contact constraint) and an
-//! adhesive part `p_a <= 0` (the law). Every method implements [`AdhesiveMethod`] in a file
+//! adhesive part `p_a <= 0` (the law). Every method implements the trait `AdhesiveMethod` in a file
 //! of its own: the dual loops (`dual_loop`), the energy descent (`energy`) and Newton
-//! (`newton`), the last two over the gap problem that `energy` sets up. [`solve`] checks the input,
+//! (`newton`), the last two over the gap problem that `energy` sets up. `solve` checks the input,
 //! resolves [`Method::Auto`], asks the method whether it can solve the problem, and runs it.
 
 mod anderson;
@@ -38,10 +38,10 @@ pub enum Start<'a> {
 /// The fields of an adhesive contact: all of shape `(ny, nx)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AdhesiveState {
-    /// Compressive pressure `p_c >= 0` [Pa] in `pressure`, the gap [m] (zero in contact), the
-    /// total surface displacement `K (p_c + p_a)` [m] and the approach [m].
+    /// Compressive pressure `p_c >= 0` \[Pa\] in `pressure`, the gap \[m\] (zero in contact), the
+    /// total surface displacement `K (p_c + p_a)` \[m\] and the approach \[m\].
     pub contact: ContactState,
-    /// Adhesive pressure `p_a <= 0` [Pa].
+    /// Adhesive pressure `p_a <= 0` \[Pa\].
     pub adhesive_pressure: Array2<f64>,
 }
 
@@ -66,7 +66,7 @@ impl AdhesiveState {
         }
     }
 
-    /// The total pressure `p_c + p_a` [Pa].
+    /// The total pressure `p_c + p_a` \[Pa\].
     pub fn total_pressure(&self) -> Array2<f64> {
         &self.contact.pressure + &self.adhesive_pressure
     }
@@ -168,17 +168,17 @@ impl Iterations {
 /// compressive.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AdhesiveReport {
-    /// Total normal force `sum (p_c + p_a) dA` [N].
+    /// Total normal force `sum (p_c + p_a) dA` \[N\].
     pub load: f64,
-    /// Load over the nominal area [Pa].
+    /// Load over the nominal area \[Pa\].
     pub mean_pressure: f64,
-    /// The compressive part of the load [N] (>= 0).
+    /// The compressive part of the load \[N\] (>= 0).
     pub compressive_load: f64,
-    /// The adhesive part of the load [N] (<= 0).
+    /// The adhesive part of the load \[N\] (<= 0).
     pub adhesive_load: f64,
-    /// Approach from first touch of the undeformed surfaces [m].
+    /// Approach from first touch of the undeformed surfaces \[m\].
     pub approach: f64,
-    /// Gap at the centre cell `(ny/2, nx/2)` [m].
+    /// Gap at the centre cell `(ny/2, nx/2)` \[m\].
     pub central_gap: f64,
     /// Fraction of cells in contact (`p_c > 0`) [-].
     pub contact_area_fraction: f64,
@@ -190,9 +190,9 @@ pub struct AdhesiveReport {
     pub attached_area_fraction: f64,
     /// Number of contact clusters.
     pub clusters: usize,
-    /// Largest total pressure [Pa].
+    /// Largest total pressure \[Pa\].
     pub max_pressure: f64,
-    /// Most negative total pressure [Pa].
+    /// Most negative total pressure \[Pa\].
     pub min_pressure: f64,
     /// The method that solved it ([`Method::Auto`] resolved).
     pub method: Method,
@@ -206,7 +206,7 @@ pub struct AdhesiveReport {
     pub residual_history: Vec<f64>,
     /// Why it stopped.
     pub termination: Termination,
-    /// Wall time [s].
+    /// Wall time \[s\].
     pub wall_time_s: f64,
 }
 
@@ -217,7 +217,7 @@ impl AdhesiveReport {
     }
 }
 
-/// The displacement [m] of one cell under unit pressure [Pa] on itself: the cell's compliance.
+/// The displacement \[m\] of one cell under unit pressure \[Pa\] on itself: the cell's compliance.
 pub fn cell_compliance(domain: &Domain, e_star: f64) -> f64 {
     elastic::love::cell_influence(0.0, 0.0, domain.dx / 2.0, domain.dy / 2.0, e_star)
 }

@@ -160,7 +160,7 @@ pub fn rough_energy_cycle(
         ..Settings::with_method(Method::Accelerated)
     };
     let points = problem(&op, &law, g0.view())
-        .sweep(&path, max_step, &options, None, &mut self::steps(|_, _, _| true))
+        .sweep(&path, max_step, &options, None, &mut ())
         .unwrap();
     (path, points)
 }

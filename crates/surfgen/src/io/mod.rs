@@ -28,7 +28,7 @@ use std::path::{Path, PathBuf};
 /// A height map on its grid.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Surface {
-    /// Heights [m], shape `(ny, nx)`.
+    /// Heights \[m\], shape `(ny, nx)`.
     pub heights: Array2<f64>,
     pub grid: Grid,
     /// Whether the surface repeats itself across the box edges (generated surfaces do).
@@ -50,9 +50,9 @@ impl Surface {
 /// Options for files that do not carry their spacing, or carry it in other units.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReadOptions {
-    /// Lateral size along x [m] for formats without spacing (bare `.npy`, plain matrix).
+    /// Lateral size along x \[m\] for formats without spacing (bare `.npy`, plain matrix).
     pub length_x: Option<f64>,
-    /// Lateral size along y [m]; defaults to `length_x * ny / nx` (square cells).
+    /// Lateral size along y \[m\]; defaults to `length_x * ny / nx` (square cells).
     pub length_y: Option<f64>,
     /// Metres per file unit, applied to heights and to coordinates read from the file
     /// (e.g. `1e-4` for the contact-mechanics challenge's files, in units of 0.1 mm).
