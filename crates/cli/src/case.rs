@@ -463,6 +463,15 @@ pub fn write_summary(out: &Path, case: &impl Serialize, built: &Built, results: 
     Ok(())
 }
 
+/// `extra` (a JSON object) with the fields of `report` added: the summary's results.
+pub fn results(extra: Value, report: &impl Serialize) -> Result<Value> {
+    let (Value::Object(mut all), Value::Object(fields)) = (extra, serde_json::to_value(report)?) else {
+        bail!("a summary's results are JSON objects");
+    };
+    all.extend(fields);
+    Ok(Value::Object(all))
+}
+
 /// Writes a field as `.npy` into `dir`.
 pub fn write_field(dir: &Path, name: &str, field: &Array2<f64>) -> Result<()> {
     io::write_npy(field, &dir.join(format!("{name}.npy")))?;

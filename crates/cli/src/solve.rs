@@ -1,6 +1,6 @@
 //! `solve`: one normal contact, with or without adhesion, from flags or a TOML case file.
 
-use crate::case::{Built, Case, layered, on_workers, to_toml, write_field, write_summary};
+use crate::case::{Built, Case, layered, on_workers, results, to_toml, write_field, write_summary};
 use crate::plot;
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -113,27 +113,17 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     write_field(&out, "pressure", &state.pressure)?;
     write_field(&out, "gap", &state.gap)?;
     write_field(&out, "displacement", &state.displacement)?;
-    let summary = json!({
-        "units": {
-            "load": "N", "mean_pressure": "Pa", "approach": "m", "max_pressure": "Pa",
-            "elastic_energy": "J", "lengths": "m", "modulus": "Pa", "wall_time_s": "s",
-            "pressure.npy": "Pa", "gap.npy": "m", "displacement.npy": "m"
-        },
-        "load": report.load,
-        "mean_pressure": report.mean_pressure,
-        "approach": report.approach,
-        "contact_area_fraction": report.contact_area_fraction,
-        "contact_clusters": report.clusters,
-        "max_pressure": report.max_pressure,
-        "elastic_energy": report.elastic_energy,
-        "iterations": report.iterations,
-        "operator_calls": report.operator_calls,
-        "converged": report.converged(),
-        "termination": format!("{:?}", report.termination),
-        "residual": report.residual,
-        "residual_history": report.residual_history,
-        "wall_time_s": report.wall_time_s,
-    });
+    let summary = results(
+        json!({
+            "units": {
+                "load": "N", "mean_pressure": "Pa", "approach": "m", "max_pressure": "Pa",
+                "elastic_energy": "J", "lengths": "m", "modulus": "Pa", "wall_time_s": "s",
+                "pressure.npy": "Pa", "gap.npy": "m", "displacement.npy": "m"
+            },
+            "converged": report.converged(),
+        }),
+        &report,
+    )?;
     write_summary(&out, &case, &built, summary)?;
     if !args.no_png {
         pressure_map(
@@ -241,36 +231,20 @@ fn solve_adhesive(args: &SolveArgs, case: &Case, control: Control, built: &Built
     write_field(out, "adhesive_pressure", &state.adhesive_pressure)?;
     write_field(out, "gap", &state.contact.gap)?;
     write_field(out, "displacement", &state.contact.displacement)?;
-    let summary = json!({
-        "units": {
-            "load": "N", "mean_pressure": "Pa", "approach": "m", "pressures": "Pa",
-            "lengths": "m", "modulus": "Pa", "work_of_adhesion": "J/m^2", "wall_time_s": "s",
-            "pressure.npy": "Pa (total)", "compressive_pressure.npy": "Pa", "adhesive_pressure.npy": "Pa",
-            "gap.npy": "m", "displacement.npy": "m"
-        },
-        "law": problem.law.name(),
-        "solver": report.method.name(),
-        "warnings": problem.warnings,
-        "load": report.load,
-        "mean_pressure": report.mean_pressure,
-        "compressive_load": report.compressive_load,
-        "adhesive_load": report.adhesive_load,
-        "approach": report.approach,
-        "contact_area_fraction": report.contact_area_fraction,
-        "attractive_area_fraction": report.attractive_area_fraction,
-        "attached_area_fraction": report.attached_area_fraction,
-        "contact_clusters": report.clusters,
-        "max_pressure": report.max_pressure,
-        "min_pressure": report.min_pressure,
-        "iterations": report.iterations.count(),
-        "inner_iterations": report.iterations.inner(),
-        "operator_calls": report.operator_calls,
-        "converged": report.converged(),
-        "termination": format!("{:?}", report.termination),
-        "residual": report.residual,
-        "residual_history": report.residual_history,
-        "wall_time_s": report.wall_time_s,
-    });
+    let summary = results(
+        json!({
+            "units": {
+                "load": "N", "mean_pressure": "Pa", "approach": "m", "pressures": "Pa",
+                "lengths": "m", "modulus": "Pa", "work_of_adhesion": "J/m^2", "wall_time_s": "s",
+                "pressure.npy": "Pa (total)", "compressive_pressure.npy": "Pa", "adhesive_pressure.npy": "Pa",
+                "gap.npy": "m", "displacement.npy": "m"
+            },
+            "law": problem.law.name(),
+            "warnings": problem.warnings,
+            "converged": report.converged(),
+        }),
+        &report,
+    )?;
     write_summary(out, case, built, summary)?;
     if !args.no_png {
         pressure_map(

@@ -1,7 +1,7 @@
 //! `sweep`: a quasi-static approach-retraction cycle (or any list of approaches, mean
 //! pressures or central gaps) with continuation, written step by step and resumable.
 
-use crate::case::{Case, layered, on_workers, to_toml, write_field, write_summary};
+use crate::case::{Case, layered, on_workers, results, to_toml, write_field, write_summary};
 use crate::plot::{self, Series};
 use crate::solve::finish;
 use anyhow::{Context, Result, bail};
@@ -359,7 +359,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             "curve.csv": "approach m, load N, mean_pressure Pa, central_gap m, wall_time_s s"
         },
         "law": problem.law.name(),
-        "solver": problem
+        "method": problem
             .adhesive()
             .then(|| settings.method.resolve(problem.law.as_ref(), controls[0]).name()),
         "adhesive_range": problem.adhesive().then_some(range),
@@ -369,15 +369,9 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         "max_step": max_step,
         "warnings": problem.warnings,
         "steps": cycle.len(),
-        "pull_off_force": summary.pull_off_force,
-        "pull_off_approach": summary.pull_off_approach,
-        "jump_in_approach": summary.jump_in_approach,
-        "jump_out_approach": summary.jump_out_approach,
-        "hysteresis_energy": summary.hysteresis_energy,
-        "converged": summary.all_converged,
         "wall_time_s": started.elapsed().as_secs_f64(),
     });
-    write_summary(&out, &case, &built, json)?;
+    write_summary(&out, &case, &built, results(json, &summary)?)?;
     if !args.no_png && cycle.len() > 1 {
         plot_cycle(&out.join("load_approach.png"), &cycle)?;
     }

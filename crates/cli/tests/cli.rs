@@ -506,7 +506,8 @@ fn adhesive_solve_reports_both_pressures() {
     assert_eq!(s["law"], "surface");
     assert!(s["load"].as_f64().unwrap() < 0.0, "adhesion pulls: {}", s["load"]);
     assert!(s["adhesive_load"].as_f64().unwrap() < 0.0);
-    assert!(s["iterations"].is_number() && s["inner_iterations"].is_number());
+    assert_eq!(s["iterations"]["kind"], "newton");
+    assert!(s["iterations"]["krylov"].is_number() && s["method"] == "newton");
     for f in [
         "pressure",
         "compressive_pressure",
@@ -708,12 +709,12 @@ fn auto_takes_newton_for_the_surface_law_under_approach_control() {
             .concat(),
         );
         assert!(o.status.success(), "{}", stderr(&o));
-        assert_eq!(json(&out.join("summary.json"))["solver"], "newton", "{name}");
+        assert_eq!(json(&out.join("summary.json"))["method"], "newton", "{name}");
     }
     let o = sweep_example("jkr-sphere", d.to_str().unwrap(), &["--approaches=-4e-9,-3e-9"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let summary = json(&d.join("summary.json"));
-    assert_eq!(summary["solver"], "newton");
+    assert_eq!(summary["method"], "newton");
     assert_eq!(summary["converged"], true);
     // ... and not where the user chose.
     let o = sweep_example(
@@ -722,7 +723,7 @@ fn auto_takes_newton_for_the_surface_law_under_approach_control() {
         &["--approaches=-4e-9", "--solver", "dual-loop"],
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(json(&d.join("chosen/summary.json"))["solver"], "dual-loop");
+    assert_eq!(json(&d.join("chosen/summary.json"))["method"], "dual-loop");
 }
 
 #[test]
@@ -859,7 +860,7 @@ fn the_wavy_jkr_example_pulls_off_at_johnsons_pressure() {
     let o = sweep_example("wavy-jkr", d.to_str().unwrap(), &[]);
     assert!(o.status.success(), "{}", stderr(&o));
     let s = json(&d.join("summary.json"));
-    assert_eq!(s["solver"], "newton");
+    assert_eq!(s["method"], "newton");
     assert_eq!(s["converged"], true);
     assert!((s["tabor_parameter"].as_f64().unwrap() - 3.0).abs() < 0.01, "{s}");
     let wave = &s["wave"];
@@ -975,7 +976,7 @@ fn auto_picks_the_librarys_method_for_every_built_in_example() {
         let out = d.join(name);
         let o = sweep_example(name, out.to_str().unwrap(), &extra);
         assert!(o.status.success(), "{name}: {}", stderr(&o));
-        let solver = json(&out.join("summary.json"))["solver"].clone();
+        let solver = json(&out.join("summary.json"))["method"].clone();
         assert_eq!(solver.as_str(), expected, "{name}");
     }
 }

@@ -82,6 +82,13 @@ impl std::fmt::Display for Method {
     }
 }
 
+/// Serialised by its name ([`Method::name`]).
+impl serde::Serialize for Method {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
 impl std::str::FromStr for Method {
     type Err = String;
 

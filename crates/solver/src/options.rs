@@ -1,7 +1,8 @@
 //! What is prescribed and how hard to try.
 
 /// The control of a normal contact problem.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Control {
     /// Mean pressure over the whole grid \[Pa\] (load control).
     MeanPressure(f64),

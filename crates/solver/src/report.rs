@@ -3,7 +3,7 @@
 use ndarray::ArrayView2;
 
 /// Why a solve stopped.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub enum Termination {
     /// The residual fell below the tolerance.
     Converged,
@@ -18,7 +18,7 @@ pub enum Termination {
 }
 
 /// Scalars of a contact solution and the history of the solve. SI units.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct ContactReport {
     /// Total normal force \[N\] (positive = compressive).
     pub load: f64,

@@ -9,7 +9,8 @@ use crate::options::Control;
 use crate::problem::ContactProblem;
 
 /// The direction of a sweep step.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Branch {
     /// Bodies moving together (approach or load increasing, central gap decreasing).
     Loading,
@@ -28,7 +29,7 @@ impl Branch {
 }
 
 /// One solved step of a sweep.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct SweepPoint {
     /// The control of this step.
     pub control: Control,
@@ -251,7 +252,7 @@ pub fn substeps(previous: Option<Control>, next: Control, max_step: Option<f64>)
 }
 
 /// What a load-approach cycle shows. Loads in N, approaches in m.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct CycleSummary {
     /// The most negative load on the unloading branch \[N\] (the pull-off force under
     /// displacement control; reported as a negative number), if there is a tensile load on an
@@ -272,13 +273,14 @@ pub struct CycleSummary {
     /// (trapezoidal rule) \[J\], >= 0 for a dissipative cycle; meaningful when the path returns to
     /// its start.
     pub hysteresis_energy: f64,
-    /// Whether every step converged.
+    /// Whether every step converged (`converged` when serialised).
+    #[serde(rename = "converged")]
     pub all_converged: bool,
 }
 
 /// What [`summarize`] needs of one step (so that a sweep read back from a file can be
 /// summarised too). SI units.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct CyclePoint {
     /// Approach \[m\].
     pub approach: f64,

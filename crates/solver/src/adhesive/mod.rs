@@ -72,8 +72,10 @@ impl AdhesiveState {
     }
 }
 
-/// What a method counted, in its own terms.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// What a method counted, in its own terms (serialised with its `kind`: `loop`, `descent`,
+/// `newton`).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Iterations {
     /// The dual loop and the accelerated loop.
     Loop {
@@ -166,7 +168,7 @@ impl Iterations {
 
 /// Scalars of an adhesive solution and the history of its solve. SI units; loads positive
 /// compressive.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct AdhesiveReport {
     /// Total normal force `sum (p_c + p_a) dA` \[N\].
     pub load: f64,
