@@ -4,12 +4,15 @@
 //! The pressure is split into a compressive part `p_c >= 0` (the contact constraint) and an
 //! adhesive part `p_a <= 0` (the law). Every method implements the trait `AdhesiveMethod` in a file
 //! of its own: the dual loops (`dual_loop`), the energy descent (`energy`) and Newton
-//! (`newton`), the last two over the gap problem that `energy` sets up. `solve` checks the input,
+//! (`newton`), the last two over the gap problem of `gap_problem`; Newton's linear solves
+//! are the GMRES of `krylov`. `solve` checks the input,
 //! resolves [`Method::Auto`], asks the method whether it can solve the problem, and runs it.
 
 mod anderson;
 mod dual_loop;
 mod energy;
+mod gap_problem;
+mod krylov;
 mod newton;
 
 use crate::error::{Result, SolverError, invalid};

@@ -26,7 +26,9 @@
 //! Convergence: the largest force imbalance of a cell times its compliance, over the law's
 //! range (the energy descent's measure), below the tolerance.
 
-use super::energy::{self, GradientSums, Point, Problem, Setup, on_wall};
+use super::energy;
+use super::gap_problem::{self, GradientSums, Point, Problem, Setup, on_wall};
+use super::krylov::{Gmres, LinearOperator};
 use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start};
 use crate::error::{Result, SolverError};
 use crate::options::Control;
@@ -69,7 +71,7 @@ const CHUNK: usize = 4096;
 const BACKTRACKS: usize = 3;
 
 /// `<a, b>` in chunks of [`CHUNK`] values added in order.
-fn dot(a: &Array2<f64>, b: &Array2<f64>) -> f64 {
+pub(super) fn dot(a: &Array2<f64>, b: &Array2<f64>) -> f64 {
     crate::sum::dot_chunks(
         a.as_slice().expect("layout"),
         b.as_slice().expect("layout"),
@@ -94,14 +96,8 @@ fn remove_moving_mean(out: &mut Array2<f64>, mask: &Array2<f64>) {
     }
 }
 
-/// The linearised balance at one point and GMRES's storage.
+/// The linearised balance at one point: its preconditioner and the law's perturbation.
 struct Linear {
-    /// Krylov basis.
-    basis: Vec<Array2<f64>>,
-    /// Hessenberg matrix by columns, Givens rotations and the rotated right-hand side.
-    hessenberg: Vec<Vec<f64>>,
-    rotations: Vec<(f64, f64)>,
-    rhs: Vec<f64>,
     /// Whether the preconditioner is the elastic one, `W S^-1 W / (1 + 1/dt)` with
     /// `W = sqrt(S_ii / D)`, rather than the diagonal `1 / (D (1 + 1/dt))`, `D` being the
     /// diagonal `S_ii + max(-dp/dg, 0)`, chosen at each Newton step from the law's stiffness
@@ -121,10 +117,6 @@ struct Linear {
     shift: Array2<f64>,
     /// The elastic stiffness's factor `1 + 1/dt`.
     elastic_factor: f64,
-    /// The solution `d` and scratch fields of the unknown's shape.
-    solution: Array2<f64>,
-    z: Array2<f64>,
-    w: Array2<f64>,
     /// The domain block's perturbed gap and the law's pressure there.
     perturbed: Array2<f64>,
     perturbed_law: Array2<f64>,
@@ -135,18 +127,11 @@ impl Linear {
         let zeros = || Array2::zeros(unknown);
         Linear {
             elastic: false,
-            basis: (0..=RESTART).map(|_| zeros()).collect(),
-            hessenberg: vec![vec![0.0; RESTART + 1]; RESTART],
-            rotations: vec![(1.0, 0.0); RESTART],
-            rhs: vec![0.0; RESTART + 1],
             inverse: zeros(),
             weight: zeros(),
             weighted: zeros(),
             shift: zeros(),
             elastic_factor: 1.0,
-            solution: zeros(),
-            z: zeros(),
-            w: zeros(),
             perturbed: Array2::zeros(block),
             perturbed_law: Array2::zeros(block),
         }
@@ -266,103 +251,22 @@ impl Linear {
         }
         Ok(())
     }
+}
 
-    /// Solves `A d = -r` (`r` = `x`'s projected gradient) to the relative residual `eta` by
-    /// restarted GMRES, into `self.solution`. Returns the Krylov iterations and whether they
-    /// reached `eta` (not stopped by [`MAX_KRYLOV`]).
-    fn solve(&mut self, problem: &mut Problem, x: &Point, eta: f64) -> Result<(usize, bool)> {
-        self.solution.fill(0.0);
-        let b_norm = dot(&x.gradient, &x.gradient).sqrt();
-        if b_norm == 0.0 {
-            return Ok((0, true));
-        }
-        let target = eta * b_norm;
-        // The residual `-r - A d` of the current solution, into the first basis vector.
-        self.basis[0].zip_mut_with(&x.gradient, |b, &r| *b = -r);
-        let mut beta = b_norm;
-        let mut iterations = 0;
-        loop {
-            self.basis[0].mapv_inplace(|b| b / beta);
-            self.rhs.fill(0.0);
-            self.rhs[0] = beta;
-            let mut used = 0;
-            let mut reached = beta;
-            for j in 0..RESTART {
-                let mut z = std::mem::take(&mut self.z);
-                let mut w = std::mem::take(&mut self.w);
-                let v = std::mem::take(&mut self.basis[j]);
-                self.precondition(problem, &v, &mut z)?;
-                self.basis[j] = v;
-                self.apply(problem, x, &z, &mut w)?;
-                for i in 0..=j {
-                    let h = dot(&w, &self.basis[i]);
-                    self.hessenberg[j][i] = h;
-                    w.zip_mut_with(&self.basis[i], |w, &v| *w -= h * v);
-                }
-                let h_next = dot(&w, &w).sqrt();
-                self.hessenberg[j][j + 1] = h_next;
-                if h_next > 0.0 {
-                    self.basis[j + 1].zip_mut_with(&w, |v, &w| *v = w / h_next);
-                }
-                (self.z, self.w) = (z, w);
-                // Rotate the new column by the earlier rotations, then zero its subdiagonal.
-                let column = &mut self.hessenberg[j];
-                for (i, &(c, s)) in self.rotations[..j].iter().enumerate() {
-                    let (a, b) = (column[i], column[i + 1]);
-                    (column[i], column[i + 1]) = (c * a + s * b, -s * a + c * b);
-                }
-                let (a, b) = (column[j], column[j + 1]);
-                let norm = a.hypot(b);
-                let (c, s) = if norm > 0.0 {
-                    (a / norm, b / norm)
-                } else {
-                    (1.0, 0.0)
-                };
-                self.rotations[j] = (c, s);
-                (column[j], column[j + 1]) = (norm, 0.0);
-                self.rhs[j + 1] = -s * self.rhs[j];
-                self.rhs[j] *= c;
-                iterations += 1;
-                used = j + 1;
-                reached = self.rhs[j + 1].abs();
-                if reached <= target || iterations >= MAX_KRYLOV || h_next == 0.0 {
-                    break;
-                }
-            }
-            // The least-squares coefficients, by back substitution; the correction is
-            // `M^-1` of their combination of the basis.
-            let mut y = vec![0.0; used];
-            for i in (0..used).rev() {
-                let tail: f64 = (i + 1..used).map(|k| self.hessenberg[k][i] * y[k]).sum();
-                y[i] = (self.rhs[i] - tail) / self.hessenberg[i][i];
-            }
-            let mut combination = std::mem::take(&mut self.w);
-            combination.fill(0.0);
-            for (v, &y) in self.basis.iter().zip(&y) {
-                combination.zip_mut_with(v, |c, &v| *c += y * v);
-            }
-            let mut z = std::mem::take(&mut self.z);
-            self.precondition(problem, &combination, &mut z)?;
-            self.solution += &z;
-            (self.z, self.w) = (z, combination);
-            if reached <= target || iterations >= MAX_KRYLOV {
-                return Ok((iterations, reached <= target));
-            }
-            // Restart from the true residual.
-            let mut w = std::mem::take(&mut self.w);
-            let solution = std::mem::take(&mut self.solution);
-            self.apply(problem, x, &solution, &mut w)?;
-            self.solution = solution;
-            Zip::from(&mut self.basis[0])
-                .and(&x.gradient)
-                .and(&w)
-                .par_for_each(|b, &r, &a| *b = -r - a);
-            self.w = w;
-            beta = dot(&self.basis[0], &self.basis[0]).sqrt();
-            if beta <= target {
-                return Ok((iterations, true));
-            }
-        }
+/// The linearised balance at `x` as GMRES sees it.
+struct Linearised<'a, 'p> {
+    linear: &'a mut Linear,
+    problem: &'a mut Problem<'p>,
+    x: &'a Point,
+}
+
+impl LinearOperator for Linearised<'_, '_> {
+    fn apply(&mut self, v: &Array2<f64>, out: &mut Array2<f64>) -> Result<()> {
+        self.linear.apply(self.problem, self.x, v, out)
+    }
+
+    fn precondition(&mut self, v: &Array2<f64>, out: &mut Array2<f64>) -> Result<()> {
+        self.linear.precondition(self.problem, v, out)
     }
 }
 
@@ -459,12 +363,13 @@ fn iterate(
         mut x,
         delta,
         load,
-    } = energy::setup(job, None)?;
+    } = gap_problem::setup(job, None)?;
     let unknown = x.gap.dim();
     let mut sums: GradientSums = problem.project_gradient(&mut x);
     let mut norm = dot(&x.gradient, &x.gradient).sqrt();
     let mut trial = Point::new(Array2::zeros(unknown));
     let mut linear = Linear::new(unknown, domain.shape());
+    let mut gmres = Gmres::new(unknown, RESTART, MAX_KRYLOV);
     let block = s![..problem.ny, ..problem.nx];
     let scale = job.residual_scale();
     let mut history = Vec::new();
@@ -495,14 +400,23 @@ fn iterate(
         // Eisenstat-Walker forcing: solve loosely while the residual falls slowly.
         let eta = (0.9 * last_ratio * last_ratio).clamp(1e-4, 0.1);
         linear.prepare(&problem, &x, dt);
-        let (iterations, solved) = linear.solve(&mut problem, &x, eta)?;
+        let rhs = x.gradient.mapv(|r| -r);
+        let (iterations, solved) = gmres.solve(
+            &mut Linearised {
+                linear: &mut linear,
+                problem: &mut problem,
+                x: &x,
+            },
+            &rhs,
+            eta,
+        )?;
         krylov += iterations;
         // Nor has it where its linearisation cannot be solved: at a jump on a large grid the
         // first attempt would otherwise spend its steps in capped Krylov solves.
         if give_up && !solved {
             break;
         }
-        let largest = linear
+        let largest = gmres
             .solution
             .slice(block)
             .iter()
@@ -513,7 +427,7 @@ fn iterate(
         let mut fraction = 1.0;
         let (mut trial_sums, mut trial_norm, mut first_norm) = (None, f64::NAN, f64::NAN);
         for cut in 0..=BACKTRACKS {
-            problem.step_and_project(&x.gap, &linear.solution, full * fraction, &mut trial.gap, None);
+            problem.step_and_project(&x.gap, &gmres.solution, full * fraction, &mut trial.gap, None);
             problem.evaluate(&mut trial)?;
             let sums = problem.project_gradient(&mut trial);
             trial_norm = dot(&trial.gradient, &trial.gradient).sqrt();
@@ -536,7 +450,7 @@ fn iterate(
             // smaller pseudo-time step.
             None if first_norm <= GROWTH * norm || dt <= MIN_DT => {
                 fraction = 1.0;
-                problem.step_and_project(&x.gap, &linear.solution, full, &mut trial.gap, None);
+                problem.step_and_project(&x.gap, &gmres.solution, full, &mut trial.gap, None);
                 problem.evaluate(&mut trial)?;
                 trial_norm = first_norm;
                 problem.project_gradient(&mut trial)
@@ -579,5 +493,12 @@ fn iterate(
         termination,
         started,
     };
-    Ok(energy::finish(job, &problem, x, &sums, (delta, load), outcome))
+    Ok(gap_problem::finish(
+        job,
+        &problem,
+        x,
+        &sums,
+        (delta, load),
+        outcome,
+    ))
 }

@@ -1,0 +1,661 @@
+//! The gap problem shared by the energy descent and Newton: the unknown (the gap, or the
+//! padded displacement on free domains), its constraints, and the law and stiffness evaluated
+//! at a point.
+//!
+//! With the approach `delta` given on a periodic domain the mean displacement is zero, so the
+//! mean gap is fixed, `mean(g) = mean(g0) - delta`, and the total energy per area is
+//! `E(g) = (1/2) <g - g0, S (g - g0)> / N + mean(V(g))` over `g >= 0` with that mean, `S` the
+//! periodic stiffness ([`elastic::PeriodicStiffness`]) and `V` the law's interaction energy.
+//! Its gradient `r = S (g - g0) - p(g)` \[Pa\] balances the mean-pressure multiplier where
+//! `g > 0` and is the contact pressure where `g = 0`. Under load control (mean pressure
+//! `p_m` given) the mean gap is free and the load's potential `p_m mean(g)` joins `E`.
+//!
+//! On a free domain (approach control only) the unknown is the surface displacement `U` of the
+//! padded `2nx` by `2ny` grid of the DC-FFT ([`elastic::FreeStiffness`]), with
+//! `E(U) = (1/2) <U, S U> / N + mean(V(g))` and `g = g0 - delta + U` on the domain's block (the
+//! first `(ny, nx)` cells), where the law acts and the wall stands: the gradient `S U - p(g)` is
+//! driven to the contact pressure there and to zero in the padding, where no pressure may act,
+//! so the block's displacement is the free one. No mean constraint: the projection is a clip.
+
+use super::{AdhesiveReport, AdhesiveState, Job, Outcome, Start, assemble, cells};
+use crate::error::{Result, SolverError, invalid};
+use crate::options::Control;
+use crate::state::ContactState;
+use elastic::{Domain, FreeStiffness, PeriodicStiffness};
+use ljadhesion::{AdhesionLaw, Cells, LocalPotential};
+use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip, s};
+use rayon::prelude::*;
+
+/// One admissible point and what the solver needs of it. Fields have the unknown's shape.
+pub(super) struct Point {
+    /// The unknown: the gap \[m\] on the domain's block, the displacement \[m\] in the padding.
+    pub(super) gap: Array2<f64>,
+    /// `S (gap - base)` \[Pa\]: the pressure that holds the surface's displacement.
+    pub(super) elastic: Array2<f64>,
+    /// `p(g)` \[Pa\].
+    pub(super) law: Array2<f64>,
+    /// `V''(g)`, or without a potential the law's probed stiffness `-dp/dg` [Pa/m].
+    pub(super) curvature: Array2<f64>,
+    /// The gradient `S (g - g0) - p(g)` \[Pa\], then projected ([`Problem::project_gradient`]).
+    pub(super) gradient: Array2<f64>,
+    /// Elastic energy, and interaction energy plus the load's potential `p_mean mean(g)`, per
+    /// area [J/m^2].
+    pub(super) energy: (f64, f64),
+    /// The gradient's sum over the cells off the wall, and their number.
+    free: (f64, f64),
+    /// The smallest gap \[m\] (on the domain's block).
+    pub(super) min_gap: f64,
+}
+
+impl Point {
+    pub(super) fn new(gap: Array2<f64>) -> Point {
+        let shape = gap.dim();
+        Point {
+            gap,
+            elastic: Array2::zeros(shape),
+            law: Array2::zeros(shape),
+            curvature: Array2::zeros(shape),
+            gradient: Array2::zeros(shape),
+            energy: (0.0, 0.0),
+            free: (0.0, 0.0),
+            min_gap: 0.0,
+        }
+    }
+
+    pub(super) fn total_energy(&self) -> f64 {
+        self.energy.0 + self.energy.1
+    }
+}
+
+/// What the solver needs of a projected gradient `rho`.
+pub(super) struct GradientSums {
+    /// The mean-pressure multiplier \[Pa\].
+    pub(super) lambda: f64,
+    /// `max |rho|` \[Pa\].
+    pub(super) max: f64,
+}
+
+/// The stiffness of the unknown's grid.
+pub(super) enum Stiffness {
+    Periodic(PeriodicStiffness),
+    Free(FreeStiffness),
+}
+
+impl Stiffness {
+    pub(super) fn apply(
+        &self,
+        u: ArrayView2<f64>,
+        p: ArrayViewMut2<f64>,
+        ws: &mut elastic::Workspace,
+    ) -> Result<()> {
+        match self {
+            Stiffness::Periodic(s) => s.apply(u, p, ws),
+            Stiffness::Free(s) => s.apply(u, p, ws),
+        }?;
+        Ok(())
+    }
+
+    /// The inverse: the displacement under the pressure `p` (zero mean, periodic).
+    pub(super) fn invert(
+        &self,
+        p: ArrayView2<f64>,
+        u: ArrayViewMut2<f64>,
+        ws: &mut elastic::Workspace,
+    ) -> Result<()> {
+        match self {
+            Stiffness::Periodic(s) => s.invert(p, u, ws),
+            Stiffness::Free(s) => s.invert(p, u, ws),
+        }?;
+        Ok(())
+    }
+}
+
+pub(super) struct Problem<'a> {
+    pub(super) stiffness: Stiffness,
+    pub(super) ws: elastic::Workspace,
+    /// The law's local potential: the energy is defined (descent); without one, only the
+    /// law's pressure field and a probed stiffness are evaluated (Newton).
+    potential: Option<&'a dyn LocalPotential>,
+    pub(super) law: &'a dyn AdhesionLaw,
+    pub(super) cells: Cells,
+    domain: Domain,
+    /// The block's gap shifted by a probe, and the law's pressure there (laws without a
+    /// potential; empty otherwise).
+    probe: (Array2<f64>, Array2<f64>),
+    /// The unknown less the surface displacement \[m\] (up to its mean, periodic): `g0` periodic;
+    /// `g0 - delta` on the domain's block and zero in the padding, free.
+    base: Array2<f64>,
+    /// Columns and rows of the unknown: `(nx, ny)` periodic, `(2nx, 2ny)` free.
+    pub(super) mx: usize,
+    pub(super) my: usize,
+    /// Columns and rows of the domain's block, where the unknown is the gap.
+    pub(super) nx: usize,
+    pub(super) ny: usize,
+    /// The prescribed mean gap \[m\] (periodic approach control; free domains have none).
+    pub(super) mean_gap: Option<f64>,
+    /// The prescribed mean pressure \[Pa\] (periodic load control: the mean gap is free).
+    load: Option<f64>,
+    scratch: Array2<f64>,
+    pub(super) calls: usize,
+    /// The stiffness's diagonal `S_ii` [Pa/m] (the same for every cell).
+    pub(super) diagonal: f64,
+}
+
+impl Problem<'_> {
+    /// Writes `max(from + step d + c, 0)` into `gap` (on the domain's block; no bound in the
+    /// padding), with the shift `c` that restores a prescribed mean gap (else 0), except on
+    /// cells of `from` on the wall that `d` leaves there, which stay: the projection of the
+    /// step onto the constraints within the current face. `c` comes from Newton on the
+    /// convex, piecewise-linear mean (exact after finitely many steps). Also leaves
+    /// `gap - base` in the scratch field, for [`Problem::evaluate`]. With `hold` (periodic),
+    /// cells of `from` with a gap at most `hold` \[m\] stay where they are and only the others
+    /// shift (a warm start's first guess).
+    pub(super) fn step_and_project(
+        &mut self,
+        from: &Array2<f64>,
+        d: &Array2<f64>,
+        step: f64,
+        gap: &mut Array2<f64>,
+        hold: Option<f64>,
+    ) {
+        let (mx, nx, ny, n) = (self.mx, self.nx, self.ny, (self.nx * self.ny) as f64);
+        let (fs, ds) = (from.as_slice().expect("layout"), d.as_slice().expect("layout"));
+        let mean_gap = self.mean_gap.unwrap_or(0.0);
+        // Holding every cell would leave nothing to restore the mean gap with.
+        let hold = hold.filter(|&h| self.mean_gap.is_some() && fs.iter().any(|&f| f > h));
+        // Cells on the wall that the direction does not lift stay on it: the shift restores
+        // the mean with the others. (Shifting them too, the exact Euclidean projection, lifts
+        // the whole contact set by a round-off gap whenever the shift is positive; their
+        // contact pressures then enter the next direction, which presses them back into the
+        // wall, and the step is cut again and again.)
+        let held = |f: f64, d: f64| hold.is_some_and(|h| f <= h) || (f <= 0.0 && d == 0.0);
+        let mut c = 0.0;
+        // A prescribed mean gap is periodic: the unknown is the gap everywhere.
+        for _ in 0..if self.mean_gap.is_some() { 100 } else { 0 } {
+            let [sum, free] = crate::sum::ordered(self.ny, |j| {
+                let (f, d) = (&fs[j * nx..][..nx], &ds[j * nx..][..nx]);
+                f.iter().zip(d).fold([0.0, 0.0], |[s, k], (&f, &d)| {
+                    let v = f + step * d + c;
+                    if held(f, d) {
+                        [s + f, k]
+                    } else if v > 0.0 {
+                        [s + v, k + 1.0]
+                    } else {
+                        [s, k]
+                    }
+                })
+            });
+            if free == 0.0 {
+                // Everything below the wall: lift the highest cell to the mean gap.
+                let top = fs
+                    .iter()
+                    .zip(ds)
+                    .fold(f64::NEG_INFINITY, |m, (&f, &d)| m.max(f + step * d));
+                c = mean_gap - top;
+                continue;
+            }
+            let excess = sum / n - mean_gap;
+            if excess.abs() <= 1e-15 * mean_gap {
+                break;
+            }
+            c -= excess * n / free;
+        }
+        let bs = self.base.as_slice().expect("layout");
+        gap.as_slice_mut()
+            .expect("layout")
+            .par_chunks_mut(mx)
+            .zip(self.scratch.as_slice_mut().expect("layout").par_chunks_mut(mx))
+            .enumerate()
+            .for_each(|(j, (gr, ur))| {
+                for i in 0..mx {
+                    let k = j * mx + i;
+                    let (f, inside) = (fs[k], j < ny && i < nx);
+                    gr[i] = if !inside {
+                        f + step * ds[k]
+                    } else if held(f, ds[k]) {
+                        f
+                    } else {
+                        (f + step * ds[k] + c).max(0.0)
+                    };
+                    ur[i] = gr[i] - bs[k];
+                }
+            });
+    }
+
+    /// Fills `at`'s fields, energy and raw gradient from its admissible gap, just made by
+    /// [`Problem::step_and_project`].
+    pub(super) fn evaluate(&mut self, at: &mut Point) -> Result<()> {
+        let (mx, nx, ny) = (self.mx, self.nx, self.ny);
+        self.stiffness
+            .apply(self.scratch.view(), at.elastic.view_mut(), &mut self.ws)?;
+        self.calls += 1;
+        let potential = self.potential;
+        if potential.is_none() {
+            self.law_on_block(at)?;
+        }
+        let load = self.load.unwrap_or(0.0);
+        let gs = at.gap.as_slice().expect("layout");
+        let ds = self.scratch.as_slice().expect("layout");
+        let es = at.elastic.as_slice().expect("layout");
+        let sums: Vec<[f64; 6]> = at
+            .law
+            .as_slice_mut()
+            .expect("layout")
+            .par_chunks_mut(mx)
+            .zip(at.curvature.as_slice_mut().expect("layout").par_chunks_mut(mx))
+            .zip(at.gradient.as_slice_mut().expect("layout").par_chunks_mut(mx))
+            .enumerate()
+            .map(|(j, ((lr, cr), rr))| {
+                // Elastic energy, interaction energy and the load's potential, free gradient
+                // and count, non-finite gaps, smallest gap.
+                let mut sums = [0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY];
+                for i in 0..mx {
+                    let k = j * mx + i;
+                    let g = gs[k];
+                    sums[0] += ds[k] * es[k];
+                    if !g.is_finite() {
+                        sums[4] += 1.0;
+                    }
+                    if j >= ny || i >= nx {
+                        // The padding: elasticity alone.
+                        (lr[i], cr[i], rr[i]) = (0.0, 0.0, es[k]);
+                        continue;
+                    }
+                    let (v, p, c) = match potential {
+                        Some(potential) => potential.evaluate(g),
+                        None => (0.0, lr[i], cr[i]),
+                    };
+                    (lr[i], cr[i]) = (p, c);
+                    rr[i] = es[k] - p + load;
+                    sums[1] += v + load * g;
+                    sums[5] = sums[5].min(g);
+                    if g > 0.0 {
+                        sums[2] += rr[i];
+                        sums[3] += 1.0;
+                    }
+                }
+                sums
+            })
+            .collect();
+        let t = sums
+            .iter()
+            .fold([0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY], |mut a, b| {
+                a.iter_mut().take(5).zip(b).for_each(|(a, b)| *a += b);
+                a[5] = a[5].min(b[5]);
+                a
+            });
+        if t[4] > 0.0 {
+            let k = gs.iter().position(|g| !g.is_finite()).unwrap_or(0);
+            return Err(SolverError::NonFinite {
+                what: "gap",
+                row: k / mx,
+                col: k % mx,
+                value: gs[k],
+            });
+        }
+        let n = (self.nx * self.ny) as f64;
+        at.energy = (0.5 * t[0] / n, t[1] / n);
+        at.free = (t[2], t[3]);
+        at.min_gap = t[5];
+        Ok(())
+    }
+
+    /// Writes the law's pressure at `at`'s gaps on the domain's block into `at.law`, and its
+    /// stiffness `-dp/dg` [Pa/m] there, from a probe at gaps larger by a thousandth of the
+    /// range, into `at.curvature`: a law without a local potential may depend on the
+    /// neighbours' gaps (the surface law), so the field is evaluated as a whole.
+    fn law_on_block(&mut self, at: &mut Point) -> Result<()> {
+        let block = s![..self.ny, ..self.nx];
+        let gap = at.gap.slice(block);
+        self.law
+            .pressure_field(gap, &self.cells, at.law.slice_mut(block))?;
+        let probe = 1e-3 * self.law.range();
+        let (shifted, shifted_law) = &mut self.probe;
+        Zip::from(&mut *shifted)
+            .and(&gap)
+            .par_for_each(|s, &g| *s = g + probe);
+        self.law
+            .pressure_field(shifted.view(), &self.cells, shifted_law.view_mut())?;
+        Zip::from(at.curvature.slice_mut(block))
+            .and(&at.law.slice(block))
+            .and(&*shifted_law)
+            .par_for_each(|c, &lo, &hi| *c = (lo - hi) / probe);
+        Ok(())
+    }
+
+    /// Projects `at`'s raw gradient in place: less the mean-pressure multiplier (its mean over
+    /// the cells off the wall), zero where a cell on the wall is pushed into it (that is its
+    /// contact pressure), and with zero mean over the cells that move, so that the mean gap
+    /// stays (the multiplier and the mean only where the mean gap is prescribed).
+    pub(super) fn project_gradient(&self, at: &mut Point) -> GradientSums {
+        let (mx, nx, ny) = (self.mx, self.nx, self.ny);
+        let lambda = if self.mean_gap.is_some() && at.free.1 > 0.0 {
+            at.free.0 / at.free.1
+        } else {
+            0.0
+        };
+        let gs = at.gap.as_slice().expect("layout");
+        let [sum, moving] = {
+            let rs = at.gradient.as_slice_mut().expect("layout");
+            let parts: Vec<[f64; 2]> = rs
+                .par_chunks_mut(mx)
+                .enumerate()
+                .map(|(j, row)| {
+                    let mut sums = [0.0; 2];
+                    for (i, (r, &g)) in row.iter_mut().zip(&gs[j * mx..][..mx]).enumerate() {
+                        let v = *r - lambda;
+                        *r = if on_wall(j, i, g, nx, ny) && v >= 0.0 {
+                            0.0
+                        } else {
+                            v
+                        };
+                        if *r != 0.0 {
+                            sums[0] += *r;
+                            sums[1] += 1.0;
+                        }
+                    }
+                    sums
+                })
+                .collect();
+            parts.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
+        };
+        let shift = if self.mean_gap.is_some() && moving > 0.0 {
+            sum / moving
+        } else {
+            0.0
+        };
+        let max = at
+            .gradient
+            .as_slice_mut()
+            .expect("layout")
+            .par_iter_mut()
+            .map(|r| {
+                if *r != 0.0 {
+                    *r -= shift;
+                }
+                r.abs()
+            })
+            .reduce(|| 0.0, f64::max);
+        GradientSums { lambda, max }
+    }
+
+    /// Writes the preconditioned gradient `z = (r - mu) / m` into `out`, with `m = S_ii +
+    /// max(V'', 0)` the curvature's diagonal (the Lennard-Jones tail just above the wall is
+    /// many times stiffer than a cell), `r` `at`'s projected gradient and `mu` the weighted mean
+    /// that keeps the moving cells' sum at zero when the mean gap is prescribed. Returns
+    /// `<z, r>` and `<z, old>`.
+    pub(super) fn precondition(&self, at: &Point, old: &Array2<f64>, out: &mut Array2<f64>) -> [f64; 2] {
+        let (mx, nx, ny, s0) = (self.mx, self.nx, self.ny, self.diagonal);
+        let rs = at.gradient.as_slice().expect("layout");
+        let cs = at.curvature.as_slice().expect("layout");
+        let weight = |j: usize, i: usize, k: usize| {
+            if j < ny && i < nx {
+                1.0 / (s0 + cs[k].max(0.0))
+            } else {
+                1.0 / s0
+            }
+        };
+        let mu = if self.mean_gap.is_some() {
+            let [a, b] = crate::sum::ordered(self.my, |j| {
+                let mut sums = [0.0; 2];
+                for i in 0..mx {
+                    let k = j * mx + i;
+                    if rs[k] != 0.0 {
+                        let w = weight(j, i, k);
+                        sums[0] += w * rs[k];
+                        sums[1] += w;
+                    }
+                }
+                sums
+            });
+            if b > 0.0 { a / b } else { 0.0 }
+        } else {
+            0.0
+        };
+        let os = old.as_slice().expect("layout");
+        let parts: Vec<[f64; 2]> = out
+            .as_slice_mut()
+            .expect("layout")
+            .par_chunks_mut(mx)
+            .enumerate()
+            .map(|(j, zr)| {
+                let mut sums = [0.0; 2];
+                for (i, z) in zr.iter_mut().enumerate() {
+                    let k = j * mx + i;
+                    *z = if rs[k] != 0.0 {
+                        (rs[k] - mu) * weight(j, i, k)
+                    } else {
+                        0.0
+                    };
+                    sums[0] += *z * rs[k];
+                    sums[1] += *z * os[k];
+                }
+                sums
+            })
+            .collect();
+        parts.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
+    }
+}
+
+/// Whether cell `(j, i)` of the unknown, at `g`, is on the wall: the unknown is the gap (the
+/// domain's `(ny, nx)` block) and it is closed.
+pub(super) fn on_wall(j: usize, i: usize, g: f64, nx: usize, ny: usize) -> bool {
+    g <= 0.0 && j < ny && i < nx
+}
+
+/// A problem over the gap, set up from a solve's arguments, at its first admissible point.
+pub(super) struct Setup<'a> {
+    pub(super) problem: Problem<'a>,
+    /// The first admissible point, evaluated (its gradient not yet projected).
+    pub(super) x: Point,
+    /// The approach \[m\] (approach control; else 0).
+    pub(super) delta: f64,
+    /// The mean pressure \[Pa\] (load control; else `None`).
+    pub(super) load: Option<f64>,
+}
+
+/// Sets up the problem over the gap (or the padded displacement, free) under approach control
+/// (`Control::Approach`) or, periodic only, load control (`Control::Force`,
+/// `Control::MeanPressure`), with the law's `potential` if it has one; see the module docs.
+pub(super) fn setup<'a>(job: &Job<'a>, potential: Option<&'a dyn LocalPotential>) -> Result<Setup<'a>> {
+    let (op, law, g0, settings) = (job.op, job.law, job.g0, job.settings);
+    let (control, start) = (job.control, job.start);
+    let domain = *op.domain();
+    let shape = domain.shape();
+    let (ny, nx) = shape;
+    if let Some(((row, col), &value)) = g0.indexed_iter().find(|(_, v)| !v.is_finite()) {
+        return Err(SolverError::NonFinite {
+            what: "initial gap",
+            row,
+            col,
+            value,
+        });
+    }
+    let n = (nx * ny) as f64;
+    let probe_shape = || Array2::zeros(if potential.is_some() { (0, 0) } else { shape });
+    let cells = cells(&domain);
+    let (delta, load) = match control {
+        Control::Approach(d) => (d, None),
+        Control::MeanPressure(p) => (0.0, Some(p)),
+        Control::Force(w) => (0.0, Some(w / (n * domain.cell_area()))),
+        Control::CentralGap(_) => unreachable!("refused by the caller"),
+    };
+    let mean_gap = g0.mean().unwrap_or(0.0) - delta;
+    if domain.periodic && load.is_none() && mean_gap <= 0.0 {
+        return Err(invalid(
+            "approach",
+            delta,
+            "reaches the mean initial gap: a periodic surface is in full contact before that",
+        ));
+    }
+    let (mut problem, first, hold) = if domain.periodic {
+        let stiffness = PeriodicStiffness::new(domain, op.e_star())?;
+        let first = match start {
+            // Under load control the rigid shift has no elastic stiffness, and a first step
+            // from a point contact would snap far more of the surface in than a quasi-static
+            // approach does: start from the non-adhesive contact at the same (compressive)
+            // load instead.
+            Start::Loading => match load {
+                Some(p) if p > 0.0 => {
+                    crate::cg::solve(op, g0, Control::MeanPressure(p), &settings.contact, None, &mut ())?
+                        .0
+                        .gap
+                }
+                _ => g0.mapv(|g| g - delta),
+            },
+            Start::Unloading => Array2::zeros(shape),
+            Start::Warm(s) => s.contact.gap.clone(),
+        };
+        let problem = Problem {
+            ws: stiffness.make_workspace(),
+            stiffness: Stiffness::Periodic(stiffness),
+            potential,
+            law,
+            cells,
+            domain,
+            probe: (probe_shape(), probe_shape()),
+            base: g0.to_owned(),
+            mx: nx,
+            my: ny,
+            nx,
+            ny,
+            mean_gap: load.is_none().then_some(mean_gap),
+            load,
+            scratch: Array2::zeros(shape),
+            calls: 0,
+            diagonal: 0.0,
+        };
+        // A warm start keeps its attached cells (gap within the law's range) in place and
+        // moves only the rest: a uniform shift would tear the attached rim off at once (or
+        // press cells into attraction on loading), and the descent would settle in that
+        // state's basin rather than follow the branch; from the held guess the descent itself
+        // decides what peels off.
+        let hold = matches!(start, Start::Warm(_)).then(|| law.range());
+        (problem, first, hold)
+    } else {
+        let stiffness = FreeStiffness::new(domain, op.e_star())?;
+        let padded = stiffness.padded_shape();
+        let mut ws = stiffness.make_workspace();
+        let mut base = Array2::zeros(padded);
+        base.slice_mut(s![..ny, ..nx]).assign(&g0.mapv(|g| g - delta));
+        // The first guess: the base (no displacement) from scratch; a warm start keeps the old
+        // displacement, with its attached cells held at their old gaps (as on periodic grids).
+        let mut first = Array2::zeros(padded);
+        match start {
+            Start::Loading => first.assign(&base),
+            Start::Unloading => {}
+            Start::Warm(s) => {
+                let total = &s.contact.pressure + &s.adhesive_pressure;
+                stiffness.displacement(total.view(), first.view_mut(), &mut ws)?;
+                first += &base;
+                let range = law.range();
+                Zip::from(first.slice_mut(s![..ny, ..nx]))
+                    .and(&s.contact.gap)
+                    .for_each(|f, &old| {
+                        if old <= range {
+                            *f = old;
+                        }
+                    });
+            }
+        }
+        let problem = Problem {
+            ws,
+            stiffness: Stiffness::Free(stiffness),
+            potential,
+            law,
+            cells,
+            domain,
+            probe: (probe_shape(), probe_shape()),
+            base,
+            mx: padded.1,
+            my: padded.0,
+            nx,
+            ny,
+            mean_gap: None,
+            load: None,
+            scratch: Array2::zeros(padded),
+            calls: 0,
+            diagonal: 0.0,
+        };
+        (problem, first, None)
+    };
+    let unknown = first.dim();
+    {
+        // The stiffness is a convolution: its diagonal is the response to a unit impulse.
+        let mut impulse = Array2::zeros(unknown);
+        impulse[(0, 0)] = 1.0;
+        let mut response = Array2::zeros(unknown);
+        problem
+            .stiffness
+            .apply(impulse.view(), response.view_mut(), &mut problem.ws)?;
+        problem.diagonal = response[(0, 0)];
+        problem.calls += 1;
+    }
+    let mut x = Point::new(Array2::zeros(unknown));
+    problem.step_and_project(&first, &first, 0.0, &mut x.gap, hold);
+    drop(first);
+    problem.evaluate(&mut x)?;
+    Ok(Setup {
+        problem,
+        x,
+        delta,
+        load,
+    })
+}
+
+/// The state and report at the solution `x`, whose gradient `sums` describe (see [`setup`]
+/// for `delta` and `load`); `outcome`'s operator calls are replaced by the problem's count.
+pub(super) fn finish(
+    job: &Job,
+    problem: &Problem,
+    x: Point,
+    sums: &GradientSums,
+    (delta, load): (f64, Option<f64>),
+    mut outcome: Outcome,
+) -> (AdhesiveState, AdhesiveReport) {
+    let g0 = job.g0;
+    let domain = problem.domain;
+    let shape = domain.shape();
+    let (ny, nx) = shape;
+    // The mean pressure: prescribed, or minus the multiplier of the mean gap (free: none).
+    let mean_pressure = load.unwrap_or(-sums.lambda);
+    let block = s![..ny, ..nx];
+    let (gap, elastic, law_pressure) = if domain.periodic {
+        (x.gap, x.elastic, x.law)
+    } else {
+        let take = |a: &Array2<f64>| a.slice(block).to_owned();
+        (take(&x.gap), take(&x.elastic), take(&x.law))
+    };
+    // Contact pressure where the gap is closed: the gradient's elastic and adhesive part plus
+    // the mean pressure.
+    let mut pressure = Array2::zeros(shape);
+    Zip::from(&mut pressure)
+        .and(&gap)
+        .and(&elastic)
+        .and(&law_pressure)
+        .par_for_each(|p, &g, &e, &l| {
+            *p = if g <= 0.0 {
+                (e - l + mean_pressure).max(0.0)
+            } else {
+                0.0
+            }
+        });
+    // Periodic: the mean displacement is zero. Free: the base is `g0 - delta`.
+    let mut displacement = &gap - &problem.base.slice(block);
+    if domain.periodic {
+        let mean = displacement.mean().unwrap_or(0.0);
+        displacement.mapv_inplace(|u| u - mean);
+    }
+    let approach = match load {
+        None => delta,
+        Some(_) => g0.mean().unwrap_or(0.0) - gap.mean().unwrap_or(0.0),
+    };
+    let contact = ContactState {
+        pressure,
+        gap,
+        displacement,
+        approach,
+    };
+    outcome.operator_calls = problem.calls;
+    assemble(job, contact, law_pressure, outcome)
+}
