@@ -2,7 +2,7 @@
 //! markers with error bars) on linear or logarithmic axes, and a colour [`map`], each written
 //! as PNG and SVG, in the command line's plotting module's font and colours (shared as source).
 
-use crate::plot::{ensure_font, length_unit, viridis};
+use crate::plot::{colour_bar, ensure_font, length_unit, viridis};
 use anyhow::{Context, Result, anyhow};
 use ndarray::ArrayView2;
 use plotters::coord::Shift;
@@ -400,31 +400,7 @@ fn draw_map<DB: DrawingBackend>(
             Rectangle::new([(x, y), (x + dx, y + dy)], viridis((v - lo) / span).filled())
         }))
         .map_err(draw_err)?;
-    let mut cb = ChartBuilder::on(&bar)
-        .margin_top(45)
-        .margin_bottom(65)
-        .margin_right(10)
-        .y_label_area_size(80)
-        .build_cartesian_2d(0.0..1.0, lo * vf..(lo + span) * vf)
-        .map_err(draw_err)?;
-    cb.configure_mesh()
-        .disable_mesh()
-        .disable_x_axis()
-        .y_desc(format!("{value_label} ({vu})"))
-        .label_style(("sans-serif", 15))
-        .axis_desc_style(("sans-serif", 17))
-        .draw()
-        .map_err(draw_err)?;
-    let steps = 128;
-    cb.draw_series((0..steps).map(|k| {
-        let a = lo + span * k as f64 / steps as f64;
-        let b = lo + span * (k + 1) as f64 / steps as f64;
-        Rectangle::new(
-            [(0.0, a * vf), (1.0, b * vf)],
-            viridis((k as f64 + 0.5) / steps as f64).filled(),
-        )
-    }))
-    .map_err(draw_err)?;
+    colour_bar(&bar, (lo, span), value_label, (vf, vu))?;
     root.present().map_err(draw_err)?;
     Ok(())
 }

@@ -120,21 +120,37 @@ pub fn field_map(
                 .map_err(err(path))?;
         }
     }
-    let mut cb = ChartBuilder::on(&bar)
-        .margin_top(40)
-        .margin_bottom(50)
+    colour_bar(&bar, (lo, span), value_label, (vf, vu))
+        .with_context(|| format!("drawing {}", path.display()))?;
+    root.present()
+        .with_context(|| format!("writing {}", path.display()))?;
+    Ok(())
+}
+
+/// The colour bar of a map whose values run from `lo` to `lo + span`, on `area`: viridis,
+/// labelled `value_label (vu)` with the values times `vf`. One bar for every map drawn.
+pub fn colour_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    (lo, span): (f64, f64),
+    value_label: &str,
+    (vf, vu): (f64, &str),
+) -> Result<()> {
+    let mut cb = ChartBuilder::on(area)
+        .margin_top(45)
+        .margin_bottom(65)
         .margin_right(10)
-        .y_label_area_size(70)
+        .y_label_area_size(80)
         .build_cartesian_2d(0.0..1.0, lo * vf..(lo + span) * vf)
-        .map_err(err(path))?;
+        .map_err(|e| anyhow!("{e:?}"))?;
     cb.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
         .y_desc(format!("{value_label} ({vu})"))
-        .label_style(("sans-serif", 13))
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 17))
         .draw()
-        .map_err(err(path))?;
-    let steps = 256;
+        .map_err(|e| anyhow!("{e:?}"))?;
+    let steps = 128;
     cb.draw_series((0..steps).map(|k| {
         let a = lo + span * k as f64 / steps as f64;
         let b = lo + span * (k + 1) as f64 / steps as f64;
@@ -143,9 +159,7 @@ pub fn field_map(
             viridis((k as f64 + 0.5) / steps as f64).filled(),
         )
     }))
-    .map_err(err(path))?;
-    root.present()
-        .with_context(|| format!("writing {}", path.display()))?;
+    .map_err(|e| anyhow!("{e:?}"))?;
     Ok(())
 }
 

@@ -18,16 +18,7 @@ fn dmt_limit_pull_off_is_two_pi_r_w0() {
         // Into contact, then out in fine steps through the minimum of the load.
         let mut path = approaches([-2.0, -1.0, 0.0, 0.3].into_iter());
         path.extend(approaches((0..=30).map(|k| 0.3 - 0.02 * k as f64)));
-        let points = common::problem(&op, &law, g0.view())
-            .sweep(
-                &path,
-                None,
-                &Settings::with_method(Method::Accelerated),
-                None,
-                &mut (),
-            )
-            .unwrap();
-        let summary = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
+        let (_, summary) = accelerated_cycle(&op, &law, &g0, &path);
         assert!(summary.all_converged);
         let pull_off = summary.pull_off_force.unwrap() / (2.0 * PI * R * w0);
         println!("mu = 0.1: pull-off = {pull_off:.5} (2 pi R w0)");
@@ -44,16 +35,7 @@ fn jkr_side_cycle_jumps_and_pull_off_near_maugis() {
         let (op, g0, law, w0) = sphere_case(mu, 128, 100.0);
         let mut path = approaches((0..=5).map(|k| -5.0 + k as f64));
         path.extend(approaches((1..=10).map(|k| 0.0 - 0.5 * k as f64)));
-        let points = common::problem(&op, &law, g0.view())
-            .sweep(
-                &path,
-                None,
-                &Settings::with_method(Method::Accelerated),
-                None,
-                &mut (),
-            )
-            .unwrap();
-        let summary = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
+        let (points, summary) = accelerated_cycle(&op, &law, &g0, &path);
         for p in &points {
             println!(
                 "{:9} a/z0 {:6.2} W/(pi R w0) {:8.4} area {:.4} outer {} inner {}",

@@ -219,3 +219,27 @@ pub fn challenge(n: usize) -> (Periodic, Array2<f64>, ExponentialLaw) {
     );
     (op, g0, ExponentialLaw::new(0.05, 2.071e-9).unwrap())
 }
+
+/// The cycle of `path` by the accelerated loop, and what it shows.
+pub fn accelerated_cycle<O, L>(
+    op: &O,
+    law: &L,
+    g0: &Array2<f64>,
+    path: &[Control],
+) -> (Vec<SweepPoint>, solver::CycleSummary)
+where
+    O: Compliance + Clone + 'static,
+    L: AdhesionLaw + Clone + 'static,
+{
+    let points = problem(op, law, g0.view())
+        .sweep(
+            path,
+            None,
+            &Settings::with_method(Method::Accelerated),
+            None,
+            &mut (),
+        )
+        .unwrap();
+    let summary = solver::summarize(&points.iter().map(solver::CyclePoint::from).collect::<Vec<_>>());
+    (points, summary)
+}
