@@ -97,16 +97,6 @@ impl ContactProblem {
         Ok(problem)
     }
 
-    /// The same problem under another law.
-    pub fn with_law(&self, law: impl AdhesionLaw + 'static) -> ContactProblem {
-        let mut problem = ContactProblem {
-            law: Arc::new(law),
-            ..self.clone()
-        };
-        problem.warnings = problem.check();
-        problem
-    }
-
     /// The grid.
     pub fn domain(&self) -> Domain {
         *self.operator.domain()
