@@ -115,20 +115,12 @@ fn energy_descent_on_a_free_sphere_agrees_with_the_accelerated_loop() {
             (cycle(Method::EnergyDescent), cycle(Method::Accelerated));
         println!("energy descent: equations met to {energy_error:e} of the range");
         assert!(energy_error < 1e-5);
-        for (e, a) in energy.iter().zip(&accelerated) {
-            println!(
-                "a/z0 {:5.2} W/(pi R w0): energy {:9.6} ({} its), accelerated {:9.6}; area {:.4}",
-                e.report.approach / Z0,
-                e.report.load / (PI * R * w0),
-                common::inner(&e.report.iterations),
-                a.report.load / (PI * R * w0),
-                e.report.contact_area_fraction
-            );
-            assert!(e.report.converged() && a.report.converged());
-            assert!(matches!(e.report.iterations, Iterations::Descent { .. }));
-            assert!((e.report.load - a.report.load).abs() < 1e-4 * PI * R * w0);
-            assert_eq!(e.report.contact_area_fraction, a.report.contact_area_fraction);
-        }
+        assert_same_cycle(&energy, &accelerated, PI * R * w0, 1e-4);
+        assert!(
+            energy
+                .iter()
+                .all(|e| matches!(e.report.iterations, Iterations::Descent { .. }))
+        );
         // Contact, and a jump: the cycle is not trivially out of contact.
         assert!(energy[3].report.contact_area_fraction > 0.3);
         assert!(energy[0].report.contact_area_fraction == 0.0);
@@ -159,20 +151,7 @@ fn newton_and_the_energy_descent_agree_on_a_free_sphere() {
             let ((newton, newton_error), (energy, _)) = (cycle(Method::Newton), cycle(Method::EnergyDescent));
             println!("mu = {mu}: Newton meets the equations to {newton_error:e} of the range");
             assert!(newton_error < 1e-7);
-            for (n, e) in newton.iter().zip(&energy) {
-                println!(
-                    "a/z0 {:5.2} W/(pi R w0): Newton {:9.6} ({} steps, {} Krylov), energy {:9.6}; area {:.4}",
-                    n.report.approach / Z0,
-                    n.report.load / (PI * R * w0),
-                    n.report.iterations.count(),
-                    common::inner(&n.report.iterations),
-                    e.report.load / (PI * R * w0),
-                    n.report.contact_area_fraction
-                );
-                assert!(n.report.converged() && e.report.converged());
-                assert!((n.report.load - e.report.load).abs() < 1e-4 * PI * R * w0);
-                assert_eq!(n.report.contact_area_fraction, e.report.contact_area_fraction);
-            }
+            assert_same_cycle(&newton, &energy, PI * R * w0, 1e-4);
             assert!(newton[3].report.contact_area_fraction > 0.15);
             assert!(newton[0].report.contact_area_fraction == 0.0);
         }

@@ -243,3 +243,26 @@ where
     let summary = solver::summarize(&points.iter().map(solver::CyclePoint::from).collect::<Vec<_>>());
     (points, summary)
 }
+
+/// Two methods' sweeps of one path agree: every step converged, loads within `tolerance`
+/// times `load_unit` [N], the same contact area.
+pub fn assert_same_cycle(a: &[SweepPoint], b: &[SweepPoint], load_unit: f64, tolerance: f64) {
+    assert_eq!(a.len(), b.len());
+    for (a, b) in a.iter().zip(b) {
+        let (ra, rb) = (&a.report, &b.report);
+        println!(
+            "a/z0 {:5.2}: load {:9.6} ({}, {:?}) against {:9.6} ({}, {:?}); area {:.4}",
+            ra.approach / Z0,
+            ra.load / load_unit,
+            ra.method,
+            ra.iterations,
+            rb.load / load_unit,
+            rb.method,
+            rb.iterations,
+            ra.contact_area_fraction
+        );
+        assert!(ra.converged() && rb.converged());
+        assert!((ra.load - rb.load).abs() < tolerance * load_unit);
+        assert_eq!(ra.contact_area_fraction, rb.contact_area_fraction);
+    }
+}
