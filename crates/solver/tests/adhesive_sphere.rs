@@ -36,17 +36,7 @@ fn jkr_side_cycle_jumps_and_pull_off_near_maugis() {
         let mut path = approaches((0..=5).map(|k| -5.0 + k as f64));
         path.extend(approaches((1..=10).map(|k| 0.0 - 0.5 * k as f64)));
         let (points, summary) = accelerated_cycle(&op, &law, &g0, &path);
-        for p in &points {
-            println!(
-                "{:9} a/z0 {:6.2} W/(pi R w0) {:8.4} area {:.4} outer {} inner {}",
-                p.branch.name(),
-                p.report.approach / Z0,
-                p.report.load / (PI * R * w0),
-                p.report.contact_area_fraction,
-                p.report.iterations.count(),
-                common::inner(&p.report.iterations)
-            );
-        }
+        print_cycle(&points, PI * R * w0);
         assert!(summary.all_converged);
         // Out of contact far away, a jump into contact on the way in, out again at the end.
         assert_eq!(points[0].report.contact_area_fraction, 0.0);
@@ -195,16 +185,7 @@ fn a_high_tabor_sphere_converges_at_every_step_with_the_energy_descent() {
         path.extend(approaches((1..=26).map(|k| 22.0 - 2.5 * k as f64)));
         let (points, w0, worst) = high_tabor_cycle(64, 200.0, &path);
         let summary = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
-        for p in &points {
-            println!(
-                "{:9} a/z0 {:6.2} W/(pi R w0) {:8.4} area {:.4} its {}",
-                p.branch.name(),
-                p.report.approach / Z0,
-                p.report.load / (PI * R * w0),
-                p.report.contact_area_fraction,
-                common::inner(&p.report.iterations)
-            );
-        }
+        print_cycle(&points, PI * R * w0);
         let iterations: usize = points.iter().map(|p| common::inner(&p.report.iterations)).sum();
         println!("equations met to {worst:e} of the range in {iterations} iterations");
         assert!(summary.all_converged);
@@ -235,16 +216,8 @@ fn newton_converges_at_every_step_of_a_high_tabor_surface_law_cycle() {
             ..Settings::with_method(Method::Accelerated)
         };
         let (points, worst) = checked_sweep(&op, &law, &g0, &path, &options);
+        print_cycle(&points, PI * R * w0);
         for p in &points {
-            println!(
-                "{:9} a/z0 {:5.2} W/(pi R w0) {:9.6} area {:.4}: {} steps, {} Krylov",
-                p.branch.name(),
-                p.report.approach / Z0,
-                p.report.load / (PI * R * w0),
-                p.report.contact_area_fraction,
-                p.report.iterations.count(),
-                common::inner(&p.report.iterations)
-            );
             assert!(p.report.converged());
             assert!(p.report.contact_area_fraction > 0.05);
         }

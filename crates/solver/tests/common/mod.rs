@@ -266,3 +266,18 @@ pub fn assert_same_cycle(a: &[SweepPoint], b: &[SweepPoint], load_unit: f64, tol
         assert_eq!(ra.contact_area_fraction, rb.contact_area_fraction);
     }
 }
+
+/// Prints a sweep, a line a step, loads in units of `load_unit` [N].
+pub fn print_cycle(points: &[SweepPoint], load_unit: f64) {
+    for p in points {
+        let r = &p.report;
+        println!(
+            "{:9} a/z0 {:6.2} load {:9.6} area {:.4} {:?}",
+            p.branch.name(),
+            r.approach / Z0,
+            r.load / load_unit,
+            r.contact_area_fraction,
+            r.iterations
+        );
+    }
+}
