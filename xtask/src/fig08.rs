@@ -63,7 +63,7 @@ pub fn computed(ctx: &Context, o: &challenge::Outcome) -> Vec<String> {
     v.push(format!(
         "E* = 25 MPa; adhesion by the challenge's own law, σ(g) = -(w0/ρ) exp(-g/ρ) with w0 = 50 mJ/m², \
          ρ = 2.071 nm and a hard wall (the paper used Lennard-Jones with z0 = 2.071 nm; that law does not \
-         converge on grids this coarse, see README); Tabor-like parameter here {:.1}. Load control, \
+         converge on grids this coarse, see docs/validation.md); Tabor-like parameter here {:.1}. Load control, \
          increasing loads, warm-started, then (adhesion) back down through the same loads; tolerances 1e-8 \
          (no adhesion) and 1e-6 ρ (adhesion).",
         challenge::tabor(o.local_radius, challenge::WORK)
@@ -205,7 +205,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         })
         .collect();
     let zones = sticky.cell / challenge::process_zone(challenge::WORK);
-    // Cells far larger than the process zone each snap in and hold on alone (README,
+    // Cells far larger than the process zone each snap in and hold on alone (docs/validation.md,
     // `roughcontact sweep`): the area is trapped, not the quasi-static answer.
     let trapped = held.last().is_some_and(|&h| h > 1.5) && zones > 1.0;
     report.agreement.push(format!(

@@ -4,7 +4,7 @@
 //! pressure depends on its neighbours' gaps), so only the dual loop solves it, and at mu = 5
 //! on 128^2 cells that takes 1000-1200 outer iterations per z0 of approach (20-40 min a run);
 //! the point law is solved by the free energy descent in about a minute, and on resolved grids
-//! the two laws' pull-offs differ by 0.3 % (README's mesh table). The pull-off force is the
+//! the two laws' pull-offs differ by 0.3 % (the mesh table of docs/validation.md). The pull-off force is the
 //! most negative load of a displacement-controlled unloading from a fixed preload, found by
 //! coarse steps and refined around the minimum.
 
@@ -535,7 +535,7 @@ impl PullOffFigure<'_> {
              cutoff at 4 cells unless said otherwise, Rq as on the axis) on a free grid of side 3.5 JKR zero-load \
              contact radii a0, E* = 50 GPa, z0 = 0.3 nm, Lennard-Jones point law solved by the energy descent \
              (the paper's surface law has no energy, and its dual loop needs 20-40 min a run at μ = 5: see \
-             README), tolerance {:e} z0; {} seeds per rough point (error bars: ± one standard deviation).",
+             docs/validation.md), tolerance {:e} z0; {} seeds per rough point (error bars: ± one standard deviation).",
             plan.tolerance,
             plan.seeds.len(),
         ));

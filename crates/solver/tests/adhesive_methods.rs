@@ -241,14 +241,14 @@ fn newton_solves_the_surface_law_as_the_accelerated_loop_does() {
     });
 }
 
-/// `N=1024 cargo test --release -p solver --test adhesive challenge_dual_loop_study --
+/// `N=1024 cargo test --release -p solver --test adhesive_methods challenge_dual_loop_study --
 /// --ignored --nocapture` (default N = 256): the challenge under its reference load
 /// p = 0.01 E* g_bar (250 kPa), loaded from no adhesion by the paper's dual loop and by the
 /// accelerated loop. On grids this much coarser than the process zone the problem has many
 /// stable states (a cell can hold on or let go alone), and the two loops' paths may end on
 /// neighbouring ones: so each loop, started from the other's solution, must accept it as it
 /// is (the same equations solved to the tolerance), and the two independent solutions must
-/// agree in contact area and mean gap. Numbers quoted in README.
+/// agree in contact area and mean gap. Numbers in docs/performance.md.
 #[test]
 #[ignore = "long: the dual loop against the accelerated loop on the challenge (minutes at 256^2)"]
 fn challenge_dual_loop_study() {

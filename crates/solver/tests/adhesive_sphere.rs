@@ -55,7 +55,7 @@ fn jkr_side_cycle_jumps_and_pull_off_near_maugis() {
         assert!((pull_off / md - 1.0).abs() < 0.04, "{pull_off} vs {md}");
         // And Greenwood's Lennard-Jones sphere (in 2 pi R w0). Two differences of opposite sign
         // meet here: the tail cut at the box's edge (gap 5 z0) takes 3.6 % off, the surface
-        // law's area factor adds 2.8 % (README: measured in boxes to 40 z0, where the point law
+        // law's area factor adds 2.8 % (docs/validation.md: measured in boxes to 40 z0, where the point law
         // is Greenwood's to 0.1 %).
         let greenwood = theory::greenwood::Greenwood::new(mu, theory::greenwood::Mesh::default())
             .curve(5.0, 0.0, 0.02)
@@ -179,7 +179,7 @@ fn a_high_tabor_sphere_converges_at_every_step_with_the_energy_descent() {
     // mu = 10 is where the dual loop's fixed point fails on free grids (the jump-in of a 256^2
     // grid did not finish in 15 min): the law is far stiffer than a cell, so cells are
     // bistable. A descent converges there on any grid; how far the pull-off is from JKR's
-    // 1.5 pi R w0 is a matter of resolution (README's mesh table), not checked here.
+    // 1.5 pi R w0 is a matter of resolution (the mesh table of docs/validation.md), not checked here.
     pool().install(|| {
         let mut path = approaches((0..=17).map(|k| -12.0 + 2.0 * k as f64));
         path.extend(approaches((1..=26).map(|k| 22.0 - 2.5 * k as f64)));
