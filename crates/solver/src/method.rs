@@ -178,6 +178,20 @@ impl Default for Settings {
 }
 
 /// Watches a solve or a sweep. Both methods do nothing by default; `()` watches nothing.
+///
+/// ```
+/// use solver::{AdhesiveState, Observer, SweepPoint};
+///
+/// /// Prints each finished step of a sweep, and stops it once the bodies pull apart.
+/// struct Log;
+///
+/// impl Observer for Log {
+///     fn step(&mut self, k: usize, point: &SweepPoint, _: &AdhesiveState) -> bool {
+///         println!("step {k}: load {:e} N", point.report.load);
+///         point.report.attached_area_fraction > 0.0 || k == 0
+///     }
+/// }
+/// ```
 pub trait Observer {
     /// After every iteration of a solve: the sweep step it belongs to (0 for a single solve),
     /// the method's iteration count within the solve, and its residual.
