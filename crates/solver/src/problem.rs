@@ -212,7 +212,7 @@ impl std::fmt::Debug for ContactProblem {
 /// Warnings about a grid too coarse for the law: the cohesive (process-zone) length
 /// `E* w0 / sigma0^2` must span at least one cell, or the adhesive zone at a contact edge
 /// falls inside one cell. Each message says how fine the grid should be.
-pub fn resolution_warnings(domain: &Domain, e_star: f64, law: &dyn AdhesionLaw) -> Vec<String> {
+fn resolution_warnings(domain: &Domain, e_star: f64, law: &dyn AdhesionLaw) -> Vec<String> {
     let sigma = -law.peak_pressure();
     let process_zone = e_star * law.work_of_adhesion() / (sigma * sigma);
     let cell = domain.dx.max(domain.dy);

@@ -370,6 +370,8 @@ fn iterate(
     let mut trial = Point::new(Array2::zeros(unknown));
     let mut linear = Linear::new(unknown, domain.shape());
     let mut gmres = Gmres::new(unknown, RESTART, MAX_KRYLOV);
+    // The linearised balance's right-hand side `-r`.
+    let mut rhs = Array2::zeros(unknown);
     let block = s![..problem.ny, ..problem.nx];
     let scale = job.residual_scale();
     let mut history = Vec::new();
@@ -400,7 +402,7 @@ fn iterate(
         // Eisenstat-Walker forcing: solve loosely while the residual falls slowly.
         let eta = (0.9 * last_ratio * last_ratio).clamp(1e-4, 0.1);
         linear.prepare(&problem, &x, dt);
-        let rhs = x.gradient.mapv(|r| -r);
+        rhs.zip_mut_with(&x.gradient, |b, &r| *b = -r);
         let (iterations, solved) = gmres.solve(
             &mut Linearised {
                 linear: &mut linear,
