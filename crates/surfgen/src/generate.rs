@@ -9,15 +9,15 @@
 //! surface bit for bit on every platform and for every number of threads.
 
 use crate::error::{Result, SurfError};
-use crate::fft2::Fft2;
 use crate::grid::Grid;
 use crate::psd::Psd;
 use crate::stats::Analysis;
+use fft2::Complex64;
+use fft2::Fft2;
 use ndarray::{Array2, Axis};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
-use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 

@@ -24,8 +24,10 @@
 //! # Ok::<(), surfgen::SurfError>(())
 //! ```
 
+/// The 2-D real FFT engine whose transposed half spectra [`stats`] reads.
+pub use fft2;
+
 pub mod error;
-pub mod fft2;
 pub mod generate;
 pub mod grid;
 pub mod io;

@@ -8,11 +8,11 @@
 //! points otherwise. For a resolved spectrum (shortest wavelength >= ~8 spacings) both agree;
 //! for an unresolved one the finite differences are smaller, as they must be.
 
-use crate::fft2::Fft2;
 use crate::grid::Grid;
+use fft2::Complex64;
+use fft2::Fft2;
 use ndarray::{ArrayView2, Axis};
 use rayon::prelude::*;
-use rustfft::num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -40,7 +40,7 @@ pub struct SpectralMoments {
 }
 
 impl SpectralMoments {
-    /// Moments of the field whose DFT is `spectrum` (transposed half spectrum, see [`crate::fft2`]).
+    /// Moments of the field whose DFT is `spectrum` (transposed half spectrum, see [`fft2`]).
     pub fn from_spectrum(spectrum: ArrayView2<Complex64>, grid: &Grid) -> Self {
         let (nx, ny) = (grid.nx, grid.ny);
         let qy2: Vec<f64> = (0..ny)
@@ -441,7 +441,7 @@ impl Analysis {
         Self::from_spectrum(spectrum.view(), grid, bins_per_decade)
     }
 
-    /// The same from a transposed half spectrum (see [`crate::fft2`]).
+    /// The same from a transposed half spectrum (see [`fft2`]).
     pub fn from_spectrum(spectrum: ArrayView2<Complex64>, grid: &Grid, bins_per_decade: usize) -> Self {
         let (moments, radial_psd) = rayon::join(
             || SpectralMoments::from_spectrum(spectrum, grid),

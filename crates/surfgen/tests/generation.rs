@@ -1,9 +1,9 @@
 //! Generated surfaces against their specification: spectrum, normalisation, slopes, Hurst
 //! exponent and reproducibility.
 
+use fft2::Complex64;
+use fft2::Fft2;
 use ndarray::Array2;
-use rustfft::num_complex::Complex64;
-use surfgen::fft2::Fft2;
 use surfgen::{Amplitudes, Grid, Normalization, Psd, RadialPsd, SurfaceSpec, generate, statistics};
 
 fn spec(n: usize, psd: Psd, normalization: Normalization, amplitudes: Amplitudes, seed: u64) -> SurfaceSpec {
