@@ -1,8 +1,8 @@
 //! Fig. 7: the contact pressure of a smooth sphere (Tabor parameter 2, in adhesive contact)
 //! as a map and along the mid-plane: compressive core, tensile adhesive ring.
 
+use crate::plot::{Chart, Curve, GREY, Mark, PALETTE, map};
 use crate::sphere::{By, Path, Z0, greenwood, setup};
-use crate::style::{Chart, Curve, GREY, Mark, PALETTE, map};
 use crate::{Context, FigureReport, Table};
 use anyhow::Result;
 use ndarray::Array2;
@@ -72,14 +72,12 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
     let lo = n / 2 - half;
     let hi = n / 2 + half;
     let zoom = total.slice(ndarray::s![lo..hi, lo..hi]).to_owned();
+    let zoom_side = side * (hi - lo) as f64 / n as f64;
     map(
         &ctx.options.out,
         "fig07_map",
         zoom.view(),
-        (
-            side * (hi - lo) as f64 / n as f64,
-            side * (hi - lo) as f64 / n as f64,
-        ),
+        (-zoom_side / 2.0, -zoom_side / 2.0, zoom_side, zoom_side),
         "Contact pressure p_c + p_a, smooth sphere, μ = 2",
         "pressure",
         (1e-6, "MPa"),

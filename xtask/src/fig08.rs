@@ -3,7 +3,7 @@
 //! formulas.
 
 use crate::challenge::{self, Run};
-use crate::style::{Chart, Curve, GREY, Mark, PALETTE};
+use crate::plot::{Chart, Curve, GREY, Mark, PALETTE};
 use crate::{Context, FigureReport, Table};
 use anyhow::Result;
 use theory::rough::{muser_area, persson_area};

@@ -2,7 +2,7 @@
 //! p/(E* g_bar) = 0.01, without and with adhesion.
 
 use crate::fig08;
-use crate::style::{Chart, Curve, Mark, PALETTE};
+use crate::plot::{Chart, Curve, Mark, PALETTE};
 use crate::{Context, FigureReport, Table};
 use anyhow::Result;
 

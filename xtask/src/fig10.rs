@@ -2,7 +2,7 @@
 //! parameter 3, for two RMS gradients, against the non-adhesive theory of Müser (Eq. 14).
 
 use crate::challenge::{self, Run};
-use crate::style::{Chart, Curve, Mark, PALETTE};
+use crate::plot::{Chart, Curve, Mark, PALETTE};
 use crate::{Context, FigureReport, Table};
 use anyhow::Result;
 use theory::rough::muser_area;

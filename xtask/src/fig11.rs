@@ -18,7 +18,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_label: "RMS roughness Rq (nm)",
         x_name: "rq_nm",
         x_log: false,
-        legend: crate::style::Legend::UpperRight,
+        legend: crate::plot::Legend::UpperRight,
         roughness_column: ("cutoff_cells", |s| s.cutoff_cells),
     };
     let (mut report, curves) = fig.draw(ctx, &pts, |pt| pt.mean(|o| o.rq) * 1e9, Vec::new())?;

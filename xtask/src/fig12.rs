@@ -26,7 +26,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_label: "RMS gradient ḡ",
         x_name: "rms_gradient",
         x_log: false,
-        legend: crate::style::Legend::UpperRight,
+        legend: crate::plot::Legend::UpperRight,
         roughness_column: ("rolloff_box", |s| s.rolloff),
     };
     let (mut report, curves) = fig.draw(ctx, &pts, |pt| pt.mean(|o| o.rms_gradient), Vec::new())?;

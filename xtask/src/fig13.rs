@@ -28,7 +28,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_label: "modified Johnson parameter α* (Eq. 15)",
         x_name: "johnson_parameter",
         x_log: true,
-        legend: crate::style::Legend::LowerRight,
+        legend: crate::plot::Legend::LowerRight,
         roughness_column: ("cutoff_cells", |s| s.cutoff_cells),
     };
     let johnson = |pt: &crate::rough_sphere::Point| {

@@ -1,8 +1,8 @@
 //! Fig. 14: pull-off force against Ciavarella's variable Rq^2 E*/(lambda_L w0) (Eq. 16) for
 //! Tabor parameters 2, 5 and 7, with his stickiness threshold.
 
+use crate::plot::{Curve, GREY, Mark};
 use crate::rough_sphere::{MODULUS, PullOffFigure, crossing, curve_of, points, work_of_adhesion};
-use crate::style::{Curve, GREY, Mark};
 use crate::{Context, FigureReport};
 use anyhow::Result;
 
@@ -14,7 +14,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_label: "Rq² E* / (λL w0)",
         x_name: "ciavarella_variable",
         x_log: true,
-        legend: crate::style::Legend::UpperRight,
+        legend: crate::plot::Legend::UpperRight,
         roughness_column: ("cutoff_cells", |s| s.cutoff_cells),
     };
     let x = |pt: &crate::rough_sphere::Point| {

@@ -24,12 +24,11 @@ pub mod fig14;
 /// The command line's plotting module, compiled in from its source: one style for both.
 #[path = "../../crates/cli/src/plot.rs"]
 #[allow(dead_code)]
-mod plot;
+pub mod plot;
 pub mod report;
 pub mod rough_sphere;
 pub mod sphere;
 pub mod study;
-pub mod style;
 
 use anyhow::{Context as _, Result, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -38,6 +37,16 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 pub use report::{FigureReport, Table};
+
+/// A sweep observer handing every step's state to a closure.
+pub struct States<'a>(pub &'a mut dyn FnMut(usize, &solver::AdhesiveState));
+
+impl solver::Observer for States<'_> {
+    fn step(&mut self, k: usize, _: &solver::SweepPoint, state: &solver::AdhesiveState) -> bool {
+        (self.0)(k, state);
+        true
+    }
+}
 
 /// What to build and where.
 #[derive(Clone, Debug)]

@@ -11,7 +11,7 @@
 use crate::case::{Case, Law};
 use anyhow::Result;
 use serde::{Deserialize, Serialize};
-use solver::{AdhesiveState, Control, Settings, Start};
+use solver::{Control, PullOffSearch, Settings};
 use std::f64::consts::PI;
 
 pub const RADIUS: f64 = 1e-4;
@@ -159,67 +159,35 @@ impl Job {
         } else {
             (0.0, 0.0)
         };
-        let mut steps = 0;
-        let mut all_converged = true;
-        let mut wall = 0.0;
-        let mut step = |alpha: f64, from: Option<&AdhesiveState>| -> Result<(AdhesiveState, f64)> {
-            let start = from.map_or(Start::Loading, Start::Warm);
-            let (s, r) = p.solve(Control::Approach(alpha * Z0), &settings, start, &mut ())?;
-            steps += 1;
-            all_converged &= r.converged();
-            wall += r.wall_time_s;
-            Ok((s, r.load))
-        };
         // Load: from apart to the preload in five steps.
         let top = self.preload();
-        let mut state: Option<AdhesiveState> = None;
-        for k in 0..=5 {
-            let alpha = -2.0 + (top + 2.0) * k as f64 / 5.0;
-            state = Some(step(alpha, state.as_ref())?.0);
-        }
+        let loading: Vec<Control> = (0..=5)
+            .map(|k| Control::Approach((-2.0 + (top + 2.0) * k as f64 / 5.0) * Z0))
+            .collect();
+        let mut preloaded = None;
+        let mut keep = crate::States(&mut |_, s| preloaded = Some(s.clone()));
+        let loaded = p.sweep(&loading, None, &settings, None, &mut keep)?;
+        let preloaded = preloaded.expect("the loading sweep has steps");
         // Unload in coarse steps until the load has come back up from its minimum (or the
-        // sphere is far beyond the smooth sphere's pull-off distance).
+        // sphere is far beyond the smooth sphere's pull-off distance), refined in fifths.
         let scale = (PI * PI * self.w0().powi(2) * RADIUS / MODULUS.powi(2)).cbrt() / Z0;
-        let floor = -(3.0 * scale + 3.0 * self.rq + 5.0);
-        let h = (top / 8.0).max(0.5);
-        let mut coarse: Vec<(f64, f64, AdhesiveState)> = Vec::new();
-        let mut alpha = top;
-        let mut min = f64::INFINITY;
-        loop {
-            alpha -= h;
-            let (s, load) = step(alpha, state.as_ref())?;
-            min = min.min(load);
-            state = Some(s.clone());
-            coarse.push((alpha, load, s));
-            if (min < 0.0 && load > 0.5 * min) || alpha < floor {
-                break;
-            }
-        }
-        // Refine between the neighbours of the coarse minimum, in steps of h/5.
-        let k = coarse
-            .iter()
-            .enumerate()
-            .min_by(|a, b| a.1.1.total_cmp(&b.1.1))
-            .map(|(k, _)| k)
-            .expect("at least one unloading step");
-        if k > 0 {
-            let mut from = coarse[k - 1].2.clone();
-            let a0 = coarse[k - 1].0;
-            for j in 1..10 {
-                let (s, load) = step(a0 - j as f64 * h / 5.0, Some(&from))?;
-                min = min.min(load);
-                from = s;
-            }
-        }
+        let search = PullOffSearch {
+            step: (top / 8.0).max(0.5) * Z0,
+            floor: -(3.0 * scale + 3.0 * self.rq + 5.0) * Z0,
+            recovery: Some(0.5),
+            refinement: 5,
+        };
+        let pull = p.pull_off(&search, &settings, preloaded, &mut ())?;
+        let points: Vec<_> = loaded.iter().chain(&pull.coarse).chain(&pull.refined).collect();
         Ok(Outcome {
-            pull_off: -min.min(0.0),
+            pull_off: pull.force,
             rq,
             rms_gradient,
             length: self.length(),
             cutoff: self.cutoff_cells * self.length() / self.n as f64,
-            steps,
-            all_converged,
-            wall_time_s: wall,
+            steps: points.len(),
+            all_converged: points.iter().all(|q| q.report.converged()),
+            wall_time_s: points.iter().map(|q| q.report.wall_time_s).sum(),
         })
     }
 }
@@ -450,7 +418,7 @@ pub struct PullOffFigure<'a> {
     pub x_label: &'a str,
     pub x_name: &'a str,
     pub x_log: bool,
-    pub legend: crate::style::Legend,
+    pub legend: crate::plot::Legend,
     /// The table's column after Rq: the roughness parameter the figure varies besides Rq.
     pub roughness_column: (&'a str, fn(&Spec) -> f64),
 }
@@ -463,9 +431,9 @@ impl PullOffFigure<'_> {
         ctx: &crate::Context,
         points: &[Point],
         x: impl Fn(&Point) -> f64,
-        extra: Vec<crate::style::Curve>,
+        extra: Vec<crate::plot::Curve>,
     ) -> Result<(crate::FigureReport, Vec<MuCurve>)> {
-        use crate::style::{Chart, Curve, Mark, PALETTE};
+        use crate::plot::{Chart, Curve, Mark, PALETTE};
         let mut report = crate::FigureReport::new(self.number, self.title);
         let mut table = crate::Table::new(
             format!("fig{}", self.number),

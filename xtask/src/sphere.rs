@@ -5,7 +5,7 @@
 use crate::case::{Case, Law};
 use anyhow::Result;
 use serde::{Deserialize, Serialize};
-use solver::{AdhesiveState, ContactProblem, Control, Observer, Settings, SweepPoint};
+use solver::{AdhesiveState, Control, PullOffSearch, Settings, SweepPoint};
 use std::f64::consts::PI;
 
 pub const RADIUS: f64 = 1e-6;
@@ -99,22 +99,13 @@ impl Path {
 
     /// Solves the path with continuation; `on_state` sees every step's state.
     pub fn solve_with(&self, on_state: &mut dyn FnMut(usize, &AdhesiveState)) -> Result<Vec<Step>> {
-        self.sweep_on(&self.setup.case().build()?, None, on_state)
-    }
-
-    /// Sweeps this path's controls on an already built problem, from `start`.
-    fn sweep_on(
-        &self,
-        p: &ContactProblem,
-        start: Option<AdhesiveState>,
-        on_state: &mut dyn FnMut(usize, &AdhesiveState),
-    ) -> Result<Vec<Step>> {
+        let p = self.setup.case().build()?;
         let points = p.sweep(
             &self.controls(),
             None,
             &Settings::default(),
-            start,
-            &mut States(on_state),
+            None,
+            &mut crate::States(on_state),
         )?;
         Ok(points.iter().map(|q| self.step(q)).collect())
     }
@@ -132,30 +123,42 @@ impl Path {
         }
     }
 
-    /// Solves the path, then resolves the neighbourhood of the lowest unloading load in ten
+    /// Solves the path; an approach path's unloading is a pull-off search
+    /// ([`ContactProblem::pull_off`]) down to its last value, whose minimum is resolved in ten
     /// times finer steps (the pull-off of a DMT-like sphere sits in a sharp corner). The
     /// refined steps follow the path's own in the result.
     pub fn solve(&self) -> Result<Vec<Step>> {
+        let turn = (1..self.values.len()).find(|&k| self.values[k] < self.values[k - 1]);
+        let (By::Approach, Some(turn)) = (self.by, turn) else {
+            return self.solve_with(&mut |_, _| {});
+        };
         let p = self.setup.case().build()?;
-        let mut states = Vec::new();
-        let mut steps = self.sweep_on(&p, None, &mut |_, s| states.push(s.clone()))?;
-        let k = (1..steps.len().saturating_sub(1))
-            .filter(|&k| steps[k].unloading && steps[k - 1].unloading)
-            .min_by(|&a, &b| steps[a].load.total_cmp(&steps[b].load));
-        if let (Some(k), By::Approach) = (k, self.by) {
-            let (a, b) = (self.values[k - 1], self.values[k + 1]);
-            let fine = Path {
-                setup: self.setup,
-                by: By::Approach,
-                values: (1..20).map(|j| a + (b - a) * j as f64 / 20.0).collect(),
-            };
-            let refined = fine.sweep_on(&p, Some(states[k - 1].clone()), &mut |_, _| {})?;
-            steps.extend(refined.into_iter().map(|q| Step {
-                unloading: true,
-                refined: true,
-                ..q
-            }));
-        }
+        let settings = Settings::default();
+        let mut top = None;
+        let loading = &self.controls()[..turn];
+        let mut steps: Vec<Step> = p
+            .sweep(
+                loading,
+                None,
+                &settings,
+                None,
+                &mut crate::States(&mut |_, s| top = Some(s.clone())),
+            )?
+            .iter()
+            .map(|q| self.step(q))
+            .collect();
+        let search = PullOffSearch {
+            step: (self.values[turn - 1] - self.values[turn]) * Z0,
+            floor: self.values[self.values.len() - 1] * Z0,
+            recovery: None,
+            refinement: 10,
+        };
+        let pull = p.pull_off(&search, &settings, top.expect("a loading step"), &mut ())?;
+        steps.extend(pull.coarse.iter().map(|q| self.step(q)));
+        steps.extend(pull.refined.iter().map(|q| Step {
+            refined: true,
+            ..self.step(q)
+        }));
         Ok(steps)
     }
 }
@@ -285,7 +288,7 @@ pub fn setup(mu: f64, n: usize) -> Setup {
 /// Figs. 5 and 6: BEM cycles for each `mu` over Greenwood's curves (and Maugis-Dugdale's),
 /// with the S traced by central-gap control when `s_curves`.
 pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) -> Result<crate::FigureReport> {
-    use crate::style::{Chart, Curve, Mark, PALETTE, lighter};
+    use crate::plot::{Chart, Curve, Mark, PALETTE, lighter};
     use crate::{FigureReport, Table};
     let n = ctx.pick(64, 128);
     let (h_in, h_out) = ctx.pick((0.5, 0.25), (0.25, 0.125));
@@ -549,7 +552,7 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
          surfaces touch)."
             .into(),
     );
-    crate::style::save_panels(&panels, &ctx.options.out, &format!("fig{number:02}"))?;
+    crate::plot::save_panels(&panels, &ctx.options.out, &format!("fig{number:02}"))?;
     report.images.push(format!("fig{number:02}"));
     report.tables.push(table);
     report.tables.push(theory_table);
@@ -558,16 +561,6 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
 
 fn fmt_cell(c: f64) -> String {
     format!("{c:.2}")
-}
-
-/// Hands every step's state to a closure.
-struct States<'a>(&'a mut dyn FnMut(usize, &AdhesiveState));
-
-impl Observer for States<'_> {
-    fn step(&mut self, k: usize, _: &SweepPoint, state: &AdhesiveState) -> bool {
-        (self.0)(k, state);
-        true
-    }
 }
 
 #[cfg(test)]

@@ -159,7 +159,12 @@ pub fn pressure_map(out: &Path, pressure: &Array2<f64>, domain: &Domain, pmax: f
     plot::field_map(
         &out.join("pressure.png"),
         pressure.view(),
-        (domain.nx as f64 * domain.dx, domain.ny as f64 * domain.dy),
+        (
+            0.0,
+            0.0,
+            domain.nx as f64 * domain.dx,
+            domain.ny as f64 * domain.dy,
+        ),
         &format!("contact pressure, area fraction {area:.4}"),
         "pressure",
         unit,

@@ -1,9 +1,8 @@
 //! `generate`, `stats` and `psd`: making and measuring surfaces.
 
-use crate::plot::{self, Series};
+use crate::plot::{self, Chart, Curve, Mark, PALETTE};
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use plotters::style::RGBColor;
 use serde::Serialize;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -220,7 +219,7 @@ fn draw_height_map(path: &Path, surface: &Surface, title: &str) -> Result<()> {
     plot::field_map(
         path,
         surface.heights.view(),
-        (surface.grid.length_x, surface.grid.length_y),
+        (0.0, 0.0, surface.grid.length_x, surface.grid.length_y),
         title,
         "height",
         plot::length_unit(pv),
@@ -345,30 +344,28 @@ pub fn psd(a: PsdArgs) -> Result<()> {
     if !a.no_png {
         // Bins past a cut-off hold only round-off (~1e-30 of the peak): leave them out of the plot.
         let peak = r.psd.iter().cloned().fold(0.0, f64::max);
-        let mut series = vec![Series {
-            label: "radial average",
-            points: r
-                .q
-                .iter()
+        let mut chart = Chart::new("Radially averaged PSD", "q (rad/m)", "C(q) (m^4)");
+        chart.x_log = true;
+        chart.y_log = true;
+        chart.curves.push(Curve::new(
+            "radial average",
+            r.q.iter()
                 .copied()
                 .zip(r.psd.iter().copied())
                 .filter(|(_, c)| *c > 1e-20 * peak)
                 .collect(),
-            markers: true,
-            color: RGBColor(31, 119, 180),
-        }];
-        let label;
+            Mark::Dots,
+            PALETTE[0],
+        ));
         if let Some(f) = fit {
-            label = format!("fit, H = {:.3}", f.hurst);
-            series.push(Series {
-                label: &label,
-                points: vec![(f.q_min, f.psd_at(f.q_min)), (f.q_max, f.psd_at(f.q_max))],
-                markers: false,
-                color: RGBColor(214, 39, 40),
-            });
+            chart.curves.push(Curve::new(
+                format!("fit, H = {:.3}", f.hurst),
+                vec![(f.q_min, f.psd_at(f.q_min)), (f.q_max, f.psd_at(f.q_max))],
+                Mark::Line,
+                PALETTE[3],
+            ));
         }
-        let png = output.with_extension("png");
-        plot::loglog(&png, "Radially averaged PSD", "q (rad/m)", "C(q) (m^4)", &series)?;
+        chart.save_png(&output.with_extension("png"))?;
     }
     match fit {
         Some(f) => println!(

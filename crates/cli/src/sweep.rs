@@ -2,13 +2,12 @@
 //! pressures or central gaps) with continuation, written step by step and resumable.
 
 use crate::case::{Case, layered, on_workers, results, to_toml, write_field, write_summary};
-use crate::plot::{self, Series};
+use crate::plot::{self, Chart, Curve, Mark, PALETTE};
 use crate::solve::finish;
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
 use ndarray::Array2;
-use plotters::style::RGBColor;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 use solver::{
@@ -484,26 +483,16 @@ fn plot_cycle(path: &Path, cycle: &[CyclePoint]) -> Result<()> {
             .map(|p| (p.approach * lf, p.load * ff))
             .collect()
     };
-    plot::lines(
-        path,
+    let mut chart = Chart::new(
         "load against approach",
-        &format!("approach [{lu}]"),
-        &format!("load [{fu}]"),
-        &[
-            Series {
-                label: "loading",
-                points: branch(Branch::Loading),
-                markers: true,
-                color: RGBColor(31, 119, 180),
-            },
-            Series {
-                label: "unloading",
-                points: branch(Branch::Unloading),
-                markers: true,
-                color: RGBColor(214, 39, 40),
-            },
-        ],
-    )
+        format!("approach [{lu}]"),
+        format!("load [{fu}]"),
+    );
+    chart.curves = vec![
+        Curve::new("loading", branch(Branch::Loading), Mark::Dots, PALETTE[0]),
+        Curve::new("unloading", branch(Branch::Unloading), Mark::Dots, PALETTE[3]),
+    ];
+    chart.save_png(path)
 }
 
 fn force_unit(v: f64) -> (f64, &'static str) {

@@ -394,19 +394,14 @@ fn draw_curves(
     y: &str,
     curves: Vec<(&'static str, Vec<(f64, f64)>)>,
 ) -> Result<()> {
-    use plotters::style::RGBColor;
-    const COLORS: [RGBColor; 2] = [RGBColor(31, 119, 180), RGBColor(214, 39, 40)];
-    let series: Vec<crate::plot::Series> = curves
+    use crate::plot::{Chart, Curve, Mark, PALETTE};
+    let mut chart = Chart::new(title, x, y);
+    chart.curves = curves
         .into_iter()
-        .zip(COLORS.iter().cycle())
-        .map(|((label, points), &color)| crate::plot::Series {
-            label,
-            points,
-            markers: false,
-            color,
-        })
+        .zip([PALETTE[0], PALETTE[3]].into_iter().cycle())
+        .map(|((label, points), color)| Curve::new(label, points, Mark::Line, color))
         .collect();
-    crate::plot::lines(path, title, x, y, &series)
+    chart.save_png(path)
 }
 
 pub fn theory(a: TheoryArgs) -> Result<()> {

@@ -7,6 +7,7 @@
 //! iteration applies the elastic operator twice (to the pressure and to the search direction).
 
 use crate::error::{Result, SolverError, invalid};
+use crate::fields::{flat, flat_mut};
 use crate::method::Observer;
 use crate::options::{ContactOptions, Control};
 use crate::report::{ContactReport, Termination, count_clusters};
@@ -177,7 +178,7 @@ pub(crate) fn solve_in(
     }
 
     let g0 = g0.as_standard_layout();
-    let g0s = g0.as_slice().expect("standard layout");
+    let g0s = flat(&g0);
     let nx = domain.nx;
     let Scratch {
         ws,
@@ -224,12 +225,10 @@ pub(crate) fn solve_in(
         }
         // Pass A: pending rescale, gap before the approach, contact count and gap sum.
         let s = std::mem::replace(&mut pending, 1.0);
-        let sums: Vec<[f64; 2]> = p
-            .as_slice_mut()
-            .expect("standard layout")
+        let sums: Vec<[f64; 2]> = flat_mut(p)
             .par_chunks_mut(nx)
-            .zip(u.as_slice_mut().expect("standard layout").par_chunks_mut(nx))
-            .zip(gap.as_slice_mut().expect("standard layout").par_chunks_mut(nx))
+            .zip(flat_mut(u).par_chunks_mut(nx))
+            .zip(flat_mut(gap).par_chunks_mut(nx))
             .zip(g0s.par_chunks(nx))
             .map(|(((p, u), g), g0)| {
                 let mut acc = [0.0; 2];
@@ -251,12 +250,10 @@ pub(crate) fn solve_in(
         }
         // Pass B: the approach, the residuals in and out of contact, and <g, t_old> on the
         // contact set for the step length.
-        let sums: Vec<[f64; 3]> = gap
-            .as_slice_mut()
-            .expect("standard layout")
+        let sums: Vec<[f64; 3]> = flat_mut(gap)
             .par_chunks_mut(nx)
-            .zip(p.as_slice().expect("standard layout").par_chunks(nx))
-            .zip(t.as_slice().expect("standard layout").par_chunks(nx))
+            .zip(flat(p).par_chunks(nx))
+            .zip(flat(t).par_chunks(nx))
             .map(|((g, p), t)| {
                 let mut acc = [0.0; 3];
                 for ((g, p), t) in g.iter_mut().zip(p).zip(t) {
@@ -297,12 +294,10 @@ pub(crate) fn solve_in(
         // Pass C: conjugate direction on the contact set, and its sum there.
         let beta = if conjugate { g2_contact / g_norm_old } else { 0.0 };
         g_norm_old = g2_contact;
-        let sums: Vec<f64> = t
-            .as_slice_mut()
-            .expect("standard layout")
+        let sums: Vec<f64> = flat_mut(t)
             .par_chunks_mut(nx)
-            .zip(p.as_slice().expect("standard layout").par_chunks(nx))
-            .zip(gap.as_slice().expect("standard layout").par_chunks(nx))
+            .zip(flat(p).par_chunks(nx))
+            .zip(flat(gap).par_chunks(nx))
             .map(|((t, p), g)| {
                 let mut acc = 0.0;
                 for ((t, p), g) in t.iter_mut().zip(p).zip(g) {
@@ -331,14 +326,12 @@ pub(crate) fn solve_in(
         // pressure (free ones and those just clipped: releasing the clipped ones too saves about
         // a tenth of the iterations on rough surfaces), and the matching update of u while it
         // stays exact.
-        let rows: Vec<(f64, bool, bool)> = p
-            .as_slice_mut()
-            .expect("standard layout")
+        let rows: Vec<(f64, bool, bool)> = flat_mut(p)
             .par_chunks_mut(nx)
-            .zip(u.as_slice_mut().expect("standard layout").par_chunks_mut(nx))
-            .zip(gap.as_slice().expect("standard layout").par_chunks(nx))
-            .zip(t.as_slice().expect("standard layout").par_chunks(nx))
-            .zip(r.as_slice().expect("standard layout").par_chunks(nx))
+            .zip(flat_mut(u).par_chunks_mut(nx))
+            .zip(flat(gap).par_chunks(nx))
+            .zip(flat(t).par_chunks(nx))
+            .zip(flat(r).par_chunks(nx))
             .map(|((((p, u), g), t), r)| {
                 let (mut total, mut clipped, mut released) = (0.0, false, false);
                 for i in 0..p.len() {

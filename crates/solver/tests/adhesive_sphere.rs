@@ -8,7 +8,7 @@ use common::*;
 use elastic::{Domain, Free};
 use ljadhesion::{LennardJones, SurfaceLaw};
 use solver::geometry::{SphereProfile, sphere};
-use solver::{Branch, Control, CyclePoint, Method, Settings, summarize};
+use solver::{Branch, Control, CyclePoint, Method, PullOffSearch, Settings, summarize};
 use std::f64::consts::PI;
 
 #[test]
@@ -64,6 +64,74 @@ fn jkr_side_cycle_jumps_and_pull_off_near_maugis() {
         println!("Greenwood {:.4} pi R w0", -2.0 * greenwood);
         assert!((pull_off / (-2.0 * greenwood) - 1.0).abs() < 0.015);
         assert!(points.iter().filter(|p| p.branch == Branch::Unloading).count() == 10);
+    });
+}
+
+/// The pull-off search: coarse unloading steps of 1.5 z0 stop once the load has recovered from
+/// its minimum; steps four times finer around it find the deeper minimum the coarse ones
+/// straddle, at Maugis-Dugdale's pull-off as the fine cycle above does.
+#[test]
+fn pull_off_search_resolves_the_minimum_between_coarse_steps() {
+    pool().install(|| {
+        let mu = 3.0;
+        let (op, g0, law, w0) = sphere_case(mu, 128, 100.0);
+        let p = problem(&op, &law, g0.view());
+        let settings = Settings::with_method(Method::Accelerated);
+        let mut top = None;
+        let loading = approaches((0..=5).map(|k| -5.0 + k as f64));
+        p.sweep(
+            &loading,
+            None,
+            &settings,
+            None,
+            &mut steps(|_, _, s| {
+                top = Some(s.clone());
+                true
+            }),
+        )
+        .unwrap();
+        let search = PullOffSearch {
+            step: 1.5 * Z0,
+            floor: -30.0 * Z0,
+            recovery: Some(0.5),
+            refinement: 4,
+        };
+        let pull = p.pull_off(&search, &settings, top.unwrap(), &mut ()).unwrap();
+        let all: Vec<_> = pull.coarse.iter().chain(&pull.refined).collect();
+        assert!(
+            all.iter()
+                .all(|q| q.report.converged() && q.branch == Branch::Unloading)
+        );
+        // Stopped once detached, long before the floor.
+        assert!(pull.coarse.len() < 6, "{} coarse steps", pull.coarse.len());
+        assert_eq!(pull.refined.len(), 7);
+        let coarse = -pull
+            .coarse
+            .iter()
+            .map(|q| q.report.load)
+            .fold(f64::INFINITY, f64::min);
+        let force = pull.force / (PI * R * w0);
+        let md = -theory::maugis::MaugisDugdale::new(theory::maugis_parameter_of_tabor(mu))
+            .pull_off_load_control();
+        println!(
+            "pull-off: coarse {:.4}, refined {force:.4} pi R w0; Maugis-Dugdale {md:.4}",
+            coarse / (PI * R * w0)
+        );
+        assert!(pull.force > coarse);
+        assert!((force / md - 1.0).abs() < 0.04, "{force} vs {md}");
+        // A floor above the start is refused, naming the field.
+        let bad = PullOffSearch { floor: 1.0, ..search };
+        let top = pull.coarse[0].report.approach;
+        assert!(top < 1.0);
+        let err = p.pull_off(
+            &bad,
+            &settings,
+            p.solve(Control::Approach(top), &settings, solver::Start::Loading, &mut ())
+                .unwrap()
+                .0,
+            &mut (),
+        );
+        assert!(err.unwrap_err().to_string().contains("floor"));
     });
 }
 

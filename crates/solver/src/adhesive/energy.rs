@@ -19,6 +19,7 @@
 
 use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome};
 use crate::error::{Result, SolverError, invalid};
+use crate::fields::{flat, flat_mut};
 use crate::options::Control;
 use crate::report::Termination;
 use ljadhesion::LocalPotential;
@@ -124,11 +125,7 @@ pub(super) fn solve<'a>(
             .stiffness
             .apply(direction.view(), s_direction.view_mut(), &mut problem.ws)?;
         problem.calls += 1;
-        let (ds, ss, cs) = (
-            direction.as_slice().expect("layout"),
-            s_direction.as_slice().expect("layout"),
-            x.curvature.as_slice().expect("layout"),
-        );
+        let (ds, ss, cs) = (flat(&direction), flat(&s_direction), flat(&x.curvature));
         let [elastic_curv, law_curv, law_pos] = crate::sum::ordered(my, |j| {
             let mut sums = [0.0; 3];
             for k in j * mx..(j + 1) * mx {
@@ -187,13 +184,11 @@ pub(super) fn solve<'a>(
         } else {
             ((zr - z_old) / old_zr).max(0.0)
         };
-        let parts: Vec<f64> = direction
-            .as_slice_mut()
-            .expect("layout")
+        let parts: Vec<f64> = flat_mut(&mut direction)
             .par_chunks_mut(mx)
-            .zip(x.gradient.as_slice().expect("layout").par_chunks(mx))
-            .zip(x.gap.as_slice().expect("layout").par_chunks(mx))
-            .zip(z.as_slice().expect("layout").par_chunks(mx))
+            .zip(flat(&x.gradient).par_chunks(mx))
+            .zip(flat(&x.gap).par_chunks(mx))
+            .zip(flat(&z).par_chunks(mx))
             .enumerate()
             .map(|(j, (((dr, rr), gr), zr))| {
                 let mut slope = 0.0;

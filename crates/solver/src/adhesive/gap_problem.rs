@@ -19,6 +19,7 @@
 
 use super::{AdhesiveReport, AdhesiveState, Job, Outcome, Start, assemble, cells};
 use crate::error::{Result, SolverError, invalid};
+use crate::fields::{flat, flat_mut};
 use crate::options::Control;
 use crate::state::ContactState;
 use elastic::{Domain, FreeStiffness, PeriodicStiffness};
@@ -159,7 +160,7 @@ impl Problem<'_> {
         hold: Option<f64>,
     ) {
         let (mx, nx, ny, n) = (self.mx, self.nx, self.ny, (self.nx * self.ny) as f64);
-        let (fs, ds) = (from.as_slice().expect("layout"), d.as_slice().expect("layout"));
+        let (fs, ds) = (flat(from), flat(d));
         let mean_gap = self.mean_gap.unwrap_or(0.0);
         // Holding every cell would leave nothing to restore the mean gap with.
         let hold = hold.filter(|&h| self.mean_gap.is_some() && fs.iter().any(|&f| f > h));
@@ -200,11 +201,10 @@ impl Problem<'_> {
             }
             c -= excess * n / free;
         }
-        let bs = self.base.as_slice().expect("layout");
-        gap.as_slice_mut()
-            .expect("layout")
+        let bs = flat(&self.base);
+        flat_mut(gap)
             .par_chunks_mut(mx)
-            .zip(self.scratch.as_slice_mut().expect("layout").par_chunks_mut(mx))
+            .zip(flat_mut(&mut self.scratch).par_chunks_mut(mx))
             .enumerate()
             .for_each(|(j, (gr, ur))| {
                 for i in 0..mx {
@@ -234,16 +234,13 @@ impl Problem<'_> {
             self.law_on_block(at)?;
         }
         let load = self.load.unwrap_or(0.0);
-        let gs = at.gap.as_slice().expect("layout");
-        let ds = self.scratch.as_slice().expect("layout");
-        let es = at.elastic.as_slice().expect("layout");
-        let sums: Vec<[f64; 6]> = at
-            .law
-            .as_slice_mut()
-            .expect("layout")
+        let gs = flat(&at.gap);
+        let ds = flat(&self.scratch);
+        let es = flat(&at.elastic);
+        let sums: Vec<[f64; 6]> = flat_mut(&mut at.law)
             .par_chunks_mut(mx)
-            .zip(at.curvature.as_slice_mut().expect("layout").par_chunks_mut(mx))
-            .zip(at.gradient.as_slice_mut().expect("layout").par_chunks_mut(mx))
+            .zip(flat_mut(&mut at.curvature).par_chunks_mut(mx))
+            .zip(flat_mut(&mut at.gradient).par_chunks_mut(mx))
             .enumerate()
             .map(|(j, ((lr, cr), rr))| {
                 // Elastic energy, interaction energy and the load's potential, free gradient
@@ -334,9 +331,9 @@ impl Problem<'_> {
         } else {
             0.0
         };
-        let gs = at.gap.as_slice().expect("layout");
+        let gs = flat(&at.gap);
         let [sum, moving] = {
-            let rs = at.gradient.as_slice_mut().expect("layout");
+            let rs = flat_mut(&mut at.gradient);
             let parts: Vec<[f64; 2]> = rs
                 .par_chunks_mut(mx)
                 .enumerate()
@@ -364,10 +361,7 @@ impl Problem<'_> {
         } else {
             0.0
         };
-        let max = at
-            .gradient
-            .as_slice_mut()
-            .expect("layout")
+        let max = flat_mut(&mut at.gradient)
             .par_iter_mut()
             .map(|r| {
                 if *r != 0.0 {
@@ -386,8 +380,8 @@ impl Problem<'_> {
     /// `<z, r>` and `<z, old>`.
     pub(super) fn precondition(&self, at: &Point, old: &Array2<f64>, out: &mut Array2<f64>) -> [f64; 2] {
         let (mx, nx, ny, s0) = (self.mx, self.nx, self.ny, self.diagonal);
-        let rs = at.gradient.as_slice().expect("layout");
-        let cs = at.curvature.as_slice().expect("layout");
+        let rs = flat(&at.gradient);
+        let cs = flat(&at.curvature);
         let weight = |j: usize, i: usize, k: usize| {
             if j < ny && i < nx {
                 1.0 / (s0 + cs[k].max(0.0))
@@ -412,10 +406,8 @@ impl Problem<'_> {
         } else {
             0.0
         };
-        let os = old.as_slice().expect("layout");
-        let parts: Vec<[f64; 2]> = out
-            .as_slice_mut()
-            .expect("layout")
+        let os = flat(old);
+        let parts: Vec<[f64; 2]> = flat_mut(out)
             .par_chunks_mut(mx)
             .enumerate()
             .map(|(j, zr)| {

@@ -31,6 +31,7 @@ use super::gap_problem::{self, GradientSums, Point, Problem, Setup, on_wall};
 use super::krylov::{Gmres, LinearOperator};
 use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start};
 use crate::error::{Result, SolverError};
+use crate::fields::{flat, flat_mut};
 use crate::options::Control;
 use crate::report::Termination;
 use ndarray::{Array2, Zip, s};
@@ -72,11 +73,7 @@ const BACKTRACKS: usize = 3;
 
 /// `<a, b>` in chunks of [`CHUNK`] values added in order.
 pub(super) fn dot(a: &Array2<f64>, b: &Array2<f64>) -> f64 {
-    crate::sum::dot_chunks(
-        a.as_slice().expect("layout"),
-        b.as_slice().expect("layout"),
-        CHUNK,
-    )
+    crate::sum::dot_chunks(flat(a), flat(b), CHUNK)
 }
 
 /// Subtracts from `out` its mean over the moving cells (those where `mask > 0`), which
@@ -141,17 +138,11 @@ impl Linear {
     fn prepare(&mut self, problem: &Problem, x: &Point, dt: f64) {
         self.elastic_factor = 1.0 + 1.0 / dt;
         let (mx, nx, ny, s0) = (problem.mx, problem.nx, problem.ny, problem.diagonal);
-        let (gs, rs, cs) = (
-            x.gap.as_slice().expect("layout"),
-            x.gradient.as_slice().expect("layout"),
-            x.curvature.as_slice().expect("layout"),
-        );
-        self.inverse
-            .as_slice_mut()
-            .expect("layout")
+        let (gs, rs, cs) = (flat(&x.gap), flat(&x.gradient), flat(&x.curvature));
+        flat_mut(&mut self.inverse)
             .par_chunks_mut(mx)
-            .zip(self.shift.as_slice_mut().expect("layout").par_chunks_mut(mx))
-            .zip(self.weight.as_slice_mut().expect("layout").par_chunks_mut(mx))
+            .zip(flat_mut(&mut self.shift).par_chunks_mut(mx))
+            .zip(flat_mut(&mut self.weight).par_chunks_mut(mx))
             .enumerate()
             .for_each(|(j, ((ir, sr), wr))| {
                 for i in 0..mx {

@@ -1,0 +1,16 @@
+//! Flat row-major access to the solvers' own fields, so that loops can run over rows in
+//! parallel. Every field a solver allocates is row-major, and inputs of any layout are copied
+//! to row-major where a solve begins ([`crate::ContactProblem::solve`], [`crate::cg::solve`]),
+//! so these views cannot fail on the fields they are used on.
+
+use ndarray::{ArrayBase, Data, DataMut, Ix2};
+
+/// The values of a row-major field, row after row.
+pub(crate) fn flat<S: Data<Elem = f64>>(a: &ArrayBase<S, Ix2>) -> &[f64] {
+    a.as_slice().expect("solver fields are row-major")
+}
+
+/// The values of a row-major field, row after row, to write.
+pub(crate) fn flat_mut<S: DataMut<Elem = f64>>(a: &mut ArrayBase<S, Ix2>) -> &mut [f64] {
+    a.as_slice_mut().expect("solver fields are row-major")
+}
