@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize, de::DeserializeOwned};
 use serde_json::Value;
 use solver::geometry::SphereProfile;
 use solver::{ContactOptions, ContactProblem, Method, Settings, Shape};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use surfgen::io::{self, ReadOptions};
 use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec};
@@ -443,26 +443,6 @@ impl Case {
     }
 }
 
-/// Writes `summary.json` into `out`: the version, the resolved case, the surface's
-/// fingerprint and the grid, then the run's own `results` (a JSON object).
-pub fn write_summary(out: &Path, case: &impl Serialize, built: &Built, results: Value) -> Result<()> {
-    let d = built.problem.domain();
-    let mut summary = serde_json::json!({
-        "version": env!("CARGO_PKG_VERSION"),
-        "case": case,
-        "surface_hash": built.surface_hash,
-        "grid": { "nx": d.nx, "ny": d.ny, "dx": d.dx, "dy": d.dy, "periodic": d.periodic },
-    });
-    if let (Value::Object(all), Value::Object(results)) = (&mut summary, results) {
-        all.extend(results);
-    }
-    std::fs::write(
-        out.join("summary.json"),
-        serde_json::to_string_pretty(&summary)? + "\n",
-    )?;
-    Ok(())
-}
-
 /// `extra` (a JSON object) with the fields of `report` added: the summary's results.
 pub fn results(extra: Value, report: &impl Serialize) -> Result<Value> {
     let (Value::Object(mut all), Value::Object(fields)) = (extra, serde_json::to_value(report)?) else {
@@ -470,12 +450,6 @@ pub fn results(extra: Value, report: &impl Serialize) -> Result<Value> {
     };
     all.extend(fields);
     Ok(Value::Object(all))
-}
-
-/// Writes a field as `.npy` into `dir`.
-pub fn write_field(dir: &Path, name: &str, field: &Array2<f64>) -> Result<()> {
-    io::write_npy(field, &dir.join(format!("{name}.npy")))?;
-    Ok(())
 }
 
 /// Runs `f` on the worker threads, so that the solvers' parallel passes do not each pay a

@@ -7,6 +7,7 @@
 pub mod bench;
 pub mod case;
 pub mod plot;
+pub mod run;
 pub mod solve;
 pub mod surface;
 pub mod sweep;

@@ -1,7 +1,8 @@
 //! `solve`: one normal contact, with or without adhesion, from flags or a TOML case file.
 
-use crate::case::{Built, Case, layered, on_workers, results, to_toml, write_field, write_summary};
+use crate::case::{Built, Case, layered, on_workers, results, to_toml};
 use crate::plot;
+use crate::run::RunDir;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use elastic::Domain;
@@ -99,10 +100,10 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     for w in &problem.warnings {
         eprintln!("warning: {w}");
     }
-    let out = case.out.clone().expect("defaulted");
-    std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+    let run = RunDir::create(&case.out.clone().expect("defaulted"))?;
+    let out = run.path();
     if problem.adhesive() {
-        return solve_adhesive(&args, &case, control, &built, &out);
+        return solve_adhesive(&args, &case, control, &built, &run);
     }
     let options = case.contact_options();
     let mut progress = Progress::new("");
@@ -110,9 +111,9 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         on_workers(|| problem.solve_without_adhesion(control, &options, None, &mut progress))?;
     eprint!("\r{:60}\r", "");
     let domain = problem.domain();
-    write_field(&out, "pressure", &state.pressure)?;
-    write_field(&out, "gap", &state.gap)?;
-    write_field(&out, "displacement", &state.displacement)?;
+    run.write_field("pressure", &state.pressure)?;
+    run.write_field("gap", &state.gap)?;
+    run.write_field("displacement", &state.displacement)?;
     let summary = results(
         json!({
             "units": {
@@ -124,17 +125,17 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         }),
         &report,
     )?;
-    write_summary(&out, &case, &built, summary)?;
+    run.write_summary(&case, &built, summary)?;
     if !args.no_png {
         pressure_map(
-            &out,
+            out,
             &state.pressure,
             &domain,
             report.max_pressure,
             report.contact_area_fraction,
         )?;
     }
-    print_summary(&out, &report);
+    print_summary(out, &report);
     finish(
         report.converged(),
         format!(
@@ -142,7 +143,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
             report.residual, report.iterations, options.tolerance
         ),
         args.keep_going,
-        &out,
+        out,
     )
 }
 
@@ -223,19 +224,21 @@ pub fn counts(iterations: &Iterations) -> String {
     }
 }
 
-fn solve_adhesive(args: &SolveArgs, case: &Case, control: Control, built: &Built, out: &Path) -> Result<()> {
+fn solve_adhesive(
+    args: &SolveArgs,
+    case: &Case,
+    control: Control,
+    built: &Built,
+    run: &RunDir,
+) -> Result<()> {
     let problem = &built.problem;
+    let out = run.path();
     let settings = case.settings();
     let mut progress = Progress::new("");
     let (state, report) = on_workers(|| problem.solve(control, &settings, Start::Loading, &mut progress))?;
     eprint!("\r{:60}\r", "");
     let domain = problem.domain();
-    let total = state.total_pressure();
-    write_field(out, "pressure", &total)?;
-    write_field(out, "compressive_pressure", &state.contact.pressure)?;
-    write_field(out, "adhesive_pressure", &state.adhesive_pressure)?;
-    write_field(out, "gap", &state.contact.gap)?;
-    write_field(out, "displacement", &state.contact.displacement)?;
+    run.write_adhesive_fields(&state)?;
     let summary = results(
         json!({
             "units": {
@@ -250,11 +253,11 @@ fn solve_adhesive(args: &SolveArgs, case: &Case, control: Control, built: &Built
         }),
         &report,
     )?;
-    write_summary(out, case, built, summary)?;
+    run.write_summary(case, built, summary)?;
     if !args.no_png {
         pressure_map(
             out,
-            &total,
+            &state.total_pressure(),
             &domain,
             report.max_pressure,
             report.contact_area_fraction,

@@ -1,20 +1,16 @@
 //! `sweep`: a quasi-static approach-retraction cycle (or any list of approaches, mean
 //! pressures or central gaps) with continuation, written step by step and resumable.
 
-use crate::case::{Case, layered, on_workers, results, to_toml, write_field, write_summary};
+use crate::case::{Case, layered, on_workers, results, to_toml};
 use crate::plot::{self, Chart, Curve, Mark, PALETTE};
+use crate::run::{CurveWriter, RunDir, read_state};
 use crate::solve::finish;
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use ndarray::Array2;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
-use solver::{
-    AdhesiveState, Branch, ContactState, Control, CyclePoint, Observer, SweepPoint, approach_cycle, summarize,
-};
-use std::fs::OpenOptions;
-use std::io::Write;
+use solver::{AdhesiveState, Branch, Control, CyclePoint, Observer, SweepPoint, approach_cycle, summarize};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -126,44 +122,6 @@ pub struct SweepArgs {
     no_png: bool,
 }
 
-const HEADER: &str = "step,approach,load,mean_pressure,contact_area_fraction,attractive_area_fraction,\
-attached_area_fraction,central_gap,branch,iterations,inner_iterations,converged,residual,wall_time_s,\
-retries";
-
-/// One row of `curve.csv`, as much as the summary and the plot need.
-struct Row {
-    point: CyclePoint,
-}
-
-fn parse_rows(text: &str) -> Result<Vec<Row>> {
-    let mut rows = Vec::new();
-    for (k, line) in text.lines().skip(1).enumerate() {
-        let f: Vec<&str> = line.split(',').collect();
-        if f.len() != HEADER.split(',').count() {
-            bail!("curve.csv line {} is incomplete: {line}", k + 2);
-        }
-        let num = |i: usize| -> Result<f64> {
-            f[i].parse::<f64>()
-                .with_context(|| format!("curve.csv line {}: bad number {}", k + 2, f[i]))
-        };
-        rows.push(Row {
-            point: CyclePoint {
-                approach: num(1)?,
-                load: num(2)?,
-                contact_area_fraction: num(4)?,
-                attached_area_fraction: num(6)?,
-                branch: if f[8] == "unloading" {
-                    Branch::Unloading
-                } else {
-                    Branch::Loading
-                },
-                converged: f[11] == "true",
-            },
-        });
-    }
-    Ok(rows)
-}
-
 pub fn sweep(args: SweepArgs) -> Result<()> {
     let (name, text) = match (&args.config, args.example) {
         (Some(path), _) => (
@@ -238,30 +196,27 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         }
         None => None,
     };
-    let out = case.out.clone().expect("defaulted");
-    std::fs::create_dir_all(out.join("state")).with_context(|| format!("creating {}", out.display()))?;
-    let csv_path = out.join("curve.csv");
-    let case_path = out.join("case.toml");
+    let run = RunDir::create(&case.out.clone().expect("defaulted"))?;
+    let out = run.path();
 
     // Resume: the same case, the finished rows and the last state.
     let mut rows = Vec::new();
     let mut start = None;
-    if args.resume && csv_path.exists() {
-        let old = std::fs::read_to_string(&case_path).unwrap_or_default();
-        if old.trim_end() != resolved {
+    if args.resume && run.has_curve() {
+        if run.case().unwrap_or_default().trim_end() != resolved {
             bail!(
                 "--resume: {} holds a different case; rerun without --resume (or with the same settings)",
                 out.display()
             );
         }
-        rows = parse_rows(&std::fs::read_to_string(&csv_path)?)?;
+        rows = run.read_curve()?;
         if let Some(last) = rows.last() {
-            start = Some(resume_state(&out, rows.len() - 1, last.point.approach)?);
+            start = Some(run.resume_state(rows.len() - 1, last.approach)?);
         }
         eprintln!("resuming after {} of {} steps", rows.len(), controls.len());
     } else {
-        std::fs::write(&case_path, resolved.clone() + "\n")?;
-        std::fs::write(&csv_path, format!("{HEADER}\n"))?;
+        run.write_case(&resolved)?;
+        run.start_curve()?;
     }
     // A sweep from a saved state (also one resumed before its first step finished).
     if let (None, Some((dir, state))) = (&start, saved) {
@@ -297,14 +252,13 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             .expect("valid template"),
     );
     bar.set_position(done as u64);
-    let csv = OpenOptions::new().append(true).open(&csv_path)?;
     let started = Instant::now();
     let mut writer = StepWriter {
-        out: &out,
+        run: &run,
         done,
         steps: controls.len(),
         save_states: args.save_states,
-        csv,
+        curve: run.curve_writer()?,
         bar: &bar,
         last: String::new(),
         quiet_since: Instant::now(),
@@ -315,10 +269,8 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     if let Some(e) = writer.error {
         return Err(e.context("writing the sweep's results"));
     }
-    rows.extend(points.iter().map(|p| Row {
-        point: CyclePoint::from(p),
-    }));
-    let cycle: Vec<CyclePoint> = rows.iter().map(|r| r.point).collect();
+    rows.extend(points.iter().map(CyclePoint::from));
+    let cycle = rows;
     let summary = summarize(&cycle);
 
     let domain = problem.domain();
@@ -370,7 +322,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         "steps": cycle.len(),
         "wall_time_s": started.elapsed().as_secs_f64(),
     });
-    write_summary(&out, &case, &built, results(json, &summary)?)?;
+    run.write_summary(&case, &built, results(json, &summary)?)?;
     if !args.no_png && cycle.len() > 1 {
         plot_cycle(&out.join("load_approach.png"), &cycle)?;
     }
@@ -407,69 +359,8 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             cycle.len()
         ),
         args.keep_going,
-        &out,
+        out,
     )
-}
-
-/// Where `--save-states` keeps step `k`'s fields.
-fn step_dir(out: &Path, k: usize) -> PathBuf {
-    out.join("states").join(format!("step-{k:04}"))
-}
-
-/// The state to resume from after `step` (its approach `approach` [m]): `state/` if it is that
-/// step's, else that step's own from `--save-states`. A sweep stopped between writing a
-/// step's state and its row of curve.csv (or a curve.csv cut by hand) would otherwise resume
-/// from a state the path has not reached yet.
-fn resume_state(out: &Path, step: usize, approach: f64) -> Result<AdhesiveState> {
-    let state = read_state(&out.join("state"))?;
-    if state.contact.approach == approach {
-        return Ok(state);
-    }
-    let kept = step_dir(out, step);
-    if kept.join("approach.txt").exists() {
-        let state = read_state(&kept)?;
-        if state.contact.approach == approach {
-            return Ok(state);
-        }
-    }
-    bail!(
-        "--resume: the saved state in {} is at approach {:e} m, but curve.csv's last step ({step}) is at \
-         {approach:e} m; rerun without --resume (with --save-states a sweep keeps every step's state)",
-        out.join("state").display(),
-        state.contact.approach
-    )
-}
-
-fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    write_field(dir, "compressive_pressure", &state.contact.pressure)?;
-    write_field(dir, "adhesive_pressure", &state.adhesive_pressure)?;
-    write_field(dir, "gap", &state.contact.gap)?;
-    write_field(dir, "displacement", &state.contact.displacement)?;
-    std::fs::write(
-        dir.join("approach.txt"),
-        format!("{:e}\n", state.contact.approach),
-    )?;
-    Ok(())
-}
-
-fn read_state(dir: &Path) -> Result<AdhesiveState> {
-    let read = |name: &str| -> Result<Array2<f64>> {
-        let path = dir.join(format!("{name}.npy"));
-        ndarray_npy::read_npy(&path).with_context(|| format!("reading {}", path.display()))
-    };
-    let approach: f64 = std::fs::read_to_string(dir.join("approach.txt"))?
-        .trim()
-        .parse()?;
-    Ok(AdhesiveState {
-        contact: ContactState {
-            pressure: read("compressive_pressure")?,
-            gap: read("gap")?,
-            displacement: read("displacement")?,
-            approach,
-        },
-        adhesive_pressure: read("adhesive_pressure")?,
-    })
 }
 
 fn plot_cycle(path: &Path, cycle: &[CyclePoint]) -> Result<()> {
@@ -512,12 +403,12 @@ fn force_unit(v: f64) -> (f64, &'static str) {
 /// Writes each finished step (its row of curve.csv, its state) and shows where the sweep
 /// stands; a write that fails stops the sweep and is kept in `error`.
 struct StepWriter<'a> {
-    out: &'a Path,
+    run: &'a RunDir,
     /// Steps finished before this run (a resumed sweep), and the path's length.
     done: usize,
     steps: usize,
     save_states: bool,
-    csv: std::fs::File,
+    curve: CurveWriter,
     bar: &'a ProgressBar,
     /// The last finished step, shown beside the running solve's iteration and residual.
     last: String,
@@ -546,33 +437,10 @@ impl Observer for StepWriter<'_> {
 
     fn step(&mut self, k: usize, p: &SweepPoint, state: &AdhesiveState) -> bool {
         let r = &p.report;
-        let line = format!(
-            "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3},{}\n",
-            self.done + k,
-            r.approach,
-            r.load,
-            r.mean_pressure,
-            r.contact_area_fraction,
-            r.attractive_area_fraction,
-            r.attached_area_fraction,
-            r.central_gap,
-            p.branch.name(),
-            r.iterations.count(),
-            r.iterations.inner().map_or(String::new(), |i| i.to_string()),
-            r.converged(),
-            r.residual,
-            r.wall_time_s,
-            p.retries
-        );
-        let kept = if self.save_states {
-            write_state(&step_dir(self.out, self.done + k), state)
-        } else {
-            Ok(())
-        };
-        let saved = kept
-            .and_then(|_| write_state(&self.out.join("state"), state))
-            .and_then(|_| self.csv.write_all(line.as_bytes()).map_err(Into::into))
-            .and_then(|_| self.csv.flush().map_err(Into::into));
+        let saved = self
+            .run
+            .save_state(self.done + k, state, self.save_states)
+            .and_then(|_| self.curve.append(self.done + k, p));
         let message = format!("last: approach {:.4e} m, load {:.4e} N", r.approach, r.load);
         if self.bar.is_hidden() {
             // No terminal (a background run, a log file): a plain line a step instead.

@@ -1,0 +1,257 @@
+//! A run directory: everything `solve` and `sweep` write (the resolved case, the summary, the
+//! fields, a sweep's curve and saved states) and what a resumed sweep reads back, in one place.
+//!
+//! Layout: `case.toml` (the resolved case), `summary.json`, the fields of the solution as
+//! `.npy` (SI units, listed in the summary), and for a sweep `curve.csv` (a row a step),
+//! `state/` (the last step's fields, to resume from) and with `--save-states`
+//! `states/step-NNNN/` (every step's).
+
+use crate::case::Built;
+use anyhow::{Context, Result, bail};
+use ndarray::Array2;
+use serde::Serialize;
+use serde_json::Value;
+use solver::{AdhesiveState, Branch, ContactState, CyclePoint, SweepPoint};
+use std::fs::{File, OpenOptions};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// The columns of `curve.csv`.
+const HEADER: &str = "step,approach,load,mean_pressure,contact_area_fraction,attractive_area_fraction,\
+attached_area_fraction,central_gap,branch,iterations,inner_iterations,converged,residual,wall_time_s,\
+retries";
+
+/// A run's output directory.
+pub struct RunDir {
+    path: PathBuf,
+}
+
+impl RunDir {
+    /// Creates `path` (and its parents) for a run's output.
+    pub fn create(path: &Path) -> Result<RunDir> {
+        std::fs::create_dir_all(path).with_context(|| format!("creating {}", path.display()))?;
+        Ok(RunDir {
+            path: path.to_path_buf(),
+        })
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Writes the resolved case (TOML) the run was made with.
+    pub fn write_case(&self, resolved: &str) -> Result<()> {
+        let path = self.path.join("case.toml");
+        std::fs::write(&path, format!("{}\n", resolved.trim_end()))
+            .with_context(|| format!("writing {}", path.display()))
+    }
+
+    /// The resolved case a previous run left here, if any.
+    pub fn case(&self) -> Option<String> {
+        std::fs::read_to_string(self.path.join("case.toml")).ok()
+    }
+
+    /// Writes `name.npy`.
+    pub fn write_field(&self, name: &str, field: &Array2<f64>) -> Result<()> {
+        write_field(&self.path, name, field)
+    }
+
+    /// Writes the fields of an adhesive solution: the total, compressive and adhesive
+    /// pressures, the gap and the displacement.
+    pub fn write_adhesive_fields(&self, state: &AdhesiveState) -> Result<()> {
+        self.write_field("pressure", &state.total_pressure())?;
+        self.write_field("compressive_pressure", &state.contact.pressure)?;
+        self.write_field("adhesive_pressure", &state.adhesive_pressure)?;
+        self.write_field("gap", &state.contact.gap)?;
+        self.write_field("displacement", &state.contact.displacement)
+    }
+
+    /// Writes `summary.json`: the version, the case, the surface's hash, the grid, and the
+    /// fields of `results` (a JSON object).
+    pub fn write_summary(&self, case: &impl Serialize, built: &Built, results: Value) -> Result<()> {
+        let d = built.problem.domain();
+        let mut summary = serde_json::json!({
+            "version": env!("CARGO_PKG_VERSION"),
+            "case": case,
+            "surface_hash": built.surface_hash,
+            "grid": { "nx": d.nx, "ny": d.ny, "dx": d.dx, "dy": d.dy, "periodic": d.periodic },
+        });
+        if let (Value::Object(all), Value::Object(results)) = (&mut summary, results) {
+            all.extend(results);
+        }
+        let path = self.path.join("summary.json");
+        std::fs::write(&path, serde_json::to_string_pretty(&summary)? + "\n")
+            .with_context(|| format!("writing {}", path.display()))
+    }
+
+    /// Starts an empty `curve.csv` (its header only).
+    pub fn start_curve(&self) -> Result<()> {
+        let path = self.curve_path();
+        std::fs::write(&path, format!("{HEADER}\n")).with_context(|| format!("writing {}", path.display()))
+    }
+
+    /// Whether a previous sweep left a curve here.
+    pub fn has_curve(&self) -> bool {
+        self.curve_path().exists()
+    }
+
+    /// The steps of `curve.csv`, as much as a summary and a plot need.
+    pub fn read_curve(&self) -> Result<Vec<CyclePoint>> {
+        let path = self.curve_path();
+        let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+        parse_curve(&text)
+    }
+
+    /// `curve.csv` opened to append rows.
+    pub fn curve_writer(&self) -> Result<CurveWriter> {
+        let path = self.curve_path();
+        let file = OpenOptions::new()
+            .append(true)
+            .open(&path)
+            .with_context(|| format!("opening {}", path.display()))?;
+        Ok(CurveWriter(file))
+    }
+
+    fn curve_path(&self) -> PathBuf {
+        self.path.join("curve.csv")
+    }
+
+    /// Saves step `k`'s state as the one to resume from (`state/`), and also as
+    /// `states/step-NNNN/` when `keep`.
+    pub fn save_state(&self, k: usize, state: &AdhesiveState, keep: bool) -> Result<()> {
+        if keep {
+            write_state(&self.step_dir(k), state)?;
+        }
+        write_state(&self.path.join("state"), state)
+    }
+
+    fn step_dir(&self, k: usize) -> PathBuf {
+        self.path.join("states").join(format!("step-{k:04}"))
+    }
+
+    /// The state to resume from after `step` (its approach `approach` [m]): `state/` if it is
+    /// that step's, else that step's own from `--save-states`. A sweep stopped between writing
+    /// a step's state and its row of curve.csv (or a curve.csv cut by hand) would otherwise
+    /// resume from a state the path has not reached yet.
+    pub fn resume_state(&self, step: usize, approach: f64) -> Result<AdhesiveState> {
+        let last = self.path.join("state");
+        let state = read_state(&last)?;
+        if state.contact.approach == approach {
+            return Ok(state);
+        }
+        let kept = self.step_dir(step);
+        if kept.join("approach.txt").exists() {
+            let state = read_state(&kept)?;
+            if state.contact.approach == approach {
+                return Ok(state);
+            }
+        }
+        bail!(
+            "--resume: the saved state in {} is at approach {:e} m, but curve.csv's last step ({step}) is at \
+             {approach:e} m; rerun without --resume (with --save-states a sweep keeps every step's state)",
+            last.display(),
+            state.contact.approach
+        )
+    }
+}
+
+/// Appends the rows of `curve.csv`, each flushed as it is written (a killed sweep loses at
+/// most the step it was solving).
+pub struct CurveWriter(File);
+
+impl CurveWriter {
+    /// Appends step `k`'s row.
+    pub fn append(&mut self, k: usize, p: &SweepPoint) -> Result<()> {
+        let r = &p.report;
+        let line = format!(
+            "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3},{}\n",
+            k,
+            r.approach,
+            r.load,
+            r.mean_pressure,
+            r.contact_area_fraction,
+            r.attractive_area_fraction,
+            r.attached_area_fraction,
+            r.central_gap,
+            p.branch.name(),
+            r.iterations.count(),
+            r.iterations.inner().map_or(String::new(), |i| i.to_string()),
+            r.converged(),
+            r.residual,
+            r.wall_time_s,
+            p.retries
+        );
+        self.0.write_all(line.as_bytes())?;
+        self.0.flush()?;
+        Ok(())
+    }
+}
+
+fn parse_curve(text: &str) -> Result<Vec<CyclePoint>> {
+    let mut rows = Vec::new();
+    for (k, line) in text.lines().skip(1).enumerate() {
+        let f: Vec<&str> = line.split(',').collect();
+        if f.len() != HEADER.split(',').count() {
+            bail!("curve.csv line {} is incomplete: {line}", k + 2);
+        }
+        let num = |i: usize| -> Result<f64> {
+            f[i].parse::<f64>()
+                .with_context(|| format!("curve.csv line {}: bad number {}", k + 2, f[i]))
+        };
+        rows.push(CyclePoint {
+            approach: num(1)?,
+            load: num(2)?,
+            contact_area_fraction: num(4)?,
+            attached_area_fraction: num(6)?,
+            branch: if f[8] == "unloading" {
+                Branch::Unloading
+            } else {
+                Branch::Loading
+            },
+            converged: f[11] == "true",
+        });
+    }
+    Ok(rows)
+}
+
+/// Writes `dir/name.npy`.
+pub fn write_field(dir: &Path, name: &str, field: &Array2<f64>) -> Result<()> {
+    let path = dir.join(format!("{name}.npy"));
+    surfgen::io::write_npy(field, &path).with_context(|| format!("writing {}", path.display()))
+}
+
+fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    write_field(dir, "compressive_pressure", &state.contact.pressure)?;
+    write_field(dir, "adhesive_pressure", &state.adhesive_pressure)?;
+    write_field(dir, "gap", &state.contact.gap)?;
+    write_field(dir, "displacement", &state.contact.displacement)?;
+    std::fs::write(
+        dir.join("approach.txt"),
+        format!("{:e}\n", state.contact.approach),
+    )?;
+    Ok(())
+}
+
+/// A state saved by a sweep (`state/` or `states/step-NNNN/`): for `--start-from`.
+pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
+    let read = |name: &str| -> Result<Array2<f64>> {
+        let path = dir.join(format!("{name}.npy"));
+        ndarray_npy::read_npy(&path).with_context(|| format!("reading {}", path.display()))
+    };
+    let approach_path = dir.join("approach.txt");
+    let approach: f64 = std::fs::read_to_string(&approach_path)
+        .with_context(|| format!("reading {}", approach_path.display()))?
+        .trim()
+        .parse()
+        .with_context(|| format!("{}: not a number", approach_path.display()))?;
+    Ok(AdhesiveState {
+        contact: ContactState {
+            pressure: read("compressive_pressure")?,
+            gap: read("gap")?,
+            displacement: read("displacement")?,
+            approach,
+        },
+        adhesive_pressure: read("adhesive_pressure")?,
+    })
+}
