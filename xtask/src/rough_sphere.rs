@@ -1,12 +1,10 @@
 //! Rough spheres (Figs. 11-14): a rigid sphere R* = 100 um carrying a self-affine roughness,
 //! pressed into an elastic flat (E* = 50 GPa) with the Lennard-Jones point law (z0 = 0.3 nm)
-//! and pulled off. The paper used its surface law, but that law has no energy (a cell's
-//! pressure depends on its neighbours' gaps), so only the dual loop solves it, and at mu = 5
-//! on 128^2 cells that takes 1000-1200 outer iterations per z0 of approach (20-40 min a run);
-//! the point law is solved by the free energy descent in about a minute, and on resolved grids
-//! the two laws' pull-offs differ by 0.3 % (the mesh table of docs/validation.md). The pull-off force is the
-//! most negative load of a displacement-controlled unloading from a fixed preload, found by
-//! coarse steps and refined around the minimum.
+//! and pulled off. The paper used its surface law; the point law stands in for it because the
+//! energy descent solves it far faster, and on resolved grids the two laws' pull-offs differ by
+//! 0.3 % (docs/validation.md has both measurements). The pull-off force is the most negative
+//! load of a displacement-controlled unloading from a fixed preload
+//! ([`solver::ContactProblem::pull_off`]).
 
 use crate::case::{Case, Law};
 use anyhow::Result;

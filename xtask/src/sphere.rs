@@ -124,7 +124,7 @@ impl Path {
     }
 
     /// Solves the path; an approach path's unloading is a pull-off search
-    /// ([`ContactProblem::pull_off`]) down to its last value, whose minimum is resolved in ten
+    /// ([`solver::ContactProblem::pull_off`]) down to its last value, whose minimum is resolved in ten
     /// times finer steps (the pull-off of a DMT-like sphere sits in a sharp corner). The
     /// refined steps follow the path's own in the result.
     pub fn solve(&self) -> Result<Vec<Step>> {

@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 /// The studies, by name, with what each shows.
-pub const STUDIES: [(&str, &str); 2] = [
+pub const STUDIES: [(&str, &str); 3] = [
     (
         "pull-off-mesh",
         "a sphere's pull-off at mu = 1 against the cell size, point, line and surface laws (minutes)",
@@ -19,6 +19,11 @@ pub const STUDIES: [(&str, &str); 2] = [
         "high-tabor-mesh",
         "a sphere's pull-off at mu = 10 against the cell size, point law (MESH=128,256,512; 512 takes ~40 min)",
     ),
+    (
+        "nested-start",
+        "non-adhesive CG iterations from a cold start and from the solution of the grid twice as coarse, \
+         recursively (SIZES=512,1024,2048; PRESSURE=0.04)",
+    ),
 ];
 
 /// Runs the study `name`.
@@ -26,6 +31,7 @@ pub fn run(name: &str) -> Result<()> {
     match name {
         "pull-off-mesh" => pull_off_mesh(),
         "high-tabor-mesh" => high_tabor_mesh(),
+        "nested-start" => nested_start(),
         _ => {
             let names: Vec<_> = STUDIES.iter().map(|(n, _)| *n).collect();
             bail!("unknown study `{name}`; the studies are {}", names.join(", "))
@@ -112,6 +118,132 @@ fn high_tabor_mesh() -> Result<()> {
             -s.pull_off_force.unwrap_or(f64::NAN) / (PI * RADIUS * w0),
             started.elapsed().as_secs_f64(),
             if s.all_converged { "" } else { " not all converged" }
+        );
+    }
+    Ok(())
+}
+
+/// The bench's surface (H = 0.8, RMS gradient 1, cut-off 8 cells, seed 2026, unit box, E* = 1)
+/// solved at `p` E* cold, and from the solution on a grid twice as coarse (the initial gap
+/// averaged over 2 x 2 cells, the pressure copied back to each cell), itself solved the same
+/// way down to 128^2.
+fn nested_start() -> Result<()> {
+    use elastic::{Domain, Periodic};
+    use ndarray::Array2;
+    use solver::{ContactOptions, ContactState, cg};
+    let env = |name: &str, default: &str| std::env::var(name).unwrap_or_else(|_| default.to_string());
+    let sizes: Vec<usize> = env("SIZES", "512,1024,2048")
+        .split(',')
+        .map(|v| v.trim().parse())
+        .collect::<std::result::Result<_, _>>()?;
+    let p: f64 = env("PRESSURE", "0.04").parse()?;
+    let options = ContactOptions {
+        tolerance: 5e-9,
+        max_iterations: 100_000,
+    };
+    let op = |n: usize| {
+        Periodic::new(
+            Domain {
+                nx: n,
+                ny: n,
+                dx: 1.0 / n as f64,
+                dy: 1.0 / n as f64,
+                periodic: true,
+            },
+            1.0,
+        )
+    };
+    /// (cells per side, iterations, seconds) of each level, finest first.
+    type Levels = Vec<(usize, usize, f64)>;
+    // Solves on `g0`, from the coarser grid's solution while it is at least 128^2.
+    fn nested(
+        g0: &Array2<f64>,
+        p: f64,
+        options: &ContactOptions,
+        op: &dyn Fn(usize) -> elastic::Result<Periodic>,
+    ) -> Result<(ContactState, Levels)> {
+        let n = g0.nrows();
+        let mut levels = Vec::new();
+        let warm = if n >= 256 {
+            let coarse = Array2::from_shape_fn((n / 2, n / 2), |(j, i)| {
+                (g0[(2 * j, 2 * i)]
+                    + g0[(2 * j + 1, 2 * i)]
+                    + g0[(2 * j, 2 * i + 1)]
+                    + g0[(2 * j + 1, 2 * i + 1)])
+                    / 4.0
+            });
+            let (state, below) = nested(&coarse, p, options, op)?;
+            levels = below;
+            let fine = Array2::from_shape_fn((n, n), |(j, i)| state.pressure[(j / 2, i / 2)]);
+            Some(ContactState {
+                pressure: fine,
+                gap: Array2::zeros((n, n)),
+                displacement: Array2::zeros((n, n)),
+                approach: state.approach,
+            })
+        } else {
+            None
+        };
+        let t = Instant::now();
+        let (state, report) = cg::solve(
+            &op(n)?,
+            g0.view(),
+            Control::MeanPressure(p),
+            options,
+            warm.as_ref(),
+            &mut (),
+        )?;
+        levels.insert(0, (n, report.iterations, t.elapsed().as_secs_f64()));
+        Ok((state, levels))
+    }
+    println!("p = {p} E*, tolerance {:e}", options.tolerance);
+    println!(
+        "| n | cold: iterations | cold: s | nested: iterations per level (finest first) | nested: s in all | same contact set | mean gap rel. diff |"
+    );
+    println!("|---|---|---|---|---|---|---|");
+    for n in sizes {
+        let grid = surfgen::Grid::square(n, 1.0)?;
+        let spec = surfgen::SurfaceSpec {
+            grid,
+            psd: surfgen::Psd::self_affine(0.8, 1.0, 8.0 / n as f64),
+            normalization: surfgen::Normalization::RmsGradient(1.0),
+            amplitudes: surfgen::Amplitudes::Exact,
+            seed: 2026,
+        };
+        let g0 = solver::geometry::flat_on_rough(surfgen::generate(&spec)?.heights.view())?;
+        let t = Instant::now();
+        let (cold, report) = cg::solve(
+            &op(n)?,
+            g0.view(),
+            Control::MeanPressure(p),
+            &options,
+            None,
+            &mut (),
+        )?;
+        let cold_s = t.elapsed().as_secs_f64();
+        let (warm, levels) = nested(&g0, p, &options, &op)?;
+        let differ = cold
+            .pressure
+            .iter()
+            .zip(warm.pressure.iter())
+            .filter(|(a, b)| (**a > 0.0) != (**b > 0.0))
+            .count();
+        let mean = |s: &ContactState| s.gap.mean().unwrap_or(0.0);
+        println!(
+            "| {n} | {} | {cold_s:.2} | {} | {:.2} | {} | {:.1e} |",
+            report.iterations,
+            levels
+                .iter()
+                .map(|l| l.1.to_string())
+                .collect::<Vec<_>>()
+                .join(" / "),
+            levels.iter().map(|l| l.2).sum::<f64>(),
+            if differ == 0 {
+                "yes".to_string()
+            } else {
+                format!("{differ} cells differ")
+            },
+            (mean(&cold) / mean(&warm) - 1.0).abs()
         );
     }
     Ok(())

@@ -13,9 +13,8 @@
 //! tolerance: the mean gap error that the pending adhesive correction would cause locally.
 
 use super::anderson::Anderson;
-use super::{
-    AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start, assemble, cells,
-};
+use super::driver::Driver;
+use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Start, assemble, cells};
 use crate::cg::{Scratch, solve_in};
 use crate::error::Result;
 use crate::options::{ContactOptions, Control};
@@ -96,12 +95,10 @@ fn solve(
     let beta_max = 1.0;
     let beta_min = 0.05 * beta;
     let mut mixer = Anderson::new(if accelerated { settings.mixing.history } else { 0 });
-    let mut history: Vec<f64> = Vec::new();
     let (mut calls, mut inner_iterations, mut outer) = (0, 0, 0);
-    let mut termination = Termination::MaxIterations;
+    let mut driver = Driver::new(settings, observer, started);
     let mut falling = 0;
-    // Stall detection: the best residual so far and when it last improved by 10 %.
-    let (mut best, mut improved_at, mut stalls) = (f64::INFINITY, 0, 0);
+    let mut stalls = 0;
     let mut approach = 0.0;
     loop {
         op.apply(p_a.view(), u_a.view_mut(), &mut scratch.ws)?;
@@ -122,7 +119,7 @@ fn solve(
                 let compressive = w - adhesive_load;
                 if compressive <= 0.0 {
                     // No contact can carry a load this tensile against this attraction.
-                    termination = Termination::PulledOff;
+                    driver.termination = Termination::PulledOff;
                     break;
                 }
                 (Control::Force(compressive), 0.0)
@@ -133,8 +130,8 @@ fn solve(
             .and(&u_a)
             .par_for_each(|g, &g0, &u| *g = g0 + u - shift);
         // Inexact inner solves: the inner gap error need only be well below the outer one.
-        let inner_options = match history.last() {
-            Some(&r) => {
+        let inner_options = match driver.last() {
+            Some(r) => {
                 let mean = g_eff.mean().unwrap_or(0.0);
                 let rms = (g_eff.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / n).sqrt();
                 let wanted = INNER_FACTOR * r.min(1.0) * law.range() / rms.max(f64::MIN_POSITIVE);
@@ -169,16 +166,11 @@ fn solve(
             .par_for_each(|r, &l, &p| *r = l - p);
         let residual = residual_field.iter().map(|r| r.abs()).sum::<f64>() / n * scale;
         let inner_ok = report.converged();
-        history.push(residual);
-        observer(outer, residual);
-        if residual < settings.tolerance
-            && inner_ok
-            && inner_options.tolerance <= settings.contact.tolerance * 1e3
-        {
-            termination = Termination::Converged;
-            break;
-        }
-        if outer == settings.max_iterations {
+        if driver.stop(
+            outer,
+            residual,
+            inner_ok && inner_options.tolerance <= settings.contact.tolerance * 1e3,
+        ) {
             break;
         }
         outer += 1;
@@ -186,21 +178,19 @@ fn solve(
         // grows, regrow it slowly while the residual falls.
         // A jump into or out of contact makes the residual grow for a while by itself, so the
         // factor has a floor.
-        if residual < 0.9 * best {
-            best = residual;
-            improved_at = outer;
-        }
-        if outer - improved_at > STALL {
+        if driver.since_progress(outer, residual) > STALL {
             // Cycling between nearly equal states (a few cells at a contact edge, near a
             // jump): Anderson mixing can orbit there for ever. Drop it for the damped plain
             // relaxation, whose small steps settle on one state, with a lower floor.
             stalls += 1;
-            improved_at = outer;
+            driver.restart_stall_count(outer);
             mixer = Anderson::new(0);
             beta = (beta * 0.5).max(beta_min * 0.02);
             falling = 0;
-        } else if history.len() >= 2 && residual > history[history.len() - 2] {
-            if residual > 2.0 * history[history.len() - 2] || !accelerated {
+        } else if let Some(previous) = driver.previous()
+            && residual > previous
+        {
+            if residual > 2.0 * previous || !accelerated {
                 beta = (beta * 0.7).max(if stalls > 0 { beta_min * 0.02 } else { beta_min });
                 mixer.reset();
             }
@@ -236,20 +226,10 @@ fn solve(
     displacement += &u_c;
     contact.displacement = displacement;
     contact.approach = approach;
-    Ok(assemble(
-        job,
-        contact,
-        p_a,
-        Outcome {
-            iterations: Iterations::Loop {
-                outer,
-                inner: inner_iterations,
-                relaxation: beta,
-            },
-            operator_calls: calls,
-            history,
-            termination,
-            started,
-        },
-    ))
+    let iterations = Iterations::Loop {
+        outer,
+        inner: inner_iterations,
+        relaxation: beta,
+    };
+    Ok(assemble(job, contact, p_a, driver.finish(iterations, calls)))
 }

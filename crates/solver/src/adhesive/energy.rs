@@ -17,7 +17,8 @@
 //! Two operator applications per iteration (the direction and the trial gap), against one per
 //! inner iteration times many inner iterations per outer one in the dual loop.
 
-use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome};
+use super::driver::Driver;
+use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job};
 use crate::error::{Result, SolverError, invalid};
 use crate::fields::{flat, flat_mut};
 use crate::options::Control;
@@ -101,23 +102,16 @@ pub(super) fn solve<'a>(
     let (mx, my, nx, ny) = (problem.mx, problem.my, problem.nx, problem.ny);
 
     let scale = job.residual_scale();
-    let mut history = Vec::new();
-    let mut termination = Termination::MaxIterations;
+    let mut driver = Driver::new(settings, observer, started);
     let mut iterations = 0;
     loop {
         let residual = sums.max * scale;
-        history.push(residual);
-        observer(iterations, residual);
-        if residual < settings.tolerance {
-            termination = Termination::Converged;
-            break;
-        }
-        if iterations == settings.max_iterations {
+        if driver.stop(iterations, residual, true) {
             break;
         }
         if load.is_some_and(|p| p < 0.0) && x.min_gap > 1e3 * law.range() {
             // Pulled by more than any attraction at these gaps can hold: flying apart.
-            termination = Termination::PulledOff;
+            driver.termination = Termination::PulledOff;
             break;
         }
         iterations += 1;
@@ -210,12 +204,6 @@ pub(super) fn solve<'a>(
             slope = -zr;
         }
     }
-    let outcome = Outcome {
-        iterations: Iterations::Descent { iterations },
-        operator_calls: problem.calls,
-        history,
-        termination,
-        started,
-    };
+    let outcome = driver.finish(Iterations::Descent { iterations }, problem.calls);
     Ok(finish(job, &problem, x, &sums, (delta, load), outcome))
 }

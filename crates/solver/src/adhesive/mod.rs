@@ -9,6 +9,7 @@
 //! resolves [`Method::Auto`], asks the method whether it can solve the problem, and runs it.
 
 mod anderson;
+mod driver;
 mod dual_loop;
 mod energy;
 mod gap_problem;

@@ -26,10 +26,11 @@
 //! Convergence: the largest force imbalance of a cell times its compliance, over the law's
 //! range (the energy descent's measure), below the tolerance.
 
+use super::driver::Driver;
 use super::energy;
 use super::gap_problem::{self, GradientSums, Point, Problem, Setup, on_wall};
 use super::krylov::{Gmres, LinearOperator};
-use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start};
+use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Start};
 use crate::error::{Result, SolverError};
 use crate::fields::{flat, flat_mut};
 use crate::options::Control;
@@ -365,28 +366,19 @@ fn iterate(
     let mut rhs = Array2::zeros(unknown);
     let block = s![..problem.ny, ..problem.nx];
     let scale = job.residual_scale();
-    let mut history = Vec::new();
-    let mut termination = Termination::MaxIterations;
+    let mut driver = Driver::new(settings, observer, started);
     let (mut steps, mut krylov) = (0, 0);
     let mut dt = FIRST_DT;
     let mut last_ratio = 1.0f64;
-    // Stall detection: the best residual so far and when it last improved by 10 %.
-    let (mut best, mut improved_at) = (f64::INFINITY, 0);
     let patience = if give_up { STALL } else { PATIENCE };
     // Consecutive steps that raised the residual.
     let mut rising = 0;
     loop {
         let residual = sums.max * scale;
-        history.push(residual);
-        observer(steps, residual);
-        if residual < settings.tolerance {
-            termination = Termination::Converged;
-            break;
-        }
-        if residual < 0.9 * best {
-            (best, improved_at) = (residual, steps);
-        }
-        if steps == settings.max_iterations || steps - improved_at > patience || (give_up && dt <= MIN_DT) {
+        if driver.stop(steps, residual, true)
+            || driver.since_progress(steps, residual) > patience
+            || (give_up && dt <= MIN_DT)
+        {
             break;
         }
         steps += 1;
@@ -458,7 +450,7 @@ fn iterate(
         // steps or more before the snap lands (`docs/decisions.md`, ESCAPE).
         rising = if trial_norm > norm { rising + 1 } else { 0 };
         if rising >= ESCAPE {
-            improved_at += 1;
+            driver.defer_stall();
         }
         last_ratio = (trial_norm / norm).min(1.0);
         // Switched evolution relaxation: the pseudo-time step grows as the residual falls,
@@ -475,17 +467,12 @@ fn iterate(
         std::mem::swap(&mut x, &mut trial);
         (sums, norm) = (trial_sums, trial_norm);
     }
-    let outcome = Outcome {
-        iterations: Iterations::Newton {
-            steps,
-            krylov,
-            predictor: 0,
-        },
-        operator_calls: problem.calls,
-        history,
-        termination,
-        started,
+    let iterations = Iterations::Newton {
+        steps,
+        krylov,
+        predictor: 0,
     };
+    let outcome = driver.finish(iterations, problem.calls);
     Ok(gap_problem::finish(
         job,
         &problem,
