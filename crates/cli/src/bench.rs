@@ -29,6 +29,9 @@ pub struct BenchArgs {
     /// differ, relative difference of the mean gap).
     #[arg(long)]
     check: bool,
+    /// Precondition the conjugate gradients by the inverse operator on the contact set.
+    #[arg(long)]
+    preconditioned: bool,
     /// Write the table as JSON to this file too.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
@@ -44,9 +47,14 @@ fn peak_rss() -> Option<u64> {
 
 pub fn bench(a: BenchArgs) -> Result<()> {
     println!(
-        "Self-affine surface, H = 0.8, RMS gradient 1, short cut-off 8 cells, no roll-off; E* = 1, p = {} E*, tolerance {:e}, {} threads",
+        "Self-affine surface, H = 0.8, RMS gradient 1, short cut-off 8 cells, no roll-off; E* = 1, p = {} E*, tolerance {:e}, {}, {} threads",
         a.pressure,
         a.tolerance,
+        if a.preconditioned {
+            "preconditioned CG"
+        } else {
+            "plain CG (Polonsky-Keer)"
+        },
         rayon::current_num_threads()
     );
     println!(
@@ -87,6 +95,7 @@ pub fn bench(a: BenchArgs) -> Result<()> {
         let opts = ContactOptions {
             tolerance: a.tolerance,
             max_iterations: a.max_iterations,
+            preconditioned: a.preconditioned,
         };
         let t = Instant::now();
         let (state, rep) = solver::cg::solve(

@@ -295,6 +295,7 @@ impl Case {
             max_iterations: self
                 .max_iterations
                 .unwrap_or(ContactOptions::DEFAULT_MAX_ITERATIONS),
+            ..ContactOptions::default()
         }
     }
 

@@ -5,6 +5,13 @@
 //! control the total force is imposed after every step and `delta` is the Lagrange multiplier
 //! (the mean gap over the contact set); under displacement control `delta` is given. Each
 //! iteration applies the elastic operator twice (to the pressure and to the search direction).
+//!
+//! Preconditioned ([`ContactOptions::preconditioned`]): the search direction is built from the
+//! gap residual on the contact set after the inverse of the operator (its Fourier multiplier
+//! inverted, the stiffness `E* |q| / 2` on a periodic grid), restricted to the contact set
+//! again and, under load control, deflated of its mean there (Vollebregt's FFT
+//! preconditioner). One more FFT convolution an iteration; the iteration count grows far more
+//! slowly with the grid (`docs/performance.md`).
 
 use crate::error::{Result, SolverError, invalid};
 use crate::fields::{flat, flat_mut};
@@ -58,6 +65,8 @@ pub(crate) struct Scratch<'a> {
     pub(crate) ws: elastic::Workspace,
     direction: Array2<f64>,
     response: Array2<f64>,
+    /// Made by the first preconditioned solve.
+    preconditioner: Option<Preconditioner>,
 }
 
 impl<'a> Scratch<'a> {
@@ -69,6 +78,44 @@ impl<'a> Scratch<'a> {
             ws: op.make_workspace(),
             direction: Array2::zeros(shape),
             response: Array2::zeros(shape),
+            preconditioner: None,
+        }
+    }
+}
+
+/// The inverse of the operator by FFT, applied to the gap residual on the contact set.
+struct Preconditioner {
+    fft: fft2::Fft2,
+    /// The inverted Fourier multiplier, divided by the transform grid's size.
+    multiplier: Array2<f64>,
+    ws: fft2::Workspace,
+    /// The residual on the contact set (zero elsewhere) and its preconditioned image.
+    masked: Array2<f64>,
+    image: Array2<f64>,
+}
+
+impl Preconditioner {
+    fn new(op: &dyn Compliance) -> Self {
+        let domain = op.domain();
+        // The transform grid: the field's own when periodic, padded twice when free.
+        let (mx, my) = if domain.periodic {
+            (domain.nx, domain.ny)
+        } else {
+            (2 * domain.nx, 2 * domain.ny)
+        };
+        let size = (mx * my) as f64;
+        let compliance = op.fourier_compliance();
+        // The mean (q = 0, no compliance on a periodic grid) gets the softest mode's stiffness.
+        let softest = compliance.iter().fold(0.0f64, |m, &c| m.max(c));
+        let multiplier = compliance.mapv(|c| 1.0 / (if c > 0.0 { c } else { softest } * size * size));
+        let fft = fft2::Fft2::new(mx, my);
+        let ws = fft.make_workspace();
+        Preconditioner {
+            fft,
+            multiplier,
+            ws,
+            masked: Array2::zeros(domain.shape()),
+            image: Array2::zeros(domain.shape()),
         }
     }
 }
@@ -180,12 +227,17 @@ pub(crate) fn solve_in(
     let g0 = g0.as_standard_layout();
     let g0s = flat(&g0);
     let nx = domain.nx;
+    if options.preconditioned && scratch.preconditioner.is_none() {
+        scratch.preconditioner = Some(Preconditioner::new(op));
+    }
     let Scratch {
         ws,
         direction: t,
         response: r,
+        preconditioner,
         ..
     } = scratch;
+    let mut preconditioner = preconditioner.as_mut().filter(|_| options.preconditioned);
     if t.dim() != shape {
         *t = Array2::zeros(shape);
         *r = Array2::zeros(shape);
@@ -291,17 +343,46 @@ pub(crate) fn solve_in(
         }
         iterations += 1;
         since_fresh += 1;
+        // The (preconditioned) residual the direction is built from, and its product with the
+        // residual on the contact set.
+        let (z, gz): (&Array2<f64>, f64) = match preconditioner.as_deref_mut() {
+            None => (&*gap, g2_contact),
+            Some(pre) => {
+                Zip::from(&mut pre.masked)
+                    .and(&*gap)
+                    .and(&*p)
+                    .par_for_each(|m, &g, &p| *m = if p > 0.0 { g } else { 0.0 });
+                pre.fft.convolve(
+                    pre.masked.view(),
+                    pre.multiplier.view(),
+                    pre.image.view_mut(),
+                    &mut pre.ws,
+                );
+                let z_mean = if target_load.is_some() {
+                    crate::sum::rows3(p.view(), pre.image.view(), p.view(), |p, z, _| {
+                        if p > 0.0 { z } else { 0.0 }
+                    }) / in_contact
+                } else {
+                    0.0
+                };
+                pre.image.mapv_inplace(|z| z - z_mean);
+                let gz = crate::sum::rows3(p.view(), pre.image.view(), gap.view(), |p, z, g| {
+                    if p > 0.0 { z * g } else { 0.0 }
+                });
+                (&pre.image, gz)
+            }
+        };
         // Pass C: conjugate direction on the contact set, and its sum there.
-        let beta = if conjugate { g2_contact / g_norm_old } else { 0.0 };
-        g_norm_old = g2_contact;
+        let beta = if conjugate { gz / g_norm_old } else { 0.0 };
+        g_norm_old = gz;
         let sums: Vec<f64> = flat_mut(t)
             .par_chunks_mut(nx)
             .zip(flat(p).par_chunks(nx))
-            .zip(flat(gap).par_chunks(nx))
-            .map(|((t, p), g)| {
+            .zip(flat(z).par_chunks(nx))
+            .map(|((t, p), z)| {
                 let mut acc = 0.0;
-                for ((t, p), g) in t.iter_mut().zip(p).zip(g) {
-                    *t = if *p > 0.0 { g + beta * *t } else { 0.0 };
+                for ((t, p), z) in t.iter_mut().zip(p).zip(z) {
+                    *t = if *p > 0.0 { z + beta * *t } else { 0.0 };
                     acc += *t;
                 }
                 acc
@@ -314,7 +395,7 @@ pub(crate) fn solve_in(
         } else {
             0.0
         };
-        let gt = g2_contact + beta * g_t_old;
+        let gt = gz + beta * g_t_old;
         op.apply(t.view(), r.view_mut(), ws)?;
         calls += 1;
         // Pass D: curvature along t.

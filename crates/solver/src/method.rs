@@ -171,7 +171,7 @@ impl Default for Settings {
             },
             contact: ContactOptions {
                 tolerance: 1e-10,
-                max_iterations: ContactOptions::DEFAULT_MAX_ITERATIONS,
+                ..ContactOptions::default()
             },
         }
     }

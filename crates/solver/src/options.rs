@@ -23,6 +23,10 @@ pub struct ContactOptions {
     pub tolerance: f64,
     /// Iteration limit; reaching it ends the solve with [`crate::Termination::MaxIterations`].
     pub max_iterations: usize,
+    /// Precondition the search directions by the inverse of the elastic operator restricted
+    /// to the contact set (see [`crate::cg`]): fewer iterations that grow more slowly with the
+    /// grid, one more FFT convolution each.
+    pub preconditioned: bool,
 }
 
 impl ContactOptions {
@@ -37,6 +41,7 @@ impl Default for ContactOptions {
         ContactOptions {
             tolerance: ContactOptions::DEFAULT_TOLERANCE,
             max_iterations: ContactOptions::DEFAULT_MAX_ITERATIONS,
+            preconditioned: false,
         }
     }
 }
