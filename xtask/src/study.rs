@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 /// The studies, by name, with what each shows.
-pub const STUDIES: [(&str, &str); 4] = [
+pub const STUDIES: [(&str, &str); 3] = [
     (
         "pull-off-mesh",
         "a sphere's pull-off at mu = 1 against the cell size, point, line and surface laws (minutes)",
@@ -24,11 +24,6 @@ pub const STUDIES: [(&str, &str); 4] = [
         "non-adhesive CG iterations from a cold start and from the solution of the grid twice as coarse, \
          recursively (SIZES=512,1024,2048; PRESSURE=0.04)",
     ),
-    (
-        "preconditioned-cg",
-        "non-adhesive CG iterations with and without the inverse operator as a preconditioner on the \
-         contact set (a prototype; SIZES=256,512,1024; PRESSURE=0.04; PLAIN=0 skips the plain CG)",
-    ),
 ];
 
 /// Runs the study `name`.
@@ -37,7 +32,6 @@ pub fn run(name: &str) -> Result<()> {
         "pull-off-mesh" => pull_off_mesh(),
         "high-tabor-mesh" => high_tabor_mesh(),
         "nested-start" => nested_start(),
-        "preconditioned-cg" => preconditioned_cg(),
         _ => {
             let names: Vec<_> = STUDIES.iter().map(|(n, _)| *n).collect();
             bail!("unknown study `{name}`; the studies are {}", names.join(", "))
@@ -209,15 +203,7 @@ fn nested_start() -> Result<()> {
     );
     println!("|---|---|---|---|---|---|---|");
     for n in sizes {
-        let grid = surfgen::Grid::square(n, 1.0)?;
-        let spec = surfgen::SurfaceSpec {
-            grid,
-            psd: surfgen::Psd::self_affine(0.8, 1.0, 8.0 / n as f64),
-            normalization: surfgen::Normalization::RmsGradient(1.0),
-            amplitudes: surfgen::Amplitudes::Exact,
-            seed: 2026,
-        };
-        let g0 = solver::geometry::flat_on_rough(surfgen::generate(&spec)?.heights.view())?;
+        let g0 = bench_gap(n)?;
         let t = Instant::now();
         let (cold, report) = cg::solve(
             &op(n)?,
@@ -269,153 +255,4 @@ fn bench_gap(n: usize) -> Result<ndarray::Array2<f64>> {
     Ok(solver::geometry::flat_on_rough(
         surfgen::generate(&spec)?.heights.view(),
     )?)
-}
-
-/// Polonsky and Keer's constrained CG under load control, with the search direction built from
-/// the gap residual on the contact set either as it is (`precondition = false`, the method of
-/// `solver::cg`) or after the inverse of the periodic operator (its Fourier multiplier, the
-/// stiffness `E* |q| / 2`) restricted to the contact set and deflated of its mean (Vollebregt's
-/// FFT preconditioner). A plain prototype: returns (iterations, mean gap, contact cells).
-fn pk(
-    op: &elastic::Periodic,
-    g0: &ndarray::Array2<f64>,
-    mean_pressure: f64,
-    tolerance: f64,
-    precondition: bool,
-) -> Result<(usize, f64, ndarray::Array2<bool>)> {
-    use elastic::Compliance;
-    use ndarray::{Array2, Zip};
-    let (ny, nx) = g0.dim();
-    let n = (nx * ny) as f64;
-    let fft = surfgen::fft2::Fft2::new(nx, ny);
-    let mut fws = fft.make_workspace();
-    let stiffness = op
-        .fourier_compliance()
-        .mapv(|c| if c > 0.0 { 1.0 / (c * n * n) } else { 0.0 });
-    let mut ws = op.make_workspace();
-    let g_mean = g0.mean().unwrap_or(0.0);
-    let h_ref = (g0.iter().map(|v| (v - g_mean).powi(2)).sum::<f64>() / n).sqrt();
-    let mut p = Array2::from_elem((ny, nx), mean_pressure);
-    let mut u = Array2::zeros((ny, nx));
-    let mut t = Array2::<f64>::zeros((ny, nx));
-    let mut z = Array2::<f64>::zeros((ny, nx));
-    let mut w = Array2::<f64>::zeros((ny, nx));
-    let mut rz_old = 1.0;
-    let mut conjugate = false;
-    for it in 0..100_000 {
-        op.apply(p.view(), u.view_mut(), &mut ws)?;
-        let gap = g0 + &u;
-        let active = p.mapv(|v| v > 0.0);
-        let count = active.iter().filter(|a| **a).count() as f64;
-        let mean_a = Zip::from(&gap)
-            .and(&active)
-            .fold(0.0, |s, &g, &a| if a { s + g } else { s })
-            / count;
-        // The residual: the gap on the contact set relative to its mean (it must be uniform).
-        let r = Zip::from(&gap)
-            .and(&active)
-            .map_collect(|&g, &a| if a { g - mean_a } else { 0.0 });
-        let norm = (r.iter().map(|v| v * v).sum::<f64>() / count).sqrt() / h_ref;
-        if norm < tolerance {
-            let mean_gap = (&gap - mean_a).mapv(|g| g.max(0.0)).mean().unwrap_or(0.0);
-            return Ok((it, mean_gap, active));
-        }
-        if precondition {
-            fft.convolve(r.view(), stiffness.view(), z.view_mut(), &mut fws);
-            Zip::from(&mut z).and(&active).for_each(|z, &a| {
-                if !a {
-                    *z = 0.0
-                }
-            });
-            let mz = z.sum() / count;
-            Zip::from(&mut z).and(&active).for_each(|z, &a| {
-                if a {
-                    *z -= mz
-                }
-            });
-        } else {
-            z.assign(&r);
-        }
-        let rz = (&r * &z).sum();
-        let beta = if conjugate { rz / rz_old } else { 0.0 };
-        rz_old = rz;
-        Zip::from(&mut t)
-            .and(&z)
-            .and(&active)
-            .for_each(|t, &z, &a| *t = if a { z + beta * *t } else { 0.0 });
-        op.apply(t.view(), w.view_mut(), &mut ws)?;
-        let mw = Zip::from(&w)
-            .and(&active)
-            .fold(0.0, |s, &w, &a| if a { s + w } else { s })
-            / count;
-        let wt = Zip::from(&w)
-            .and(&t)
-            .and(&active)
-            .fold(0.0, |s, &w, &t, &a| if a { s + (w - mw) * t } else { s });
-        let tau = rz / wt;
-        Zip::from(&mut p)
-            .and(&t)
-            .for_each(|p, &t| *p = (*p - tau * t).max(0.0));
-        // Cells apart but overlapping enter the contact set; the conjugation restarts.
-        conjugate = true;
-        Zip::from(&mut p).and(&gap).and(&active).for_each(|p, &g, &a| {
-            if !a && g - mean_a < 0.0 {
-                *p -= tau * (g - mean_a);
-                conjugate = false;
-            }
-        });
-        let total = p.sum() / n;
-        p *= mean_pressure / total;
-    }
-    bail!("no convergence in 100000 iterations")
-}
-
-/// Iterations of [`pk`] with and without the preconditioner on the bench's surface.
-fn preconditioned_cg() -> Result<()> {
-    let env = |name: &str, default: &str| std::env::var(name).unwrap_or_else(|_| default.to_string());
-    let sizes: Vec<usize> = env("SIZES", "256,512,1024")
-        .split(',')
-        .map(|v| v.trim().parse())
-        .collect::<std::result::Result<_, _>>()?;
-    let p: f64 = env("PRESSURE", "0.04").parse()?;
-    let with_plain = env("PLAIN", "1") != "0";
-    let tolerance = 5e-9;
-    println!("p = {p} E*, tolerance {tolerance:e} (RMS gap residual on the contact set over the RMS height)");
-    println!(
-        "| n | plain: iterations | plain: s | preconditioned: iterations | preconditioned: s | contact cells differing | mean gap rel. diff |"
-    );
-    println!("|---|---|---|---|---|---|---|");
-    for n in sizes {
-        let g0 = bench_gap(n)?;
-        let op = elastic::Periodic::new(
-            elastic::Domain {
-                nx: n,
-                ny: n,
-                dx: 1.0 / n as f64,
-                dy: 1.0 / n as f64,
-                periodic: true,
-            },
-            1.0,
-        )?;
-        let t = Instant::now();
-        let (pre, pre_gap, pre_set) = pk(&op, &g0, p, tolerance, true)?;
-        let pre_s = t.elapsed().as_secs_f64();
-        if !with_plain {
-            println!("| {n} | not run | | {pre} | {pre_s:.2} | | |");
-            continue;
-        }
-        let t = Instant::now();
-        let (plain, plain_gap, plain_set) = pk(&op, &g0, p, tolerance, false)?;
-        let plain_s = t.elapsed().as_secs_f64();
-        let differ = plain_set
-            .iter()
-            .zip(pre_set.iter())
-            .filter(|(a, b)| a != b)
-            .count();
-        println!(
-            "| {n} | {plain} | {plain_s:.2} | {pre} | {pre_s:.2} | {differ} | {:.1e} |",
-            (plain_gap / pre_gap - 1.0).abs()
-        );
-    }
-    Ok(())
 }

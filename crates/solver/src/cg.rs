@@ -365,7 +365,7 @@ pub(crate) fn solve_in(
                 } else {
                     0.0
                 };
-                pre.image.mapv_inplace(|z| z - z_mean);
+                pre.image.par_mapv_inplace(|z| z - z_mean);
                 let gz = crate::sum::rows3(p.view(), pre.image.view(), gap.view(), |p, z, g| {
                     if p > 0.0 { z * g } else { 0.0 }
                 });
