@@ -980,3 +980,23 @@ fn auto_picks_the_librarys_method_for_every_built_in_example() {
         assert_eq!(solver.as_str(), expected, "{name}");
     }
 }
+
+#[test]
+fn output_into_a_closed_pipe_ends_quietly() {
+    // `roughcontact theory maugis | head -0`: the reader is gone before the first line.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_roughcontact"))
+        .args(["theory", "maugis", "--lambda", "1"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    // No panic, no "Broken pipe" error: the end of a pipeline is not a failure.
+    let err = stderr(&out);
+    assert!(
+        err.is_empty() && out.status.code() != Some(101),
+        "{:?}: {err}",
+        out.status
+    );
+}

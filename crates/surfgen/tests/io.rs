@@ -189,3 +189,44 @@ fn unknown_extensions_and_missing_files_are_named() {
     let err = io::read(Path::new("/nonexistent/s.npy"), &ReadOptions::default()).unwrap_err();
     assert!(err.to_string().contains("/nonexistent/s.npy"), "{err}");
 }
+
+#[test]
+fn an_npy_header_larger_than_its_file_is_refused_before_allocating() {
+    // A valid 8 x 8 file whose header is edited to claim 100000 x 100000 values (80 GB).
+    let s = sample(8, 8);
+    let p = tmp("small.npy");
+    io::write(&s, &p, None).unwrap();
+    let bytes = std::fs::read(&p).unwrap();
+    // The header text after the 10-byte preamble, its length kept: the added characters come
+    // out of its space padding.
+    let header = std::str::from_utf8(&bytes[10..128]).unwrap();
+    let edited = header
+        .replace("(8, 8)", "(100000, 100000)")
+        .replacen("            ", "  ", 1);
+    assert_eq!(edited.len(), header.len());
+    let mut huge = bytes[..10].to_vec();
+    huge.extend_from_slice(edited.as_bytes());
+    huge.extend_from_slice(&bytes[128..]);
+    let (_, message) = parse_error(
+        "huge.npy",
+        &huge,
+        ReadOptions {
+            length_x: Some(1e-4),
+            ..Default::default()
+        },
+    );
+    assert!(
+        message.contains("100000, 100000") && message.contains("truncated"),
+        "{message}"
+    );
+    // A file cut short is refused the same way.
+    let (_, message) = parse_error(
+        "cut.npy",
+        &bytes[..bytes.len() - 8],
+        ReadOptions {
+            length_x: Some(1e-4),
+            ..Default::default()
+        },
+    );
+    assert!(message.contains("truncated"), "{message}");
+}

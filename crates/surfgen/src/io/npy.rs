@@ -19,8 +19,62 @@ pub(super) fn read_sidecar(path: &Path) -> Result<Option<Metadata>> {
     Ok(Some(meta))
 }
 
+/// The data size an `.npy` header promises against the file's length, checked before reading
+/// allocates it: a header claiming 100000 x 100000 values in a 32 KB file must be an error, not
+/// an 80 GB allocation.
+fn check_size(path: &Path, file: &mut File) -> Result<()> {
+    use std::io::{Read, Seek, SeekFrom};
+    let bad = |why: String| SurfError::parse(path, None, why);
+    let length = file.metadata().map_err(|e| SurfError::io(path, e))?.len();
+    let mut preamble = [0u8; 12];
+    let got = file.read(&mut preamble).map_err(|e| SurfError::io(path, e))?;
+    if got < 10 || &preamble[..6] != b"\x93NUMPY" {
+        return Err(bad("not an .npy file (no NUMPY magic)".into()));
+    }
+    let (header_len, offset) = match preamble[6] {
+        1 => (u16::from_le_bytes([preamble[8], preamble[9]]) as u64, 10),
+        _ if got == 12 => (
+            u32::from_le_bytes([preamble[8], preamble[9], preamble[10], preamble[11]]) as u64,
+            12,
+        ),
+        v => return Err(bad(format!("unsupported .npy version {v}"))),
+    };
+    let mut header = vec![0u8; header_len.min(length.saturating_sub(offset)) as usize];
+    file.seek(SeekFrom::Start(offset))
+        .map_err(|e| SurfError::io(path, e))?;
+    file.read_exact(&mut header).map_err(|e| SurfError::io(path, e))?;
+    file.seek(SeekFrom::Start(0))
+        .map_err(|e| SurfError::io(path, e))?;
+    let header = String::from_utf8_lossy(&header);
+    // The shape tuple, e.g. 'shape': (512, 512), ; a malformed one is left to the reader.
+    let Some(shape) = header
+        .split("'shape':")
+        .nth(1)
+        .and_then(|rest| rest.split(')').next())
+        .map(|t| t.trim().trim_start_matches('('))
+    else {
+        return Ok(());
+    };
+    let mut values: u64 = 1;
+    for dim in shape.split(',').map(str::trim).filter(|d| !d.is_empty()) {
+        let Ok(dim) = dim.parse::<u64>() else {
+            return Ok(());
+        };
+        values = values.saturating_mul(dim);
+    }
+    let needed = (offset + header_len).saturating_add(values.saturating_mul(8));
+    if needed > length {
+        return Err(bad(format!(
+            "the header claims a ({shape}) array of {values} values ({needed} bytes with the header), but the file \
+             holds {length} bytes: truncated or corrupt"
+        )));
+    }
+    Ok(())
+}
+
 pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
-    let file = File::open(path).map_err(|e| SurfError::io(path, e))?;
+    let mut file = File::open(path).map_err(|e| SurfError::io(path, e))?;
+    check_size(path, &mut file)?;
     let heights = Array2::<f64>::read_npy(BufReader::new(file))
         .map_err(|e| SurfError::parse(path, None, format!("not a 2-D little-endian f64 .npy array: {e}")))?;
     let (ny, nx) = heights.dim();
