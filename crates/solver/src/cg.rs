@@ -343,10 +343,10 @@ pub(crate) fn solve_in(
         }
         iterations += 1;
         since_fresh += 1;
-        // The (preconditioned) residual the direction is built from, and its product with the
-        // residual on the contact set.
-        let (z, gz): (&Array2<f64>, f64) = match preconditioner.as_deref_mut() {
-            None => (&*gap, g2_contact),
+        // The (preconditioned) residual the direction is built from, less `shift` (its mean on
+        // the contact set under load control), and its product with the residual there.
+        let (z, shift, gz): (&Array2<f64>, f64, f64) = match preconditioner.as_deref_mut() {
+            None => (&*gap, 0.0, g2_contact),
             Some(pre) => {
                 Zip::from(&mut pre.masked)
                     .and(&*gap)
@@ -358,18 +358,24 @@ pub(crate) fn solve_in(
                     pre.image.view_mut(),
                     &mut pre.ws,
                 );
+                let (ps, zs, gs) = (flat(p), flat(&pre.image), flat(gap));
+                let [z_sum, zg, g_sum] = crate::sum::ordered(p.nrows(), |j| {
+                    let mut acc = [0.0; 3];
+                    for k in j * nx..(j + 1) * nx {
+                        if ps[k] > 0.0 {
+                            acc[0] += zs[k];
+                            acc[1] += zs[k] * gs[k];
+                            acc[2] += gs[k];
+                        }
+                    }
+                    acc
+                });
                 let z_mean = if target_load.is_some() {
-                    crate::sum::rows3(p.view(), pre.image.view(), p.view(), |p, z, _| {
-                        if p > 0.0 { z } else { 0.0 }
-                    }) / in_contact
+                    z_sum / in_contact
                 } else {
                     0.0
                 };
-                pre.image.par_mapv_inplace(|z| z - z_mean);
-                let gz = crate::sum::rows3(p.view(), pre.image.view(), gap.view(), |p, z, g| {
-                    if p > 0.0 { z * g } else { 0.0 }
-                });
-                (&pre.image, gz)
+                (&pre.image, z_mean, zg - z_mean * g_sum)
             }
         };
         // Pass C: conjugate direction on the contact set, and its sum there.
@@ -382,7 +388,7 @@ pub(crate) fn solve_in(
             .map(|((t, p), z)| {
                 let mut acc = 0.0;
                 for ((t, p), z) in t.iter_mut().zip(p).zip(z) {
-                    *t = if *p > 0.0 { z + beta * *t } else { 0.0 };
+                    *t = if *p > 0.0 { z - shift + beta * *t } else { 0.0 };
                     acc += *t;
                 }
                 acc
