@@ -100,3 +100,86 @@ pub(crate) fn neighbours(
     }
     Ok(())
 }
+
+/// The neighbour of `i` along an axis of `n` nodes, as [`neighbours`] takes it.
+fn next(i: usize, n: usize, periodic: bool) -> usize {
+    if i + 1 < n {
+        i + 1
+    } else if periodic || n == 1 {
+        0
+    } else {
+        n - 2
+    }
+}
+
+/// The cells whose neighbour along an axis of `n` nodes is `i` (one or two).
+fn sources(i: usize, n: usize, periodic: bool) -> impl Iterator<Item = usize> {
+    // The node before, and the last cell, whose neighbour wraps around or is mirrored.
+    let last = (next(n - 1, n, periodic) == i).then_some(n - 1);
+    i.checked_sub(1).into_iter().chain(last)
+}
+
+/// A law that derives from an energy whose cells depend on their node and its +x and +y
+/// neighbours (as in [`neighbours`]): `cell(g1, g2, g3)` gives a cell's energy per area and its
+/// first and second derivatives by the three gaps. Writes the cells' energies, the pressure
+/// at every node (minus the derivative of the total energy by the node's gap, per cell area,
+/// gathered from the cells it belongs to) and the diagonal of the second derivative.
+pub(crate) fn cell_energies(
+    gap: ArrayView2<f64>,
+    cells: &Cells,
+    mut energy: ArrayViewMut2<f64>,
+    mut pressure: ArrayViewMut2<f64>,
+    mut curvature: ArrayViewMut2<f64>,
+    cell: impl Fn(f64, f64, f64) -> (f64, [f64; 3], [f64; 3]) + Sync,
+) -> Result<()> {
+    check_shapes(&gap, &energy)?;
+    check_shapes(&gap, &pressure)?;
+    check_shapes(&gap, &curvature)?;
+    let (ny, nx) = gap.dim();
+    if ny == 0 || nx == 0 {
+        return Ok(());
+    }
+    let periodic = cells.periodic;
+    // Each cell's derivatives by its own, +x and +y gaps (first, then second).
+    let mut parts = vec![[0.0; 6]; nx * ny];
+    parts
+        .par_chunks_mut(nx)
+        .zip(energy.axis_iter_mut(Axis(0)).into_par_iter())
+        .enumerate()
+        .for_each(|(y, (row, mut e))| {
+            let up = next(y, ny, periodic);
+            for (x, part) in row.iter_mut().enumerate() {
+                let g = (gap[(y, x)], gap[(y, next(x, nx, periodic))], gap[(up, x)]);
+                let (v, d, c) = cell(g.0, g.1, g.2);
+                e[x] = v;
+                *part = [d[0], d[1], d[2], c[0], c[1], c[2]];
+            }
+        });
+    let bad = pressure
+        .axis_iter_mut(Axis(0))
+        .into_par_iter()
+        .zip(curvature.axis_iter_mut(Axis(0)).into_par_iter())
+        .enumerate()
+        .map(|(y, (mut p, mut c))| {
+            for x in 0..nx {
+                let own = parts[y * nx + x];
+                let (mut d, mut k) = (own[0], own[3]);
+                for s in sources(x, nx, periodic) {
+                    d += parts[y * nx + s][1];
+                    k += parts[y * nx + s][4];
+                }
+                for s in sources(y, ny, periodic) {
+                    d += parts[s * nx + x][2];
+                    k += parts[s * nx + x][5];
+                }
+                p[x] = -d;
+                c[x] = k;
+            }
+            p.iter().any(|v| !v.is_finite())
+        })
+        .reduce(|| false, |a, b| a || b);
+    if bad || energy.iter().any(|v| !v.is_finite()) {
+        locate_bad_gap(&gap)?;
+    }
+    Ok(())
+}

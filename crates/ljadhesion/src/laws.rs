@@ -4,8 +4,8 @@
 use crate::error::{Result, positive};
 use crate::field;
 use crate::lj::LennardJones;
-use crate::{AdhesionLaw, Cells, LocalPotential};
-use ndarray::{ArrayView2, ArrayViewMut2};
+use crate::{AdhesionLaw, Cells, FieldPotential, LocalPotential};
+use ndarray::{Array2, ArrayView2, ArrayViewMut2};
 
 /// The trait methods the three Lennard-Jones laws take from their [`LennardJones`].
 macro_rules! lennard_jones_scales {
@@ -48,6 +48,17 @@ pub struct LineLaw(pub LennardJones);
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceLaw(pub LennardJones);
 
+/// The surface law's energy form: the Lennard-Jones interaction energy integrated over each
+/// tilted cell, `E_i = A S M` with `M = (Psi(z2) - Psi(z1)) / (z2 - z1)` the mean of the energy
+/// per area `-Phi` over the separations from the node to its +x neighbour and `S` the area
+/// factor of [`SurfaceLaw`]. The pressure at a node is minus the derivative of the total
+/// energy by its gap, per cell area: it gathers the node's share of the three cells it
+/// belongs to (its own, the -x and the -y neighbour's), where Eq. 11 gives a cell's whole mean
+/// to its node. So it derives from an energy ([`AdhesionLaw::field_potential`]) and the energy
+/// descent applies. On a flat gap field it equals [`PointLaw`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceEnergyLaw(pub LennardJones);
+
 impl AdhesionLaw for PointLaw {
     fn pressure_field(&self, gap: ArrayView2<f64>, _cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()> {
         let lj = self.0;
@@ -78,6 +89,7 @@ macro_rules! flat_point_potential {
 }
 flat_point_potential!(LineLaw);
 flat_point_potential!(SurfaceLaw);
+flat_point_potential!(SurfaceEnergyLaw);
 
 /// `V(g) = -Phi(g + z0)`: `-w0` in contact, convex up to the peak pull at `z = 3^(1/6) z0`.
 impl LocalPotential for PointLaw {
@@ -132,6 +144,60 @@ impl AdhesionLaw for SurfaceLaw {
     lennard_jones_scales!("surface");
     fn flat_potential(&self) -> Option<&dyn LocalPotential> {
         Some(self)
+    }
+}
+
+impl AdhesionLaw for SurfaceEnergyLaw {
+    fn pressure_field(&self, gap: ArrayView2<f64>, cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()> {
+        let shape = gap.dim();
+        let (mut energy, mut curvature) = (Array2::zeros(shape), Array2::zeros(shape));
+        self.evaluate_field(gap, cells, energy.view_mut(), out, curvature.view_mut())
+    }
+    lennard_jones_scales!("surface-energy");
+    fn flat_potential(&self) -> Option<&dyn LocalPotential> {
+        Some(self)
+    }
+    fn field_potential(&self) -> Option<&dyn FieldPotential> {
+        Some(self)
+    }
+}
+
+impl FieldPotential for SurfaceEnergyLaw {
+    fn evaluate_field(
+        &self,
+        gap: ArrayView2<f64>,
+        cells: &Cells,
+        energy: ArrayViewMut2<f64>,
+        pressure: ArrayViewMut2<f64>,
+        curvature: ArrayViewMut2<f64>,
+    ) -> Result<()> {
+        let lj = self.0;
+        let z0 = lj.z0();
+        let (ix, iy) = (1.0 / cells.dx, 1.0 / cells.dy);
+        field::cell_energies(gap, cells, energy, pressure, curvature, |g1, g2, g3| {
+            let (z1, z2, z3) = (lj.separation(g1), lj.separation(g2), lj.separation(g3));
+            let (v1, v2) = (z0 / z1, z0 / z2);
+            let [m, m1, m2, m11, m22] = lj.mean_energy_v(v1, v2);
+            // By the separations: dv/dz = -v^2 / z0.
+            let (mz1, mz2) = (-v1 * v1 / z0 * m1, -v2 * v2 / z0 * m2);
+            let mzz1 = v1 * v1 / (z0 * z0) * (2.0 * v1 * m1 + v1 * v1 * m11);
+            let mzz2 = v2 * v2 / (z0 * z0) * (2.0 * v2 * m2 + v2 * v2 * m22);
+            let (sx, sy) = ((z2 - z1) * ix, (z3 - z1) * iy);
+            let area = (1.0 + sx * sx + sy * sy).sqrt();
+            let (a1, a2, a3) = (-(sx * ix + sy * iy) / area, sx * ix / area, sy * iy / area);
+            let a11 = ((ix * ix + iy * iy) - a1 * a1) / area;
+            let a22 = (ix * ix - a2 * a2) / area;
+            let a33 = (iy * iy - a3 * a3) / area;
+            (
+                area * m,
+                [area * mz1 + m * a1, area * mz2 + m * a2, m * a3],
+                [
+                    area * mzz1 + 2.0 * a1 * mz1 + m * a11,
+                    area * mzz2 + 2.0 * a2 * mz2 + m * a22,
+                    m * a33,
+                ],
+            )
+        })
     }
 }
 

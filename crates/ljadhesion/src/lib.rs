@@ -9,6 +9,7 @@
 //! | [`PointLaw`] | `p(z1)`, Lennard-Jones at the node |
 //! | [`LineLaw`] | mean of `p` over `[z1, z2]` (node and +x neighbour; Medina & Dini 2014) |
 //! | [`SurfaceLaw`] | that mean times the area factor `S` of the tilted cell (Eq. 11) |
+//! | [`SurfaceEnergyLaw`] | minus the gradient of the Lennard-Jones energy over the tilted cells (Eq. 11's energy form) |
 //! | [`ExponentialLaw`] | `-(w0/rho) exp(-g/rho)`, the contact-mechanics challenge's law |
 //! | [`DugdaleLaw`] | `-w0/h0` for `g < h0` (Maugis-Dugdale) |
 //!
@@ -36,7 +37,7 @@ pub mod laws;
 pub mod lj;
 
 pub use error::{AdhesionError, Result};
-pub use laws::{DugdaleLaw, ExponentialLaw, LineLaw, NoAdhesion, PointLaw, SurfaceLaw};
+pub use laws::{DugdaleLaw, ExponentialLaw, LineLaw, NoAdhesion, PointLaw, SurfaceEnergyLaw, SurfaceLaw};
 pub use lj::LennardJones;
 
 use ndarray::{ArrayView2, ArrayViewMut2};
@@ -95,6 +96,34 @@ pub trait AdhesionLaw: Sync + Send {
     fn flat_potential(&self) -> Option<&dyn LocalPotential> {
         self.local_potential()
     }
+
+    /// The law as a [`FieldPotential`], if it derives from an energy of the whole gap field
+    /// that couples neighbouring cells ([`SurfaceEnergyLaw`]).
+    fn field_potential(&self) -> Option<&dyn FieldPotential> {
+        None
+    }
+}
+
+/// A law that derives from an interaction energy of the whole gap field, each cell's energy
+/// depending on its own gap and its neighbours': the pressure at a node is minus the derivative
+/// of the total energy by the node's gap, per cell area, so that energy-minimising solvers
+/// apply, though no cell's pressure depends on its own gap alone.
+pub trait FieldPotential: Sync + Send {
+    /// Writes, for the gaps `gap` \[m\], each cell's interaction energy per area [J/m^2] (the
+    /// field's energy per area is their mean) into `energy`, the law's pressure \[Pa\] (as
+    /// [`AdhesionLaw::pressure_field`]) into `pressure`, and the diagonal of the second
+    /// derivative of the energy by the gaps, per cell area [Pa/m], into `curvature`.
+    ///
+    /// # Errors
+    /// As [`AdhesionLaw::pressure_field`].
+    fn evaluate_field(
+        &self,
+        gap: ArrayView2<f64>,
+        cells: &Cells,
+        energy: ArrayViewMut2<f64>,
+        pressure: ArrayViewMut2<f64>,
+        curvature: ArrayViewMut2<f64>,
+    ) -> Result<()>;
 }
 
 /// A law given by an interaction energy per area `V(g)` [J/m^2] of each cell's own gap `g >= 0`

@@ -103,6 +103,43 @@ impl LennardJones {
         self.w0 / (3.0 * self.z0) * v1 * v2 * (v1 + v2) * ((a + b) * (a * a + b * b) - 4.0)
     }
 
+    /// Mean of the interaction energy per area `-Phi` over the separations between `z1` and
+    /// `z2`, in terms of `v = z0 / z` at both ends, with its partial derivatives by `v1` and
+    /// `v2`: `[M, dM/dv1, dM/dv2, d2M/dv1^2, d2M/dv2^2]`.
+    ///
+    /// With `Psi(z) = (w0 z0 / 3) (4 v - v^7 / 7)` (`Psi' = -Phi`),
+    /// `M = (Psi(z2) - Psi(z1)) / (z2 - z1) = (w0 / 3) [ -4 v1 v2 + (1/7) sum_{k=0..6} v1^(7-k) v2^(1+k) ]`:
+    /// a polynomial, free of cancellation for every interval, and `-Phi(z1)` when they coincide.
+    pub fn mean_energy_v(&self, v1: f64, v2: f64) -> [f64; 5] {
+        let mut a = [1.0; 8];
+        let mut b = [1.0; 8];
+        for i in 1..8 {
+            a[i] = a[i - 1] * v1;
+            b[i] = b[i - 1] * v2;
+        }
+        let (mut m, mut m1, mut m2, mut m11, mut m22) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for k in 0..7 {
+            let kf = k as f64;
+            m += a[7 - k] * b[1 + k];
+            m1 += (7.0 - kf) * a[6 - k] * b[1 + k];
+            m2 += (1.0 + kf) * a[7 - k] * b[k];
+            if k < 6 {
+                m11 += (7.0 - kf) * (6.0 - kf) * a[5 - k] * b[1 + k];
+            }
+            if k > 0 {
+                m22 += (1.0 + kf) * kf * a[7 - k] * b[k - 1];
+            }
+        }
+        let c = self.w0 / 3.0;
+        [
+            c * (m / 7.0 - 4.0 * v1 * v2),
+            c * (m1 / 7.0 - 4.0 * v2),
+            c * (m2 / 7.0 - 4.0 * v1),
+            c * m11 / 7.0,
+            c * m22 / 7.0,
+        ]
+    }
+
     /// Largest `|dp/dg|` over the attractive tail `g >= 0`: `16 w0 / z0^2` [Pa/m], at contact.
     /// It also bounds the slope of [`LennardJones::mean_pressure`] in either end.
     pub fn stiffness_bound(&self) -> f64 {

@@ -350,3 +350,105 @@ fn local_potentials_are_consistent_with_their_laws() {
     assert!(SurfaceLaw(lj()).local_potential().is_none());
     assert!(DugdaleLaw::equivalent_to(&lj()).local_potential().is_none());
 }
+
+#[test]
+fn the_cell_mean_energy_is_the_quadrature_of_the_energy_and_its_derivatives_match() {
+    let lj = lj();
+    let z0 = Z0;
+    for (z1, z2) in [(z0, 1.3 * z0), (1.2 * z0, 40.0 * z0), (3.0 * z0, 3.0 * z0 * (1.0 + 1e-9)), (7.0 * z0, 2.0 * z0)] {
+        let [m, m1, m2, m11, m22] = lj.mean_energy_v(z0 / z1, z0 / z2);
+        let reference = quadrature_mean(|z| lj.energy_per_area(z), z1, z2, 64);
+        assert!((m - reference).abs() <= 1e-12 * W0, "{z1} {z2}: {m} vs {reference}");
+        // Derivatives by v, by central differences of the polynomial.
+        let (v1, v2, h) = (z0 / z1, z0 / z2, 1e-5);
+        let at = |a: f64, b: f64| lj.mean_energy_v(a, b)[0];
+        let d1 = (at(v1 + h, v2) - at(v1 - h, v2)) / (2.0 * h);
+        let d2 = (at(v1, v2 + h) - at(v1, v2 - h)) / (2.0 * h);
+        let d11 = (at(v1 + h, v2) - 2.0 * m + at(v1 - h, v2)) / (h * h);
+        let d22 = (at(v1, v2 + h) - 2.0 * m + at(v1, v2 - h)) / (h * h);
+        for (exact, fd) in [(m1, d1), (m2, d2), (m11, d11), (m22, d22)] {
+            assert!((exact - fd).abs() <= 1e-5 * W0 * 10.0, "{exact} vs {fd}");
+        }
+    }
+}
+
+/// A rough gap field of `ny` by `nx` cells, 0 to a few tens of z0, some cells closed.
+fn rough_gap(ny: usize, nx: usize) -> Array2<f64> {
+    Array2::from_shape_fn((ny, nx), |(y, x)| {
+        let s = (0.7 * x as f64 + 1.3 * y as f64).sin() + (2.1 * x as f64 * y as f64).cos();
+        (Z0 * (3.0 * s + 1.5 * s * s)).max(0.0)
+    })
+}
+
+#[test]
+fn the_surface_energy_law_is_minus_the_gradient_of_its_energy() {
+    let law = SurfaceEnergyLaw(lj());
+    let potential = law.field_potential().expect("a field potential");
+    for periodic in [true, false] {
+        let cells = Cells {
+            dx: 3.0 * Z0,
+            dy: 2.0 * Z0,
+            periodic,
+        };
+        let gap = rough_gap(6, 7);
+        let evaluate = |g: &Array2<f64>| {
+            let (mut e, mut p, mut c) = (Array2::zeros(g.dim()), Array2::zeros(g.dim()), Array2::zeros(g.dim()));
+            potential
+                .evaluate_field(g.view(), &cells, e.view_mut(), p.view_mut(), c.view_mut())
+                .unwrap();
+            (e.sum(), p, c)
+        };
+        let (e0, p, c) = evaluate(&gap);
+        let mut from_law = Array2::zeros(gap.dim());
+        law.pressure_field(gap.view(), &cells, from_law.view_mut()).unwrap();
+        assert_eq!(from_law, p);
+        let h = 1e-6 * Z0;
+        for ((y, x), &g) in gap.indexed_iter() {
+            if g < 2.0 * h {
+                continue; // the wall: one-sided
+            }
+            let shifted = |d: f64| {
+                let mut moved = gap.clone();
+                moved[(y, x)] += d;
+                evaluate(&moved).0
+            };
+            let (up, down) = (shifted(h), shifted(-h));
+            let slope = (up - down) / (2.0 * h);
+            let second = (up - 2.0 * e0 + down) / (h * h);
+            let scale = 16.0 * W0 / (9.0 * 3f64.sqrt() * Z0);
+            assert!((p[(y, x)] + slope).abs() <= 1e-6 * scale, "periodic {periodic} ({y}, {x}): p {} vs -dE/dg {}", p[(y, x)], -slope);
+            let stiffness = 16.0 * W0 / (Z0 * Z0);
+            assert!((c[(y, x)] - second).abs() <= 1e-3 * stiffness, "({y}, {x}): {} vs {second}", c[(y, x)]);
+        }
+    }
+}
+
+#[test]
+fn the_surface_energy_law_on_flat_gaps_is_the_point_law() {
+    for periodic in [true, false] {
+        let cells = Cells {
+            dx: 1e-8,
+            dy: 1e-8,
+            periodic,
+        };
+        for g in [0.0, 0.1 * Z0, 0.5 * Z0, 3.0 * Z0, 40.0 * Z0] {
+            let gap = Array2::from_elem((4, 5), g);
+            let (mut a, mut b) = (Array2::zeros((4, 5)), Array2::zeros((4, 5)));
+            SurfaceEnergyLaw(lj()).pressure_field(gap.view(), &cells, a.view_mut()).unwrap();
+            PointLaw(lj()).pressure_field(gap.view(), &cells, b.view_mut()).unwrap();
+            for ((y, x), &a) in a.indexed_iter() {
+                let b = b[(y, x)];
+                // The mean is along x: a free domain's first column is the +x neighbour of no
+                // cell (half its share), and its mirrored last column gives its share to the
+                // second last.
+                let share = match x {
+                    _ if periodic => 1.0,
+                    0 => 0.5,
+                    3 => 1.5,
+                    _ => 1.0,
+                };
+                assert!((a - share * b).abs() <= 1e-12 * b.abs().max(1e-3 * W0 / Z0), "g {g} ({y}, {x}): {a} vs {b}");
+            }
+        }
+    }
+}
