@@ -4,7 +4,7 @@
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use ljadhesion::{
-    AdhesionLaw, DugdaleLaw, ExponentialLaw, LennardJones, LineLaw, NoAdhesion, PointLaw, SurfaceLaw,
+    AdhesionLaw, DugdaleLaw, ExponentialLaw, LennardJones, LineLaw, NoAdhesion, PointLaw, SurfaceEnergyLaw, SurfaceLaw,
 };
 use ndarray::Array2;
 use serde::{Deserialize, Serialize, de::DeserializeOwned};
@@ -32,6 +32,9 @@ pub enum LawKind {
     None,
     /// Lennard-Jones averaged over the tilted cell (the paper's Eq. 11).
     Surface,
+    /// Minus the gradient of the Lennard-Jones energy integrated over the tilted cells: Eq. 11's
+    /// energy form, which the energy descent minimises.
+    SurfaceEnergy,
     /// Lennard-Jones averaged along x (Medina & Dini 2014).
     Line,
     /// Lennard-Jones at the node.
@@ -326,6 +329,7 @@ impl Case {
         Ok(match kind {
             LawKind::None => unreachable!("handled above"),
             LawKind::Surface => Arc::new(SurfaceLaw(lj()?)),
+            LawKind::SurfaceEnergy => Arc::new(SurfaceEnergyLaw(lj()?)),
             LawKind::Line => Arc::new(LineLaw(lj()?)),
             LawKind::Point => Arc::new(PointLaw(lj()?)),
             LawKind::Exponential => Arc::new(ExponentialLaw::new(

@@ -55,7 +55,7 @@ impl Method {
     }
 
     /// The method for `law` under `control`: itself, or for [`Method::Auto`] the energy
-    /// descent for the laws with an energy and Newton for the line and surface laws under
+    /// descent for the laws with an energy (local or of the field) and Newton for the line and surface laws under
     /// approach control, the accelerated loop elsewhere (load and central-gap control,
     /// Dugdale's law, no adhesion). Near a fold the accelerated loop leaves a branch early,
     /// where the two methods that relax from the last state hold on (`docs/solvers.md`).
@@ -65,7 +65,7 @@ impl Method {
         }
         let approach = matches!(control, Control::Approach(_));
         let adhesive = law.work_of_adhesion() > 0.0;
-        if approach && adhesive && law.local_potential().is_some() {
+        if approach && adhesive && (law.local_potential().is_some() || law.field_potential().is_some()) {
             Method::EnergyDescent
         } else if approach && adhesive && law.flat_potential().is_some() && law.stiffness_bound().is_finite()
         {

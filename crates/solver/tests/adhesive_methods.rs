@@ -6,7 +6,7 @@ mod common;
 use common::*;
 
 use elastic::Compliance;
-use ljadhesion::{AdhesionLaw, DugdaleLaw, LennardJones, PointLaw, SurfaceLaw};
+use ljadhesion::{AdhesionLaw, DugdaleLaw, LennardJones, PointLaw, SurfaceEnergyLaw, SurfaceLaw};
 use solver::{
     AdhesiveReport, AdhesiveState, ContactProblem, Control, Iterations, Method, Mixing, Settings, Start,
 };
@@ -60,7 +60,7 @@ impl Row {
 }
 
 /// Every method against the others on every problem it accepts (the energy descent needs a law
-/// with an energy, so not the surface law): at each step the same load and contact set, and
+/// with an energy, so not the surface law, but its energy form): at each step the same load and contact set, and
 /// each state meeting the equations. Rows: smooth spheres through a jump in and out (mu = 1
 /// and 0.1, where Newton is preconditioned by the diagonal and by the elastic inverse), a
 /// single surface-law solve from attached, and rough periodic contact with either law.
@@ -96,6 +96,19 @@ fn every_method_agrees_with_the_others_on_every_problem_it_accepts() {
                 (Method::Newton, 1e-6, 1e-5),
             ],
         });
+        rows.push(Row {
+            name: "sphere mu = 1, surface-energy law, cycle",
+            problem: problem(&op, &SurfaceEnergyLaw(law.0), g0.view()),
+            path: sphere_cycle.clone(),
+            from_attached: false,
+            load_unit: PI * R * w0,
+            load_tolerance: 1e-4,
+            methods: vec![
+                (Method::EnergyDescent, 1e-7, 1e-5),
+                (Method::Accelerated, 1e-7, 1e-4),
+                (Method::Newton, 1e-7, 1e-5),
+            ],
+        });
         // At mu = 0.1 the compressive load at 1 z0 is 12 pi R w0; at the default tolerance the
         // descent's is 1.2e-4 pi R w0 off (Newton's is not).
         let (op, g0, law, w0) = sphere_case(0.1, 64, 60.0);
@@ -108,20 +121,24 @@ fn every_method_agrees_with_the_others_on_every_problem_it_accepts() {
             load_tolerance: 1e-4,
             methods: vec![(Method::Newton, 1e-8, 1e-7), (Method::EnergyDescent, 1e-8, 1e-5)],
         });
-        for (n, surface) in [(128, false), (64, true)] {
+        for (n, name) in [(128, "point"), (64, "surface"), (64, "surface-energy")] {
             let (op, g0) = rough(n);
             let lj = LennardJones::new(5e-3, 2.0 * op.domain().dx).unwrap();
-            let problem = if surface {
-                problem(&op, &SurfaceLaw(lj), g0.view())
-            } else {
-                problem(&op, &PointLaw(lj), g0.view())
+            let problem = match name {
+                "surface" => problem(&op, &SurfaceLaw(lj), g0.view()),
+                "surface-energy" => problem(&op, &SurfaceEnergyLaw(lj), g0.view()),
+                _ => problem(&op, &PointLaw(lj), g0.view()),
             };
             let mut methods = vec![(Method::Accelerated, 1e-9, 1e-5), (Method::Newton, 1e-8, 1e-6)];
-            if !surface {
+            if name != "surface" {
                 methods.push((Method::EnergyDescent, 1e-8, 1e-6));
             }
             rows.push(Row {
-                name: if surface { "rough 64^2, surface law, mean gap 30 nm" } else { "rough 128^2, point law, mean gap 30 nm" },
+                name: match name {
+                    "surface" => "rough 64^2, surface law, mean gap 30 nm",
+                    "surface-energy" => "rough 64^2, surface-energy law, mean gap 30 nm",
+                    _ => "rough 128^2, point law, mean gap 30 nm",
+                },
                 problem,
                 path: vec![Control::Approach(g0.mean().unwrap() - 3e-8)],
                 from_attached: false,

@@ -23,7 +23,6 @@ use crate::error::{Result, SolverError, invalid};
 use crate::fields::{flat, flat_mut};
 use crate::options::Control;
 use crate::report::Termination;
-use ljadhesion::LocalPotential;
 use ndarray::Array2;
 use rayon::prelude::*;
 use std::time::Instant;
@@ -31,7 +30,7 @@ use std::time::Instant;
 /// Cuts of a step that would raise the energy before the solve gives up.
 const MAX_CUTS: usize = 40;
 
-use super::gap_problem::{Point, Setup, finish, on_wall, setup};
+use super::gap_problem::{Energy, Point, Setup, finish, on_wall, setup};
 
 /// The energy descent of the module docs.
 pub(super) struct EnergyDescent;
@@ -50,13 +49,19 @@ impl AdhesiveMethod for EnergyDescent {
     }
 }
 
-/// The law's local potential, if the descent can solve this problem; else why not.
-fn potential<'a>(job: &Job<'a>) -> Result<&'a dyn LocalPotential> {
-    let Some(potential) = job.law.local_potential() else {
-        return Err(SolverError::Unsupported(format!(
-            "energy descent needs a law with a local potential (point, exponential), not `{}`",
-            job.law.name()
-        )));
+/// The law's energy, if the descent can solve this problem; else why not.
+fn potential<'a>(job: &Job<'a>) -> Result<Energy<'a>> {
+    let law = job.law;
+    let potential = match (law.local_potential(), law.field_potential()) {
+        (Some(local), _) => Energy::Local(local),
+        (None, Some(field)) => Energy::Field(field),
+        (None, None) => {
+            return Err(SolverError::Unsupported(format!(
+                "energy descent needs a law with an energy (point, surface-energy, exponential), \
+                 not `{}`",
+                law.name()
+            )));
+        }
     };
     if !job.op.domain().periodic && !matches!(job.control, Control::Approach(_)) {
         return Err(SolverError::Unsupported(
@@ -79,7 +84,7 @@ fn potential<'a>(job: &Job<'a>) -> Result<&'a dyn LocalPotential> {
 /// module docs, with the law's `potential`.
 pub(super) fn solve<'a>(
     job: &Job<'a>,
-    potential: &'a dyn LocalPotential,
+    potential: Energy<'a>,
     observer: &mut dyn FnMut(usize, f64),
 ) -> Result<(AdhesiveState, AdhesiveReport)> {
     let started = Instant::now();
@@ -89,7 +94,7 @@ pub(super) fn solve<'a>(
         mut x,
         delta,
         load,
-    } = setup(job, Some(potential))?;
+    } = setup(job, potential)?;
     let unknown = x.gap.dim();
     let mut direction = Array2::zeros(unknown);
     let mut sums = problem.project_gradient(&mut x);

@@ -23,7 +23,7 @@ use crate::fields::{flat, flat_mut};
 use crate::options::Control;
 use crate::state::ContactState;
 use elastic::{Domain, FreeStiffness, PeriodicStiffness};
-use ljadhesion::{AdhesionLaw, Cells, LocalPotential};
+use ljadhesion::{AdhesionLaw, Cells, FieldPotential, LocalPotential};
 use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip, s};
 use rayon::prelude::*;
 
@@ -111,17 +111,27 @@ impl Stiffness {
     }
 }
 
+/// The energy of the law, if it has one.
+#[derive(Clone, Copy)]
+pub(super) enum Energy<'a> {
+    /// None: only the law's pressure field and a probed stiffness are evaluated (Newton).
+    None,
+    /// Of each cell's own gap.
+    Local(&'a dyn LocalPotential),
+    /// Of the whole field.
+    Field(&'a dyn FieldPotential),
+}
+
 pub(super) struct Problem<'a> {
     pub(super) stiffness: Stiffness,
     pub(super) ws: elastic::Workspace,
-    /// The law's local potential: the energy is defined (descent); without one, only the
-    /// law's pressure field and a probed stiffness are evaluated (Newton).
-    potential: Option<&'a dyn LocalPotential>,
+    /// The law's energy (descent), or none (Newton).
+    energy: Energy<'a>,
     pub(super) law: &'a dyn AdhesionLaw,
     pub(super) cells: Cells,
     domain: Domain,
-    /// The block's gap shifted by a probe, and the law's pressure there (laws without a
-    /// potential; empty otherwise).
+    /// The block's gap shifted by a probe, and the law's pressure there (without an energy);
+    /// the cells' energies (a field energy); empty otherwise.
     probe: (Array2<f64>, Array2<f64>),
     /// The unknown less the surface displacement \[m\] (up to its mean, periodic): `g0` periodic;
     /// `g0 - delta` on the domain's block and zero in the padding, free.
@@ -229,11 +239,23 @@ impl Problem<'_> {
         self.stiffness
             .apply(self.scratch.view(), at.elastic.view_mut(), &mut self.ws)?;
         self.calls += 1;
-        let potential = self.potential;
-        if potential.is_none() {
-            self.law_on_block(at)?;
+        let energy = self.energy;
+        match energy {
+            Energy::None => self.law_on_block(at)?,
+            Energy::Field(field) => {
+                let block = s![..self.ny, ..self.nx];
+                field.evaluate_field(
+                    at.gap.slice(block),
+                    &self.cells,
+                    self.probe.0.view_mut(),
+                    at.law.slice_mut(block),
+                    at.curvature.slice_mut(block),
+                )?;
+            }
+            Energy::Local(_) => {}
         }
         let load = self.load.unwrap_or(0.0);
+        let cell_energies = flat(&self.probe.0);
         let gs = flat(&at.gap);
         let ds = flat(&self.scratch);
         let es = flat(&at.elastic);
@@ -258,9 +280,10 @@ impl Problem<'_> {
                         (lr[i], cr[i], rr[i]) = (0.0, 0.0, es[k]);
                         continue;
                     }
-                    let (v, p, c) = match potential {
-                        Some(potential) => potential.evaluate(g),
-                        None => (0.0, lr[i], cr[i]),
+                    let (v, p, c) = match energy {
+                        Energy::Local(potential) => potential.evaluate(g),
+                        Energy::Field(_) => (cell_energies[j * nx + i], lr[i], cr[i]),
+                        Energy::None => (0.0, lr[i], cr[i]),
                     };
                     (lr[i], cr[i]) = (p, c);
                     rr[i] = es[k] - p + load;
@@ -448,8 +471,8 @@ pub(super) struct Setup<'a> {
 
 /// Sets up the problem over the gap (or the padded displacement, free) under approach control
 /// (`Control::Approach`) or, periodic only, load control (`Control::Force`,
-/// `Control::MeanPressure`), with the law's `potential` if it has one; see the module docs.
-pub(super) fn setup<'a>(job: &Job<'a>, potential: Option<&'a dyn LocalPotential>) -> Result<Setup<'a>> {
+/// `Control::MeanPressure`), with the law's `energy` if it has one; see the module docs.
+pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> {
     let (op, law, g0, settings) = (job.op, job.law, job.g0, job.settings);
     let (control, start) = (job.control, job.start);
     let domain = *op.domain();
@@ -464,7 +487,10 @@ pub(super) fn setup<'a>(job: &Job<'a>, potential: Option<&'a dyn LocalPotential>
         });
     }
     let n = (nx * ny) as f64;
-    let probe_shape = || Array2::zeros(if potential.is_some() { (0, 0) } else { shape });
+    let probe_shape = |both| {
+        let needed = matches!(energy, Energy::None) || (both && matches!(energy, Energy::Field(_)));
+        Array2::zeros(if needed { shape } else { (0, 0) })
+    };
     let cells = cells(&domain);
     let (delta, load) = match control {
         Control::Approach(d) => (d, None),
@@ -501,11 +527,11 @@ pub(super) fn setup<'a>(job: &Job<'a>, potential: Option<&'a dyn LocalPotential>
         let problem = Problem {
             ws: stiffness.make_workspace(),
             stiffness: Stiffness::Periodic(stiffness),
-            potential,
+            energy,
             law,
             cells,
             domain,
-            probe: (probe_shape(), probe_shape()),
+            probe: (probe_shape(true), probe_shape(false)),
             base: g0.to_owned(),
             mx: nx,
             my: ny,
@@ -553,11 +579,11 @@ pub(super) fn setup<'a>(job: &Job<'a>, potential: Option<&'a dyn LocalPotential>
         let problem = Problem {
             ws,
             stiffness: Stiffness::Free(stiffness),
-            potential,
+            energy,
             law,
             cells,
             domain,
-            probe: (probe_shape(), probe_shape()),
+            probe: (probe_shape(true), probe_shape(false)),
             base,
             mx: padded.1,
             my: padded.0,

@@ -295,14 +295,15 @@ impl AdhesiveMethod for Newton {
 /// Solves under approach control (periodic or free) with any law; see the module docs.
 fn solve(job: &Job, observer: &mut dyn FnMut(usize, f64)) -> Result<(AdhesiveState, AdhesiveReport)> {
     let started = Instant::now();
-    // A law without an energy but with a flat one (line, surface) can have its state predicted
-    // by descending that energy when Newton cannot get going.
+    // A law without a local energy but with a field energy (surface-energy) or a flat one
+    // (line, surface) can have its state predicted by descending that energy when Newton
+    // cannot get going.
     let law = job.law;
-    let predictor = law
-        .local_potential()
-        .is_none()
-        .then(|| law.flat_potential())
-        .flatten();
+    let predictor = match (law.local_potential(), law.field_potential()) {
+        (Some(_), _) => None,
+        (None, Some(field)) => Some(gap_problem::Energy::Field(field)),
+        (None, None) => law.flat_potential().map(gap_problem::Energy::Local),
+    };
     let (state, report) = iterate(job, predictor.is_some(), observer)?;
     let Some(potential) = predictor.filter(|_| report.termination == Termination::MaxIterations) else {
         return Ok((state, report));
@@ -355,7 +356,7 @@ fn iterate(
         mut x,
         delta,
         load,
-    } = gap_problem::setup(job, None)?;
+    } = gap_problem::setup(job, gap_problem::Energy::None)?;
     let unknown = x.gap.dim();
     let mut sums: GradientSums = problem.project_gradient(&mut x);
     let mut norm = dot(&x.gradient, &x.gradient).sqrt();
