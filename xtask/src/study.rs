@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 /// The studies, by name, with what each shows.
-pub const STUDIES: [(&str, &str); 3] = [
+pub const STUDIES: [(&str, &str); 4] = [
     (
         "pull-off-mesh",
         "a sphere's pull-off at mu = 1 against the cell size, point, line and surface laws (minutes)",
@@ -24,6 +24,11 @@ pub const STUDIES: [(&str, &str); 3] = [
         "non-adhesive CG iterations from a cold start and from the solution of the grid twice as coarse, \
          recursively (SIZES=512,1024,2048; PRESSURE=0.04)",
     ),
+    (
+        "challenge-mesh",
+        "the contact-mechanics challenge's load cycle, relative contact area against the cell size for the \
+         point, surface-energy and exponential laws, by the energy descent (SIZES=256,512,1024; LAWS=...)",
+    ),
 ];
 
 /// Runs the study `name`.
@@ -32,6 +37,7 @@ pub fn run(name: &str) -> Result<()> {
         "pull-off-mesh" => pull_off_mesh(),
         "high-tabor-mesh" => high_tabor_mesh(),
         "nested-start" => nested_start(),
+        "challenge-mesh" => challenge_mesh(),
         _ => {
             let names: Vec<_> = STUDIES.iter().map(|(n, _)| *n).collect();
             bail!("unknown study `{name}`; the studies are {}", names.join(", "))
@@ -255,4 +261,73 @@ fn bench_gap(n: usize) -> Result<ndarray::Array2<f64>> {
     Ok(solver::geometry::flat_on_rough(
         surfgen::generate(&spec)?.heights.view(),
     )?)
+}
+
+/// The contact-mechanics challenge (L = 100 um, H = 0.8, roll-off 20 um, RMS gradient 1, seed
+/// 1, E* = 25 MPa, w0 = 50 mJ/m^2, z0 = rho = 2.071 nm) under the loads p / (E* g_bar) =
+/// 0.00125 ... 0.04 and back, on grids of `SIZES` cells a side. One surface for all of them:
+/// made on the finest grid with its short cut-off at four cells of the coarsest, and sampled
+/// at every k-th node for the coarser ones (band-limited, so the samples are the same
+/// surface). Prints the relative contact area of each law on each grid at each load.
+fn challenge_mesh() -> Result<()> {
+    use ljadhesion::{ExponentialLaw, SurfaceEnergyLaw};
+    let sizes: Vec<usize> = std::env::var("SIZES")
+        .unwrap_or_else(|_| "256,512,1024".into())
+        .split(',')
+        .map(|s| s.trim().parse())
+        .collect::<Result<_, _>>()?;
+    let laws: Vec<String> = std::env::var("LAWS")
+        .unwrap_or_else(|_| "point,surface-energy,exponential".into())
+        .split(',')
+        .map(|s| s.trim().to_string())
+        .collect();
+    let (coarsest, finest) = (*sizes.iter().min().unwrap_or(&256), *sizes.iter().max().unwrap_or(&256));
+    let (length, e_star, w0, z0) = (1e-4, 25e6, 0.05, 2.071e-9);
+    let grid = surfgen::Grid::square(finest, length)?;
+    let spec = surfgen::SurfaceSpec {
+        grid,
+        psd: surfgen::Psd::self_affine(0.8, 2e-5, 4.0 * length / coarsest as f64),
+        normalization: surfgen::Normalization::RmsGradient(1.0),
+        amplitudes: surfgen::Amplitudes::Exact,
+        seed: 1,
+    };
+    let heights = surfgen::generate(&spec)?.heights;
+    let loads = [0.00125, 0.0025, 0.005, 0.01, 0.02, 0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125];
+    let path: Vec<_> = loads.iter().map(|&p| Control::MeanPressure(p * e_star)).collect();
+    let settings = Settings::with_method(Method::EnergyDescent);
+    println!("| law | n | cell / process zone | {} | wall [s] | all converged |", loads.map(|p| format!("{p}")).join(" | "));
+    println!("|---|---|---|{}---|---|", "---|".repeat(loads.len()));
+    let lj = LennardJones::new(w0, z0)?;
+    let zone = e_star * w0 / (lj.min_pressure() * lj.min_pressure());
+    for law in &laws {
+        for &n in &sizes {
+            let stride = finest / n;
+            let sampled = heights.slice(ndarray::s![..;stride, ..;stride]).to_owned();
+            let builder = ContactProblem::builder()
+                .roughness(sampled, length, length)
+                .periodic(true)
+                .modulus(e_star);
+            let problem = match law.as_str() {
+                "point" => builder.law(PointLaw(lj)),
+                "surface-energy" => builder.law(SurfaceEnergyLaw(lj)),
+                "exponential" => builder.law(ExponentialLaw::new(w0, z0)?),
+                other => bail!("unknown law `{other}` (point, surface-energy, exponential)"),
+            }
+            .build()?;
+            let started = Instant::now();
+            let points = problem.sweep(&path, None, &settings, None, &mut ())?;
+            let areas: Vec<String> = points
+                .iter()
+                .map(|p| format!("{:.4}", p.report.contact_area_fraction))
+                .collect();
+            println!(
+                "| {law} | {n} | {:.0} | {} | {:.1} | {} |",
+                length / n as f64 / zone,
+                areas.join(" | "),
+                started.elapsed().as_secs_f64(),
+                points.iter().all(|p| p.report.converged())
+            );
+        }
+    }
+    Ok(())
 }
