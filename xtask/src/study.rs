@@ -13,7 +13,7 @@ use std::time::Instant;
 pub const STUDIES: [(&str, &str); 4] = [
     (
         "pull-off-mesh",
-        "a sphere's pull-off at mu = 1 against the cell size, point, line and surface laws (minutes)",
+        "a sphere's pull-off at mu = 1 against the cell size, point, line, surface and surface-energy laws (minutes)",
     ),
     (
         "high-tabor-mesh",
@@ -66,7 +66,7 @@ fn approaches(values: impl Iterator<Item = f64>) -> Vec<Control> {
     values.map(|a| Control::Approach(a * Z0)).collect()
 }
 
-/// Mesh refinement of the pull-off (mu = 1, R = 1000 z0, box 200 z0 wide) for the three
+/// Mesh refinement of the pull-off (mu = 1, R = 1000 z0, box 200 z0 wide) for the four
 /// Lennard-Jones laws, by the accelerated loop.
 fn pull_off_mesh() -> Result<()> {
     let (mu, half_width) = (1.0, 100.0);
@@ -75,8 +75,8 @@ fn pull_off_mesh() -> Result<()> {
     let g =
         theory::greenwood::Greenwood::new(mu, theory::greenwood::Mesh::default()).curve(5.0, 1.0, 0.01)?;
     println!("Greenwood's pull-off {:.4} (2 pi R w0)", g.pull_off_load_control);
-    println!("| cells | cell / z0 | point | line | surface |");
-    println!("|---|---|---|---|---|");
+    println!("| cells | cell / z0 | point | line | surface | surface-energy |");
+    println!("|---|---|---|---|---|---|");
     let mut path = approaches((0..=3).map(|k| -3.0 + k as f64));
     path.extend(approaches((1..=12).map(|k| -0.25 * k as f64)));
     let settings = Settings::with_method(Method::Accelerated);
@@ -86,6 +86,7 @@ fn pull_off_mesh() -> Result<()> {
             sphere(n, half_width, PointLaw(lj))?,
             sphere(n, half_width, LineLaw(lj))?,
             sphere(n, half_width, SurfaceLaw(lj))?,
+            sphere(n, half_width, ljadhesion::SurfaceEnergyLaw(lj))?,
         ] {
             let points = problem.sweep(&path, None, &settings, None, &mut ())?;
             let s = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
@@ -281,7 +282,10 @@ fn challenge_mesh() -> Result<()> {
         .split(',')
         .map(|s| s.trim().to_string())
         .collect();
-    let (coarsest, finest) = (*sizes.iter().min().unwrap_or(&256), *sizes.iter().max().unwrap_or(&256));
+    let (coarsest, finest) = (
+        *sizes.iter().min().unwrap_or(&256),
+        *sizes.iter().max().unwrap_or(&256),
+    );
     let (length, e_star, w0, z0) = (1e-4, 25e6, 0.05, 2.071e-9);
     let grid = surfgen::Grid::square(finest, length)?;
     let spec = surfgen::SurfaceSpec {
@@ -292,10 +296,15 @@ fn challenge_mesh() -> Result<()> {
         seed: 1,
     };
     let heights = surfgen::generate(&spec)?.heights;
-    let loads = [0.00125, 0.0025, 0.005, 0.01, 0.02, 0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125];
+    let loads = [
+        0.00125, 0.0025, 0.005, 0.01, 0.02, 0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125,
+    ];
     let path: Vec<_> = loads.iter().map(|&p| Control::MeanPressure(p * e_star)).collect();
     let settings = Settings::with_method(Method::EnergyDescent);
-    println!("| law | n | cell / process zone | {} | wall [s] | all converged |", loads.map(|p| format!("{p}")).join(" | "));
+    println!(
+        "| law | n | cell / process zone | {} | wall [s] | all converged |",
+        loads.map(|p| format!("{p}")).join(" | ")
+    );
     println!("|---|---|---|{}---|---|", "---|".repeat(loads.len()));
     let lj = LennardJones::new(w0, z0)?;
     let zone = e_star * w0 / (lj.min_pressure() * lj.min_pressure());

@@ -29,12 +29,20 @@ pub struct BenchArgs {
     /// differ, relative difference of the mean gap).
     #[arg(long)]
     check: bool,
-    /// Precondition the conjugate gradients by the inverse operator on the contact set.
-    #[arg(long)]
-    preconditioned: bool,
+    /// Which conjugate gradients to time: plain (Polonsky-Keer), preconditioned (by the
+    /// inverse operator on the contact set) or both, one after the other at each size.
+    #[arg(long, value_enum, default_value_t = BenchSolver::Both)]
+    solver: BenchSolver,
     /// Write the table as JSON to this file too.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum BenchSolver {
+    Plain,
+    Preconditioned,
+    Both,
 }
 
 /// Peak resident memory of this process so far [bytes] (Linux), `None` elsewhere.
@@ -47,19 +55,20 @@ fn peak_rss() -> Option<u64> {
 
 pub fn bench(a: BenchArgs) -> Result<()> {
     println!(
-        "Self-affine surface, H = 0.8, RMS gradient 1, short cut-off 8 cells, no roll-off; E* = 1, p = {} E*, tolerance {:e}, {}, {} threads",
+        "Self-affine surface, H = 0.8, RMS gradient 1, short cut-off 8 cells, no roll-off; E* = 1, p = {} E*, tolerance {:e}, {} threads",
         a.pressure,
         a.tolerance,
-        if a.preconditioned {
-            "preconditioned CG"
-        } else {
-            "plain CG (Polonsky-Keer)"
-        },
         rayon::current_num_threads()
     );
+    let solvers: &[bool] = match a.solver {
+        BenchSolver::Plain => &[false],
+        BenchSolver::Preconditioned => &[true],
+        BenchSolver::Both => &[false, true],
+    };
     println!(
-        "{:>6} {:>7} {:>10} {:>10} {:>12} {:>10}{}",
+        "{:>6} {:>15} {:>7} {:>10} {:>10} {:>12} {:>10}{}",
         "n",
+        "solver",
         "iters",
         "op calls",
         "time [s]",
@@ -92,63 +101,70 @@ pub fn bench(a: BenchArgs) -> Result<()> {
             periodic: true,
         };
         let op = Periodic::new(dom, 1.0)?;
-        let opts = ContactOptions {
-            tolerance: a.tolerance,
-            max_iterations: a.max_iterations,
-            preconditioned: a.preconditioned,
-        };
-        let t = Instant::now();
-        let (state, rep) = solver::cg::solve(
-            &op,
-            g0.view(),
-            Control::MeanPressure(a.pressure),
-            &opts,
-            None,
-            &mut (),
-        )?;
-        let time = t.elapsed().as_secs_f64();
-        let peak = peak_rss().map(|b| b as f64 / 1e6);
-        let mut row = json!({
-            "n": n, "iterations": rep.iterations, "operator_calls": rep.operator_calls, "wall_time_s": time,
-            "peak_rss_mb": peak, "contact_area_fraction": rep.contact_area_fraction, "converged": rep.converged(),
-        });
-        let mut extra = String::new();
-        if a.check {
-            let tight = ContactOptions {
-                tolerance: 1e-12,
-                ..Default::default()
-            };
-            let (reference, _) = solver::cg::solve(
-                &op,
-                g0.view(),
-                Control::MeanPressure(a.pressure),
-                &tight,
-                Some(&state),
-                &mut (),
-            )?;
-            let differ = state
-                .pressure
-                .iter()
-                .zip(reference.pressure.iter())
-                .filter(|(x, y)| (**x > 0.0) != (**y > 0.0))
-                .count();
-            let mean_gap = |s: &solver::ContactState| s.gap.mean().unwrap_or(0.0);
-            let gap_diff = (mean_gap(&state) / mean_gap(&reference) - 1.0).abs();
-            extra = format!("  {differ:>12}  {gap_diff:>18.2e}");
-            row["contact_cells_differing"] = json!(differ);
-            row["mean_gap_relative_difference"] = json!(gap_diff);
+        for &preconditioned in solvers {
+            rows.push(time_one(&a, n, &op, g0.view(), preconditioned)?);
         }
-        println!(
-            "{n:>6} {:>7} {:>10} {time:>10.3} {:>12} {:>10.5}{extra}",
-            rep.iterations,
-            rep.operator_calls,
-            peak.map_or("n/a".into(), |p| format!("{p:.0}")),
-            rep.contact_area_fraction
-        );
-        rows.push(row);
     }
     if let Some(path) = a.json {
         std::fs::write(&path, serde_json::to_string_pretty(&rows)? + "\n")?;
     }
     Ok(())
+}
+
+/// Solves the bench's problem on `op` with one solver and prints its row.
+fn time_one(
+    a: &BenchArgs,
+    n: usize,
+    op: &Periodic,
+    g0: ndarray::ArrayView2<f64>,
+    preconditioned: bool,
+) -> Result<serde_json::Value> {
+    let opts = ContactOptions {
+        tolerance: a.tolerance,
+        max_iterations: a.max_iterations,
+        preconditioned,
+    };
+    let solver = if preconditioned { "preconditioned" } else { "plain" };
+    let t = Instant::now();
+    let (state, rep) = solver::cg::solve(op, g0, Control::MeanPressure(a.pressure), &opts, None, &mut ())?;
+    let time = t.elapsed().as_secs_f64();
+    let peak = peak_rss().map(|b| b as f64 / 1e6);
+    let mut row = json!({
+        "n": n, "solver": solver, "iterations": rep.iterations, "operator_calls": rep.operator_calls, "wall_time_s": time,
+        "peak_rss_mb": peak, "contact_area_fraction": rep.contact_area_fraction, "converged": rep.converged(),
+    });
+    let mut extra = String::new();
+    if a.check {
+        let tight = ContactOptions {
+            tolerance: 1e-12,
+            ..Default::default()
+        };
+        let (reference, _) = solver::cg::solve(
+            op,
+            g0,
+            Control::MeanPressure(a.pressure),
+            &tight,
+            Some(&state),
+            &mut (),
+        )?;
+        let differ = state
+            .pressure
+            .iter()
+            .zip(reference.pressure.iter())
+            .filter(|(x, y)| (**x > 0.0) != (**y > 0.0))
+            .count();
+        let mean_gap = |s: &solver::ContactState| s.gap.mean().unwrap_or(0.0);
+        let gap_diff = (mean_gap(&state) / mean_gap(&reference) - 1.0).abs();
+        extra = format!("  {differ:>12}  {gap_diff:>18.2e}");
+        row["contact_cells_differing"] = json!(differ);
+        row["mean_gap_relative_difference"] = json!(gap_diff);
+    }
+    println!(
+        "{n:>6} {solver:>15} {:>7} {:>10} {time:>10.3} {:>12} {:>10.5}{extra}",
+        rep.iterations,
+        rep.operator_calls,
+        peak.map_or("n/a".into(), |p| format!("{p:.0}")),
+        rep.contact_area_fraction
+    );
+    Ok(row)
 }

@@ -4,7 +4,8 @@
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use ljadhesion::{
-    AdhesionLaw, DugdaleLaw, ExponentialLaw, LennardJones, LineLaw, NoAdhesion, PointLaw, SurfaceEnergyLaw, SurfaceLaw,
+    AdhesionLaw, DugdaleLaw, ExponentialLaw, LennardJones, LineLaw, NoAdhesion, PointLaw, SurfaceEnergyLaw,
+    SurfaceLaw,
 };
 use ndarray::Array2;
 use serde::{Deserialize, Serialize, de::DeserializeOwned};

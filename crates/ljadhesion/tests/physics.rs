@@ -355,10 +355,18 @@ fn local_potentials_are_consistent_with_their_laws() {
 fn the_cell_mean_energy_is_the_quadrature_of_the_energy_and_its_derivatives_match() {
     let lj = lj();
     let z0 = Z0;
-    for (z1, z2) in [(z0, 1.3 * z0), (1.2 * z0, 40.0 * z0), (3.0 * z0, 3.0 * z0 * (1.0 + 1e-9)), (7.0 * z0, 2.0 * z0)] {
+    for (z1, z2) in [
+        (z0, 1.3 * z0),
+        (1.2 * z0, 40.0 * z0),
+        (3.0 * z0, 3.0 * z0 * (1.0 + 1e-9)),
+        (7.0 * z0, 2.0 * z0),
+    ] {
         let [m, m1, m2, m11, m22] = lj.mean_energy_v(z0 / z1, z0 / z2);
         let reference = quadrature_mean(|z| lj.energy_per_area(z), z1, z2, 64);
-        assert!((m - reference).abs() <= 1e-12 * W0, "{z1} {z2}: {m} vs {reference}");
+        assert!(
+            (m - reference).abs() <= 1e-12 * W0,
+            "{z1} {z2}: {m} vs {reference}"
+        );
         // Derivatives by v, by central differences of the polynomial.
         let (v1, v2, h) = (z0 / z1, z0 / z2, 1e-5);
         let at = |a: f64, b: f64| lj.mean_energy_v(a, b)[0];
@@ -392,7 +400,11 @@ fn the_surface_energy_law_is_minus_the_gradient_of_its_energy() {
         };
         let gap = rough_gap(6, 7);
         let evaluate = |g: &Array2<f64>| {
-            let (mut e, mut p, mut c) = (Array2::zeros(g.dim()), Array2::zeros(g.dim()), Array2::zeros(g.dim()));
+            let (mut e, mut p, mut c) = (
+                Array2::zeros(g.dim()),
+                Array2::zeros(g.dim()),
+                Array2::zeros(g.dim()),
+            );
             potential
                 .evaluate_field(g.view(), &cells, e.view_mut(), p.view_mut(), c.view_mut())
                 .unwrap();
@@ -400,7 +412,8 @@ fn the_surface_energy_law_is_minus_the_gradient_of_its_energy() {
         };
         let (e0, p, c) = evaluate(&gap);
         let mut from_law = Array2::zeros(gap.dim());
-        law.pressure_field(gap.view(), &cells, from_law.view_mut()).unwrap();
+        law.pressure_field(gap.view(), &cells, from_law.view_mut())
+            .unwrap();
         assert_eq!(from_law, p);
         let h = 1e-6 * Z0;
         for ((y, x), &g) in gap.indexed_iter() {
@@ -416,9 +429,18 @@ fn the_surface_energy_law_is_minus_the_gradient_of_its_energy() {
             let slope = (up - down) / (2.0 * h);
             let second = (up - 2.0 * e0 + down) / (h * h);
             let scale = 16.0 * W0 / (9.0 * 3f64.sqrt() * Z0);
-            assert!((p[(y, x)] + slope).abs() <= 1e-6 * scale, "periodic {periodic} ({y}, {x}): p {} vs -dE/dg {}", p[(y, x)], -slope);
+            assert!(
+                (p[(y, x)] + slope).abs() <= 1e-6 * scale,
+                "periodic {periodic} ({y}, {x}): p {} vs -dE/dg {}",
+                p[(y, x)],
+                -slope
+            );
             let stiffness = 16.0 * W0 / (Z0 * Z0);
-            assert!((c[(y, x)] - second).abs() <= 1e-3 * stiffness, "({y}, {x}): {} vs {second}", c[(y, x)]);
+            assert!(
+                (c[(y, x)] - second).abs() <= 1e-3 * stiffness,
+                "({y}, {x}): {} vs {second}",
+                c[(y, x)]
+            );
         }
     }
 }
@@ -434,8 +456,12 @@ fn the_surface_energy_law_on_flat_gaps_is_the_point_law() {
         for g in [0.0, 0.1 * Z0, 0.5 * Z0, 3.0 * Z0, 40.0 * Z0] {
             let gap = Array2::from_elem((4, 5), g);
             let (mut a, mut b) = (Array2::zeros((4, 5)), Array2::zeros((4, 5)));
-            SurfaceEnergyLaw(lj()).pressure_field(gap.view(), &cells, a.view_mut()).unwrap();
-            PointLaw(lj()).pressure_field(gap.view(), &cells, b.view_mut()).unwrap();
+            SurfaceEnergyLaw(lj())
+                .pressure_field(gap.view(), &cells, a.view_mut())
+                .unwrap();
+            PointLaw(lj())
+                .pressure_field(gap.view(), &cells, b.view_mut())
+                .unwrap();
             for ((y, x), &a) in a.indexed_iter() {
                 let b = b[(y, x)];
                 // The mean is along x: a free domain's first column is the +x neighbour of no
@@ -447,7 +473,10 @@ fn the_surface_energy_law_on_flat_gaps_is_the_point_law() {
                     3 => 1.5,
                     _ => 1.0,
                 };
-                assert!((a - share * b).abs() <= 1e-12 * b.abs().max(1e-3 * W0 / Z0), "g {g} ({y}, {x}): {a} vs {b}");
+                assert!(
+                    (a - share * b).abs() <= 1e-12 * b.abs().max(1e-3 * W0 / Z0),
+                    "g {g} ({y}, {x}): {a} vs {b}"
+                );
             }
         }
     }

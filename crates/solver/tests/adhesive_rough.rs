@@ -210,8 +210,16 @@ fn the_lennard_jones_laws_with_an_energy_converge_on_cells_far_coarser_than_the_
             // cell: 1e-6 z0 over a cell's compliance, 0.1 Pa here.
             let imbalance = 1e-6 * lj.z0() / solver::adhesive::cell_compliance(op.domain(), e_star);
             for (point, &p) in points.iter().zip(&loads) {
-                assert!(point.report.converged(), "{name} at {p}: {:?}", point.report.termination);
-                assert!((point.report.mean_pressure - p * e_star).abs() < imbalance, "{name} at {p}: {}", point.report.mean_pressure);
+                assert!(
+                    point.report.converged(),
+                    "{name} at {p}: {:?}",
+                    point.report.termination
+                );
+                assert!(
+                    (point.report.mean_pressure - p * e_star).abs() < imbalance,
+                    "{name} at {p}: {}",
+                    point.report.mean_pressure
+                );
             }
             assert!(errors.iter().all(|&e| e < 1e-5), "{name}: {errors:?}");
             // Loading spreads the contact; unloading, cells stay stuck: at each load the area
