@@ -49,14 +49,14 @@ pub enum LawKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum OuterKind {
-    /// `energy` for the point and exponential laws, `newton` for the line and surface laws
+    /// `energy` for the point, surface-energy and exponential laws, `newton` for the line and surface laws
     /// (approach or mean-gap control, both), `accelerated` elsewhere.
     Auto,
     /// The paper's relaxation of the adhesive pressure.
     DualLoop,
     /// Anderson mixing of the adhesive pressure (fewer outer iterations, same solution).
     Accelerated,
-    /// No outer loop: conjugate gradients on the total energy (point or exponential law;
+    /// No outer loop: conjugate gradients on the total energy (point, surface-energy or exponential law;
     /// approach or mean-gap control, or load control on periodic domains; fastest there).
     Energy,
     /// No outer loop, any law but Dugdale's (surface included): Newton-Krylov on the cells'
