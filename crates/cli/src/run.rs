@@ -233,8 +233,22 @@ fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
     Ok(())
 }
 
-/// A state saved by a sweep (`state/` or `states/step-NNNN/`): for `--start-from`.
+/// A state saved by a sweep (`state/` or `states/step-NNNN/`, or the sweep's directory for
+/// its `state/`): for `--start-from`.
 pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
+    let last = dir.join("state");
+    let dir = if !dir.join("approach.txt").exists() && last.join("approach.txt").exists() {
+        last.as_path()
+    } else {
+        dir
+    };
+    if !dir.join("approach.txt").exists() {
+        bail!(
+            "{} holds no saved state: give a sweep's directory, its state/ or one of its \
+             states/step-NNNN (with --save-states)",
+            dir.display()
+        );
+    }
     let read = |name: &str| -> Result<Array2<f64>> {
         let path = dir.join(format!("{name}.npy"));
         ndarray_npy::read_npy(&path).with_context(|| format!("reading {}", path.display()))

@@ -43,9 +43,9 @@ pub struct SweepPath {
     /// Lennard-Jones; no splitting without adhesion]. Load steps are never split.
     #[arg(long)]
     pub max_step: Option<f64>,
-    /// Start from a saved state instead of apart: a directory as written by a sweep (its
-    /// `state/`, or `states/step-NNNN` with --save-states) on the same grid. To continue a
-    /// cycle with another law, solver, tolerance or path.
+    /// Start from a saved state instead of apart: a sweep's output directory (its last state),
+    /// its `state/`, or one of its `states/step-NNNN` (with --save-states), on the same grid.
+    /// To continue a cycle with another law, solver, tolerance or path.
     #[arg(long, value_name = "DIR")]
     pub start_from: Option<PathBuf>,
 }

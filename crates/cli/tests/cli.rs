@@ -813,6 +813,33 @@ fn a_sweep_started_from_a_saved_state_continues_its_branch() {
         (from_apart[0].1 - cycle[8].1).abs() > 0.5 * scale,
         "{from_apart:?} vs {cycle:?}"
     );
+    // A sweep's own directory stands for its last state (step 8, at this approach: solved
+    // again from it, the same load to the solve's tolerance); a directory with no state is
+    // refused, naming what it needs.
+    let from_dir = d.join("from-dir");
+    let o = run(&[
+        &last,
+        "--start-from",
+        whole.to_str().unwrap(),
+        "--out",
+        from_dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        (loads(&from_dir)[0].1 - cycle[8].1).abs() <= 1e-5 * scale,
+        "{:?} vs {:?}",
+        loads(&from_dir),
+        cycle[8]
+    );
+    let o = run(&[
+        &last,
+        "--start-from",
+        d.to_str().unwrap(),
+        "--out",
+        d.join("none").to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("holds no saved state"), "{}", stderr(&o));
     // Another grid is refused ...
     let o = roughcontact(&[
         "sweep",

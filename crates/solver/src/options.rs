@@ -25,7 +25,8 @@ pub struct ContactOptions {
     pub max_iterations: usize,
     /// Precondition the search directions by the inverse of the elastic operator restricted
     /// to the contact set (see [`crate::cg`]): fewer iterations that grow more slowly with the
-    /// grid, one more FFT convolution each. On by default: the faster at every grid measured,
+    /// grid, one more FFT convolution each. Under load control only (approach control is
+    /// always plain: see [`crate::cg`]). On by default: the faster at every grid measured,
     /// 128^2 to 4096^2, and in the adhesive loops' inner solves (`docs/performance.md`); off,
     /// the iteration is Polonsky and Keer's (as Tamaas's `PolonskyKeerRey`).
     pub preconditioned: bool,

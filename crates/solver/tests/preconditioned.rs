@@ -56,7 +56,8 @@ fn both(
 #[test]
 fn the_preconditioned_solve_is_the_plain_one_in_fewer_iterations() {
     // A Hertzian sphere on a free grid (contact 48 cells across) and rough periodic contact,
-    // each under load and under displacement control.
+    // each under load and under displacement control (where the option leaves the iteration
+    // plain: the same iterations).
     let (e, r, a) = (1e9, 1e-4, 1e-6);
     let d = 2.0 * a / 48.0;
     let domain = Domain {
@@ -97,7 +98,11 @@ fn the_preconditioned_solve_is_the_plain_one_in_fewer_iterations() {
         assert_eq!(differ, 0, "{name}");
         assert!((p.load / q.load - 1.0).abs() < 1e-8, "{name}");
         assert!(deviation < 1e-6, "{name}: {deviation:e}");
-        assert!(q.iterations < p.iterations, "{name}");
+        if matches!(control, Control::Approach(_)) {
+            assert_eq!(q.iterations, p.iterations, "{name}");
+        } else {
+            assert!(q.iterations < p.iterations, "{name}");
+        }
     }
 }
 
