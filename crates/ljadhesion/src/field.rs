@@ -54,16 +54,7 @@ pub(crate) fn neighbours(
     if ny == 0 || nx == 0 {
         return Ok(());
     }
-    let next = |i: usize, n: usize| {
-        if i + 1 < n {
-            i + 1
-        } else if cells.periodic || n == 1 {
-            0
-        } else {
-            n - 2
-        }
-    };
-    let last_x = next(nx - 1, nx);
+    let last_x = next(nx - 1, nx, cells.periodic);
     const ROWS: usize = 8;
     let bad = out
         .axis_chunks_iter_mut(Axis(0), ROWS)
@@ -75,7 +66,7 @@ pub(crate) fn neighbours(
             for (r, mut row) in rows.outer_iter_mut().enumerate() {
                 let y = chunk * ROWS + r;
                 let c = gap.row(y);
-                let u = gap.row(next(y, ny));
+                let u = gap.row(next(y, ny, cells.periodic));
                 let (c, u, o) = (
                     c.as_slice().expect("standard layout"),
                     u.as_slice().expect("standard layout"),
@@ -101,7 +92,8 @@ pub(crate) fn neighbours(
     Ok(())
 }
 
-/// The neighbour of `i` along an axis of `n` nodes, as [`neighbours`] takes it.
+/// The neighbour of node `i` along an axis of `n` nodes: the next, wrapping around on
+/// periodic domains; on free edges the last node's is mirrored (`n - 2`).
 fn next(i: usize, n: usize, periodic: bool) -> usize {
     if i + 1 < n {
         i + 1

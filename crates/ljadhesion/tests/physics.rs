@@ -254,11 +254,14 @@ fn results_do_not_depend_on_the_number_of_threads() {
             .build()
             .unwrap()
             .install(|| {
-                let mut out = Array2::zeros(gap.dim());
+                let (mut out, mut energy_form) = (Array2::zeros(gap.dim()), Array2::zeros(gap.dim()));
                 SurfaceLaw(lj())
                     .pressure_field(gap.view(), &cells, out.view_mut())
                     .unwrap();
-                out
+                SurfaceEnergyLaw(lj())
+                    .pressure_field(gap.view(), &cells, energy_form.view_mut())
+                    .unwrap();
+                (out, energy_form)
             })
     };
     assert_eq!(run(1), run(2));
