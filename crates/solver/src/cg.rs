@@ -6,10 +6,10 @@
 //! (the mean gap over the contact set); under displacement control `delta` is given. Each
 //! iteration applies the elastic operator twice (to the pressure and to the search direction).
 //!
-//! Preconditioned ([`ContactOptions::preconditioned`], under load control): the search direction is built from the
-//! gap residual on the contact set after the inverse of the operator (its Fourier multiplier
-//! inverted, the stiffness `E* |q| / 2` on a periodic grid), restricted to the contact set
-//! again and, under load control, deflated of its mean there (Vollebregt's FFT
+//! Preconditioned ([`ContactOptions::preconditioned`], under load control): the search
+//! direction is built from the gap residual on the contact set after the inverse of the
+//! operator (its Fourier multiplier inverted, the stiffness `E* |q| / 2` on a periodic grid),
+//! restricted to the contact set again and deflated of its mean there (Vollebregt's FFT
 //! preconditioner). One more FFT convolution an iteration; the iteration count grows far more
 //! slowly with the grid (`docs/performance.md`).
 
@@ -374,11 +374,8 @@ pub(crate) fn solve_in(
                     }
                     acc
                 });
-                let z_mean = if target_load.is_some() {
-                    z_sum / in_contact
-                } else {
-                    0.0
-                };
+                // Deflated of its mean: preconditioning is under load control only.
+                let z_mean = z_sum / in_contact;
                 (&pre.image, z_mean, zg - z_mean * g_sum)
             }
         };
