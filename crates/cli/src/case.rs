@@ -322,6 +322,12 @@ impl Case {
             .work_of_adhesion
             .context("adhesion needs --work-of-adhesion w0 [J/m^2]")?;
         let lj = || -> Result<LennardJones> {
+            if let Some(range) = self.range {
+                bail!(
+                    "--range {range:e} does not apply to the Lennard-Jones laws, whose range is \
+                     --z0 (--range is the exponential and Dugdale laws')"
+                );
+            }
             let z0 = self
                 .z0
                 .context("the Lennard-Jones laws need --z0 [m], the equilibrium separation")?;
@@ -338,7 +344,10 @@ impl Case {
                 self.range.context("the exponential law needs --range rho [m]")?,
             )?),
             LawKind::Dugdale => match (self.range, self.z0) {
-                (Some(h0), _) => Arc::new(DugdaleLaw::new(w0, h0)?),
+                (Some(_), Some(_)) => {
+                    bail!("the Dugdale law takes --range h0 [m] or --z0 (the LJ-equivalent one), not both")
+                }
+                (Some(h0), None) => Arc::new(DugdaleLaw::new(w0, h0)?),
                 (None, Some(_)) => Arc::new(DugdaleLaw::equivalent_to(&lj()?)),
                 (None, None) => {
                     bail!("the Dugdale law needs --range h0 [m] (or --z0 for the LJ-equivalent one)")

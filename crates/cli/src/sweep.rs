@@ -160,7 +160,11 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
                      --central-gaps, or run a built-in case with --example"
                 ),
             };
-            approach_cycle(from, to, path.steps.unwrap_or(20))
+            let steps = path.steps.unwrap_or(20);
+            if steps == 0 {
+                bail!("--steps must be at least 1 (steps from --from to --to; as many back)");
+            }
+            approach_cycle(from, to, steps)
         }
         _ => bail!("give one path only"),
     };

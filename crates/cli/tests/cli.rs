@@ -155,10 +155,44 @@ fn bad_input_is_refused_clearly() {
     let d = dir("bad");
     let out = d.join("x.npy");
     let out = out.to_str().unwrap();
-    let cases: [(&[&str], &str); 5] = [
+    let run = d.join("run");
+    let run = run.to_str().unwrap();
+    let cases: [(&[&str], &str); 9] = [
         (
             &["generate", "--n", "64", "--hurst", "1.3", "-o", out],
             "Hurst exponent",
+        ),
+        (
+            &["sweep", "--example", "hertz", "--steps", "0", "--out", run],
+            "--steps must be at least 1",
+        ),
+        (
+            &[
+                "sweep",
+                "--example",
+                "jkr-sphere",
+                "--range",
+                "1e-9",
+                "--out",
+                run,
+            ],
+            "does not apply to the Lennard-Jones laws",
+        ),
+        (
+            &["sweep", "--example", "hertz", "--tolerance", "10", "--out", run],
+            "at most 0.1",
+        ),
+        (
+            &[
+                "sweep",
+                "--example",
+                "jkr-sphere",
+                "--tolerance",
+                "0.5",
+                "--out",
+                run,
+            ],
+            "at most 0.1 (of the law's range)",
         ),
         (
             &["generate", "--n", "64", "--cutoff", "1e-7", "-o", out],

@@ -150,11 +150,13 @@ pub(crate) fn solve_in(
             value,
         });
     }
-    if !(options.tolerance >= 1e-13 && options.tolerance.is_finite()) {
+    if !(options.tolerance >= 1e-13 && options.tolerance <= 0.1) {
         return Err(invalid(
             "tolerance",
             options.tolerance,
-            "must be at least 1e-13: f64 arithmetic cannot resolve the residual further",
+            "must be between 1e-13 (what f64 arithmetic resolves) and 0.1 (the gap residual is \
+             relative to the surface's RMS height: a looser one stops before the contact means \
+             anything)",
         ));
     }
     let cell = domain.cell_area();

@@ -147,8 +147,13 @@ impl Settings {
     }
 
     pub(crate) fn validate(&self) -> Result<()> {
-        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
-            return Err(invalid("tolerance", self.tolerance, "must be finite and > 0"));
+        if !(self.tolerance > 0.0 && self.tolerance <= 0.1) {
+            return Err(invalid(
+                "tolerance",
+                self.tolerance,
+                "must be > 0 and at most 0.1 (of the law's range): a looser one accepts gaps off \
+                 by a sizeable part of the range the law acts over",
+            ));
         }
         if let Some(b) = self.mixing.relaxation
             && !(b > 0.0 && b <= 1.0)

@@ -362,6 +362,14 @@ fn bad_input_is_refused() {
             ..Settings::with_method(Method::Accelerated)
         }
     ));
+    // A tolerance of half the law's range means nothing.
+    assert!(bad(
+        Control::Approach(0.0),
+        Settings {
+            tolerance: 0.5,
+            ..Settings::with_method(Method::Accelerated)
+        }
+    ));
     assert!(bad(
         Control::Approach(0.0),
         Settings {
@@ -372,7 +380,7 @@ fn bad_input_is_refused() {
             ..Settings::with_method(Method::Accelerated)
         }
     ));
-    // The energy descent needs a local potential, and approach control on free domains.
+    // The energy descent needs a law with an energy (not Eq. 11), and approach control on free domains.
     let energy = Settings {
         method: Method::EnergyDescent,
         ..Settings::with_method(Method::Accelerated)
