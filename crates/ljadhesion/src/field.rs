@@ -132,45 +132,43 @@ pub(crate) fn cell_energies(
         return Ok(());
     }
     let periodic = cells.periodic;
-    // Each cell's derivatives by its own, +x and +y gaps (first, then second).
-    let mut parts = vec![[0.0; 6]; nx * ny];
-    parts
-        .par_chunks_mut(nx)
-        .zip(energy.axis_iter_mut(Axis(0)).into_par_iter())
-        .enumerate()
-        .for_each(|(y, (row, mut e))| {
-            let up = next(y, ny, periodic);
-            for (x, part) in row.iter_mut().enumerate() {
-                let g = (gap[(y, x)], gap[(y, next(x, nx, periodic))], gap[(up, x)]);
-                let (v, d, c) = cell(g.0, g.1, g.2);
-                e[x] = v;
-                *part = [d[0], d[1], d[2], c[0], c[1], c[2]];
-            }
-        });
+    let at = |y: usize, x: usize| {
+        cell(
+            gap[(y, x)],
+            gap[(y, next(x, nx, periodic))],
+            gap[(next(y, ny, periodic), x)],
+        )
+    };
+    // A node gathers its own cell's share and those of the cells it is the +x or +y neighbour
+    // of, each cell evaluated again where needed rather than stored: no field-sized buffer.
     let bad = pressure
         .axis_iter_mut(Axis(0))
         .into_par_iter()
         .zip(curvature.axis_iter_mut(Axis(0)).into_par_iter())
+        .zip(energy.axis_iter_mut(Axis(0)).into_par_iter())
         .enumerate()
-        .map(|(y, (mut p, mut c))| {
+        .map(|(y, ((mut p, mut c), mut e))| {
             for x in 0..nx {
-                let own = parts[y * nx + x];
-                let (mut d, mut k) = (own[0], own[3]);
+                let (v, own, own2) = at(y, x);
+                let (mut d, mut k) = (own[0], own2[0]);
                 for s in sources(x, nx, periodic) {
-                    d += parts[y * nx + s][1];
-                    k += parts[y * nx + s][4];
+                    let (_, d1, c1) = at(y, s);
+                    d += d1[1];
+                    k += c1[1];
                 }
                 for s in sources(y, ny, periodic) {
-                    d += parts[s * nx + x][2];
-                    k += parts[s * nx + x][5];
+                    let (_, d1, c1) = at(s, x);
+                    d += d1[2];
+                    k += c1[2];
                 }
+                e[x] = v;
                 p[x] = -d;
                 c[x] = k;
             }
-            p.iter().any(|v| !v.is_finite())
+            p.iter().chain(e.iter()).any(|v| !v.is_finite())
         })
         .reduce(|| false, |a, b| a || b);
-    if bad || energy.iter().any(|v| !v.is_finite()) {
+    if bad {
         locate_bad_gap(&gap)?;
     }
     Ok(())
