@@ -163,7 +163,8 @@ pub struct Case {
     /// it (default 20000) outer iterations, descent iterations (energy) or Newton steps.
     #[arg(long)]
     pub max_iterations: Option<usize>,
-    /// Output directory (default: run).
+    /// Output directory (default: run/solve for solve, run/sweep for sweep); one that holds
+    /// another run is refused unless --overwrite (or, for a sweep, --resume).
     #[arg(long)]
     pub out: Option<PathBuf>,
 }
@@ -261,8 +262,9 @@ impl Case {
         !matches!(self.law, None | Some(LawKind::None)) || self.work_of_adhesion.is_some()
     }
 
-    /// Fills in the defaults, so that the summary and `--print-config` show the whole case.
-    pub fn fill_defaults(&mut self) {
+    /// Fills in the defaults, so that the summary and `--print-config` show the whole case;
+    /// `out` is the command's own default output directory.
+    pub fn fill_defaults(&mut self, out: &str) {
         let adhesive = self.adhesive();
         self.domain = self.domain.or(Some(if self.sphere_radius.is_some() {
             DomainKind::Free
@@ -289,7 +291,7 @@ impl Case {
             self.hurst = self.hurst.or(Some(0.8));
             self.seed = self.seed.or(Some(1));
         }
-        self.out = self.out.clone().or_else(|| Some(PathBuf::from("run")));
+        self.out = self.out.clone().or_else(|| Some(PathBuf::from(out)));
     }
 
     /// The non-adhesive solve's settings.

@@ -4,15 +4,20 @@
 //! Layout: `case.toml` (the resolved case), `summary.json`, the fields of the solution as
 //! `.npy` (SI units, listed in the summary), and for a sweep `curve.csv` (a row a step),
 //! `state/` (the last step's fields, to resume from) and with `--save-states`
-//! `states/step-NNNN/` (every step's).
+//! `states/step-NNNN/` (every step's). A saved state's `manifest.json` holds its approach and
+//! a fingerprint of each field, so that a state mixed from two steps is refused.
+//!
+//! One run at a time: a run holds an exclusive lock on `.lock` in its directory (released by
+//! the system when the process ends, also when it is killed), and a directory that holds
+//! another run's files is refused unless the run resumes it or overwrites it.
 
-use crate::case::Built;
+use crate::case::{Built, fingerprint};
 use anyhow::{Context, Result, bail};
 use ndarray::Array2;
 use serde::Serialize;
 use serde_json::Value;
 use solver::{AdhesiveState, Branch, ContactState, CyclePoint, SweepPoint};
-use std::fs::{File, OpenOptions};
+use std::fs::{File, OpenOptions, TryLockError};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -21,17 +26,90 @@ const HEADER: &str = "step,approach,load,mean_pressure,contact_area_fraction,att
 attached_area_fraction,central_gap,branch,iterations,inner_iterations,converged,residual,wall_time_s,\
 retries";
 
-/// A run's output directory.
+/// The files and directories a run writes: what makes a directory "another run's", and what
+/// `--overwrite` removes (nothing else in the directory is touched).
+const RUN_FILES: [&str; 14] = [
+    "case.toml",
+    "summary.json",
+    "curve.csv",
+    "load_approach.png",
+    "pressure.png",
+    "pressure.npy",
+    "compressive_pressure.npy",
+    "adhesive_pressure.npy",
+    "gap.npy",
+    "displacement.npy",
+    "state",
+    "state.new",
+    "state.old",
+    "states",
+];
+
+/// How a run may use a directory that already holds another run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reuse {
+    /// Refuse it.
+    Refuse,
+    /// Continue it (`sweep --resume`): its files are kept.
+    Resume,
+    /// Remove its files first (`--overwrite`).
+    Overwrite,
+}
+
+/// A run's output directory, locked for the lifetime of the value.
 pub struct RunDir {
     path: PathBuf,
+    _lock: File,
 }
 
 impl RunDir {
-    /// Creates `path` (and its parents) for a run's output.
-    pub fn create(path: &Path) -> Result<RunDir> {
+    /// Creates `path` (and its parents) for a run's output and locks it; a directory locked by
+    /// a running process, or holding another run's files (unless `reuse` says what to do with
+    /// them), is refused.
+    pub fn open(path: &Path, reuse: Reuse) -> Result<RunDir> {
         std::fs::create_dir_all(path).with_context(|| format!("creating {}", path.display()))?;
+        let lock_path = path.join(".lock");
+        let lock = OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&lock_path)
+            .with_context(|| format!("opening {}", lock_path.display()))?;
+        match lock.try_lock() {
+            Ok(()) => {}
+            Err(TryLockError::WouldBlock) => bail!(
+                "{} is in use by another running solve or sweep; wait for it to end or give another --out",
+                path.display()
+            ),
+            Err(TryLockError::Error(e)) => {
+                return Err(e).with_context(|| format!("locking {}", lock_path.display()));
+            }
+        }
+        let found: Vec<&str> = RUN_FILES.into_iter().filter(|f| path.join(f).exists()).collect();
+        match reuse {
+            _ if found.is_empty() => {}
+            Reuse::Resume => {}
+            Reuse::Refuse => bail!(
+                "{} already holds a run ({}); give --overwrite to replace it (or, for a sweep, --resume \
+                 to continue it), or another --out",
+                path.display(),
+                found.join(", ")
+            ),
+            Reuse::Overwrite => {
+                for f in found {
+                    let p = path.join(f);
+                    let removed = if p.is_dir() {
+                        std::fs::remove_dir_all(&p)
+                    } else {
+                        std::fs::remove_file(&p)
+                    };
+                    removed.with_context(|| format!("--overwrite: removing {}", p.display()))?;
+                }
+            }
+        }
         Ok(RunDir {
             path: path.to_path_buf(),
+            _lock: lock,
         })
     }
 
@@ -140,7 +218,7 @@ impl RunDir {
             return Ok(state);
         }
         let kept = self.step_dir(step);
-        if kept.join("approach.txt").exists() {
+        if kept.join(MANIFEST).exists() {
             let state = read_state(&kept)?;
             if state.contact.approach == approach {
                 return Ok(state);
@@ -220,46 +298,102 @@ pub fn write_field(dir: &Path, name: &str, field: &Array2<f64>) -> Result<()> {
     surfgen::io::write_npy(field, &path).with_context(|| format!("writing {}", path.display()))
 }
 
+/// Writes a state into `dir` whole or not at all: into a sibling `<name>.new` first (its
+/// manifest last), then swapped in by renames, so that a run killed at any moment leaves
+/// either the old state or the new one (or, between the two renames, only `<name>.new`, which
+/// [`read_state`] takes).
 fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    write_field(dir, "compressive_pressure", &state.contact.pressure)?;
-    write_field(dir, "adhesive_pressure", &state.adhesive_pressure)?;
-    write_field(dir, "gap", &state.contact.gap)?;
-    write_field(dir, "displacement", &state.contact.displacement)?;
-    std::fs::write(
-        dir.join("approach.txt"),
-        format!("{:e}\n", state.contact.approach),
-    )?;
+    let sibling = |ext: &str| {
+        let mut name = dir.file_name().unwrap_or_default().to_os_string();
+        name.push(ext);
+        dir.with_file_name(name)
+    };
+    let (new, old) = (sibling(".new"), sibling(".old"));
+    for d in [&new, &old] {
+        if d.exists() {
+            std::fs::remove_dir_all(d).with_context(|| format!("removing {}", d.display()))?;
+        }
+    }
+    std::fs::create_dir_all(&new).with_context(|| format!("creating {}", new.display()))?;
+    let mut fields = serde_json::Map::new();
+    for (name, field) in state_fields(state) {
+        write_field(&new, name, field)?;
+        fields.insert(name.to_string(), Value::String(fingerprint(field)));
+    }
+    let manifest = serde_json::json!({ "approach": state.contact.approach, "fields": fields });
+    let manifest_path = new.join(MANIFEST);
+    std::fs::write(&manifest_path, serde_json::to_string_pretty(&manifest)? + "\n")
+        .with_context(|| format!("writing {}", manifest_path.display()))?;
+    let rename = |from: &Path, to: &Path| {
+        std::fs::rename(from, to).with_context(|| format!("renaming {} to {}", from.display(), to.display()))
+    };
+    if dir.exists() {
+        rename(dir, &old)?;
+    }
+    rename(&new, dir)?;
+    if old.exists() {
+        std::fs::remove_dir_all(&old).with_context(|| format!("removing {}", old.display()))?;
+    }
     Ok(())
 }
 
+/// A saved state's manifest: its approach [m] and a fingerprint of each field.
+const MANIFEST: &str = "manifest.json";
+
+/// The fields a saved state holds, by file name.
+fn state_fields(state: &AdhesiveState) -> [(&'static str, &Array2<f64>); 4] {
+    [
+        ("compressive_pressure", &state.contact.pressure),
+        ("adhesive_pressure", &state.adhesive_pressure),
+        ("gap", &state.contact.gap),
+        ("displacement", &state.contact.displacement),
+    ]
+}
+
 /// A state saved by a sweep (`state/` or `states/step-NNNN/`, or the sweep's directory for
-/// its `state/`): for `--start-from`.
+/// its `state/`): for `--start-from` and `--resume`. Its fields must be the ones its manifest
+/// fingerprints: a state torn between two steps is refused.
 pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
-    let last = dir.join("state");
-    let dir = if !dir.join("approach.txt").exists() && last.join("approach.txt").exists() {
-        last.as_path()
-    } else {
-        dir
-    };
-    if !dir.join("approach.txt").exists() {
-        bail!(
-            "{} holds no saved state: give a sweep's directory, its state/ or one of its \
-             states/step-NNNN (with --save-states)",
-            dir.display()
-        );
-    }
+    let has = |d: &Path| d.join(MANIFEST).exists();
+    let dir = [dir.to_path_buf(), dir.join("state"), dir.join("state.new")]
+        .into_iter()
+        .chain(dir.file_name().map(|n| {
+            let mut n = n.to_os_string();
+            n.push(".new");
+            dir.with_file_name(n)
+        }))
+        .find(|d| has(d))
+        .with_context(|| {
+            format!(
+                "{} holds no saved state: give a sweep's directory, its state/ or one of its \
+                 states/step-NNNN (with --save-states)",
+                dir.display()
+            )
+        })?;
+    let manifest_path = dir.join(MANIFEST);
+    let manifest: Value = serde_json::from_str(
+        &std::fs::read_to_string(&manifest_path)
+            .with_context(|| format!("reading {}", manifest_path.display()))?,
+    )
+    .with_context(|| format!("{}: not a state manifest", manifest_path.display()))?;
+    let approach = manifest["approach"]
+        .as_f64()
+        .with_context(|| format!("{}: no approach", manifest_path.display()))?;
     let read = |name: &str| -> Result<Array2<f64>> {
         let path = dir.join(format!("{name}.npy"));
-        ndarray_npy::read_npy(&path).with_context(|| format!("reading {}", path.display()))
+        let field: Array2<f64> =
+            ndarray_npy::read_npy(&path).with_context(|| format!("reading {}", path.display()))?;
+        if manifest["fields"][name].as_str() != Some(fingerprint(&field).as_str()) {
+            bail!(
+                "{} is not the field its manifest ({}) names: the state is torn (parts of two steps); \
+                 start from another one",
+                path.display(),
+                manifest_path.display()
+            );
+        }
+        Ok(field)
     };
-    let approach_path = dir.join("approach.txt");
-    let approach: f64 = std::fs::read_to_string(&approach_path)
-        .with_context(|| format!("reading {}", approach_path.display()))?
-        .trim()
-        .parse()
-        .with_context(|| format!("{}: not a number", approach_path.display()))?;
-    Ok(AdhesiveState {
+    let state = AdhesiveState {
         contact: ContactState {
             pressure: read("compressive_pressure")?,
             gap: read("gap")?,
@@ -267,5 +401,10 @@ pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
             approach,
         },
         adhesive_pressure: read("adhesive_pressure")?,
-    })
+    };
+    let shape = state.contact.gap.dim();
+    if state_fields(&state).iter().any(|(_, f)| f.dim() != shape) {
+        bail!("{}: the fields' shapes differ", dir.display());
+    }
+    Ok(state)
 }

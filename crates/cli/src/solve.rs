@@ -2,7 +2,7 @@
 
 use crate::case::{Built, Case, layered, on_workers, results, to_toml};
 use crate::plot;
-use crate::run::RunDir;
+use crate::run::{Reuse, RunDir};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use elastic::Domain;
@@ -48,6 +48,10 @@ pub struct SolveArgs {
     /// Exit with status 0 even when the solve does not converge (the outputs say so).
     #[arg(long)]
     keep_going: bool,
+    /// Replace the run already in --out (its case, summary, fields and plot; nothing else in
+    /// the directory is touched).
+    #[arg(long)]
+    overwrite: bool,
     /// Do not draw the pressure map.
     #[arg(long)]
     no_png: bool,
@@ -70,7 +74,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         &args.case,
         &args.control,
     )?;
-    case.fill_defaults();
+    case.fill_defaults("run/solve");
     if args.print_config {
         println!("{}", to_toml(&case, &control)?);
         return Ok(());
@@ -100,7 +104,18 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     for w in &problem.warnings {
         eprintln!("warning: {w}");
     }
-    let run = RunDir::create(&case.out.clone().expect("defaulted"))?;
+    // Settings are checked before the output directory is touched.
+    if problem.adhesive() {
+        case.settings().validate()?;
+    } else {
+        case.contact_options().validate()?;
+    }
+    let reuse = if args.overwrite {
+        Reuse::Overwrite
+    } else {
+        Reuse::Refuse
+    };
+    let run = RunDir::open(&case.out.clone().expect("defaulted"), reuse)?;
     let out = run.path();
     if problem.adhesive() {
         return solve_adhesive(&args, &case, control, &built, &run);

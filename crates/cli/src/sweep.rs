@@ -3,7 +3,7 @@
 
 use crate::case::{Case, layered, on_workers, results, to_toml};
 use crate::plot::{self, Chart, Curve, Mark, PALETTE};
-use crate::run::{CurveWriter, RunDir, read_state};
+use crate::run::{CurveWriter, Reuse, RunDir, read_state};
 use crate::solve::finish;
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
@@ -107,6 +107,10 @@ pub struct SweepArgs {
     /// Continue an interrupted sweep in --out: finished steps are kept, not redone.
     #[arg(long)]
     resume: bool,
+    /// Replace the run already in --out (its case, curve, states, fields and plots; nothing
+    /// else in the directory is touched).
+    #[arg(long, conflicts_with = "resume")]
+    overwrite: bool,
     /// Also keep every step's fields (gap, compressive and adhesive pressure [Pa],
     /// displacement [m], .npy) in --out/states/step-NNNN, not only the last one in --out/state.
     #[arg(long)]
@@ -139,7 +143,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         &args.case,
         &args.path,
     )?;
-    case.fill_defaults();
+    case.fill_defaults("run/sweep");
     if path.approaches.is_none() && path.mean_pressures.is_none() && path.central_gaps.is_none() {
         path.steps = path.steps.or(Some(20));
     }
@@ -200,20 +204,38 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         }
         None => None,
     };
-    let run = RunDir::create(&case.out.clone().expect("defaulted"))?;
+    // Settings are checked before the output directory is touched.
+    let settings = case.settings();
+    if problem.adhesive() {
+        settings.validate()?;
+    } else {
+        case.contact_options().validate()?;
+    }
+    let reuse = match (args.resume, args.overwrite) {
+        (true, _) => Reuse::Resume,
+        (false, true) => Reuse::Overwrite,
+        (false, false) => Reuse::Refuse,
+    };
+    let run = RunDir::open(&case.out.clone().expect("defaulted"), reuse)?;
     let out = run.path();
 
-    // Resume: the same case, the finished rows and the last state.
+    // Resume: the same case (wherever the directory is now), the finished rows and the last state.
     let mut rows = Vec::new();
     let mut start = None;
     if args.resume && run.has_curve() {
-        if run.case().unwrap_or_default().trim_end() != resolved {
+        if !same_case(&run.case().unwrap_or_default(), &resolved) {
             bail!(
                 "--resume: {} holds a different case; rerun without --resume (or with the same settings)",
                 out.display()
             );
         }
         rows = run.read_curve()?;
+        check_rows(&rows, &controls).with_context(|| {
+            format!(
+                "--resume: {}/curve.csv does not belong to this path",
+                out.display()
+            )
+        })?;
         if let Some(last) = rows.last() {
             start = Some(run.resume_state(rows.len() - 1, last.approach)?);
         }
@@ -233,7 +255,6 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     }
     let done = rows.len().min(controls.len());
 
-    let settings = case.settings();
     let max_step = path.max_step.or(problem.adhesive().then(|| problem.law.range()));
     if let Some(h) = max_step
         && !(h.is_finite() && h > 0.0)
@@ -365,6 +386,41 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         args.keep_going,
         out,
     )
+}
+
+/// Whether two resolved cases (TOML) are the same apart from their output directory, which
+/// may be spelt differently or moved between a sweep and its resumption.
+fn same_case(a: &str, b: &str) -> bool {
+    let table = |t: &str| {
+        toml::from_str::<toml::Table>(t).ok().map(|mut t| {
+            t.remove("out");
+            t
+        })
+    };
+    matches!((table(a), table(b)), (Some(a), Some(b)) if a == b)
+}
+
+/// The finished rows of a sweep being resumed must be a start of its path: no more rows than
+/// steps, and under approach control each at its step's approach.
+fn check_rows(rows: &[CyclePoint], controls: &[Control]) -> Result<()> {
+    if rows.len() > controls.len() {
+        bail!(
+            "it holds {} rows, the path has {} steps",
+            rows.len(),
+            controls.len()
+        );
+    }
+    for (k, (row, control)) in rows.iter().zip(controls).enumerate() {
+        if let Control::Approach(a) = *control
+            && row.approach != a
+        {
+            bail!(
+                "step {k} is at approach {:e} m, the path has {a:e} m",
+                row.approach
+            );
+        }
+    }
+    Ok(())
 }
 
 fn plot_cycle(path: &Path, cycle: &[CyclePoint]) -> Result<()> {

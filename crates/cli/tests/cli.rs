@@ -180,7 +180,7 @@ fn bad_input_is_refused_clearly() {
         ),
         (
             &["sweep", "--example", "hertz", "--tolerance", "10", "--out", run],
-            "at most 0.1",
+            "between 1e-13 (what f64 arithmetic resolves) and 0.1",
         ),
         (
             &[
@@ -364,7 +364,13 @@ fn solve_writes_fields_and_summary_and_refuses_bad_cases() {
     let o = roughcontact(&[&short[..], &[d.join("short").to_str().unwrap()]].concat());
     assert!(!o.status.success());
     assert!(stderr(&o).contains("did not converge"), "{}", stderr(&o));
-    let o = roughcontact(&[&short[..], &[d.join("short").to_str().unwrap(), "--keep-going"]].concat());
+    let o = roughcontact(
+        &[
+            &short[..],
+            &[d.join("short").to_str().unwrap(), "--keep-going", "--overwrite"],
+        ]
+        .concat(),
+    );
     assert!(o.status.success());
 }
 
@@ -631,7 +637,7 @@ fn sweep_example_writes_curve_and_summary_and_resumes() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("curve.csv's last step (2)"), "{}", stderr(&o));
     // With every step's state kept, a cut file resumes from its own last step: the same curve.
-    let o = resume(&["--save-states"]);
+    let o = resume(&["--save-states", "--overwrite"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(out.join("states/step-0008/gap.npy").exists());
     let csv = std::fs::read_to_string(out.join("curve.csv")).unwrap();
@@ -1060,4 +1066,197 @@ fn output_into_a_closed_pipe_ends_quietly() {
         "{:?}: {err}",
         out.status
     );
+}
+
+#[test]
+fn run_directories_are_locked_kept_apart_and_resumed_wherever_they_are() {
+    let d = dir("rundir");
+    let out = d.join("hertz");
+    let o = |extra: &[&str]| {
+        roughcontact(
+            &[
+                &["sweep", "--example", "hertz", "--n", "32", "--no-png"][..],
+                extra,
+            ]
+            .concat(),
+        )
+    };
+    let first = o(&["--steps", "3", "--save-states", "--out", out.to_str().unwrap()]);
+    assert!(first.status.success(), "{}", stderr(&first));
+    // Another run into it is refused, and nothing there changes.
+    let curve = std::fs::read_to_string(out.join("curve.csv")).unwrap();
+    let again = o(&["--steps", "3", "--out", out.to_str().unwrap()]);
+    assert!(!again.status.success());
+    assert!(
+        stderr(&again).contains("already holds a run"),
+        "{}",
+        stderr(&again)
+    );
+    assert_eq!(std::fs::read_to_string(out.join("curve.csv")).unwrap(), curve);
+    // A solve has its own default directory, so it never mixes its files into a sweep's.
+    let solve = roughcontact(&[
+        "solve",
+        "--sphere-radius",
+        "1e-6",
+        "--modulus",
+        "1e9",
+        "--length",
+        "1e-6",
+        "--n",
+        "32",
+        "--approach",
+        "1e-9",
+        "--no-png",
+        "--print-config",
+    ]);
+    assert!(
+        stdout(&solve).contains("out = \"run/solve\""),
+        "{}",
+        stdout(&solve)
+    );
+    // The output path is not part of the case: a resume through another spelling of it, or
+    // after the directory moved, is the same case.
+    let moved = d.join("moved");
+    std::fs::rename(&out, &moved).unwrap();
+    let spelt = format!("{}/./", moved.display());
+    let resumed = o(&["--steps", "3", "--save-states", "--resume", "--out", &spelt]);
+    assert!(resumed.status.success(), "{}", stderr(&resumed));
+    assert!(
+        stderr(&resumed).contains("resuming after 7 of 7 steps"),
+        "{}",
+        stderr(&resumed)
+    );
+    // --overwrite replaces the run's files and leaves other files alone.
+    std::fs::write(moved.join("notes.txt"), "mine").unwrap();
+    let replaced = o(&["--steps", "2", "--overwrite", "--out", moved.to_str().unwrap()]);
+    assert!(replaced.status.success(), "{}", stderr(&replaced));
+    assert!(!moved.join("states").exists());
+    assert_eq!(std::fs::read_to_string(moved.join("notes.txt")).unwrap(), "mine");
+    assert_eq!(
+        std::fs::read_to_string(moved.join("curve.csv"))
+            .unwrap()
+            .lines()
+            .count(),
+        1 + 5
+    );
+}
+
+#[test]
+fn two_sweeps_into_one_directory_one_is_refused() {
+    let d = dir("lock");
+    let out = d.join("busy");
+    let mut first = Command::new(env!("CARGO_BIN_EXE_roughcontact"))
+        .args([
+            "sweep",
+            "--example",
+            "jkr-sphere",
+            "--no-png",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // The first holds its directory once it has written its case.
+    let start = std::time::Instant::now();
+    while !out.join("case.toml").exists() && start.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let second = sweep_example("jkr-sphere", out.to_str().unwrap(), &["--resume"]);
+    let still_running = first.try_wait().unwrap().is_none();
+    first.kill().ok();
+    first.wait().unwrap();
+    assert!(still_running, "the first sweep ended before the second started");
+    assert!(!second.status.success());
+    assert!(
+        stderr(&second).contains("in use by another running"),
+        "{}",
+        stderr(&second)
+    );
+    // Once the first has ended (here killed), the directory is free: its lock died with it.
+    let third = sweep_example(
+        "jkr-sphere",
+        out.to_str().unwrap(),
+        &["--overwrite", "--steps", "1"],
+    );
+    assert!(
+        third.status.success() || stderr(&third).contains("did not converge"),
+        "{}",
+        stderr(&third)
+    );
+    assert!(!stderr(&third).contains("in use"), "{}", stderr(&third));
+}
+
+#[test]
+fn a_state_torn_between_two_steps_is_refused() {
+    let d = dir("torn");
+    let out = d.join("cycle");
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "hertz",
+        "--n",
+        "32",
+        "--steps",
+        "3",
+        "--no-png",
+        "--save-states",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let start_from = |state: &std::path::Path, name: &str| {
+        roughcontact(&[
+            "sweep",
+            "--example",
+            "hertz",
+            "--n",
+            "32",
+            "--steps",
+            "3",
+            "--no-png",
+            "--start-from",
+            state.to_str().unwrap(),
+            "--out",
+            d.join(name).to_str().unwrap(),
+        ])
+    };
+    // Whole states are taken.
+    let good = start_from(&out.join("states/step-0002"), "good");
+    assert!(good.status.success(), "{}", stderr(&good));
+    // The gap of step 2 beside the pressures of step 3: refused, naming the part.
+    std::fs::copy(
+        out.join("states/step-0002/gap.npy"),
+        out.join("states/step-0003/gap.npy"),
+    )
+    .unwrap();
+    let torn = start_from(&out.join("states/step-0003"), "torn");
+    assert!(!torn.status.success());
+    assert!(
+        stderr(&torn).contains("gap.npy is not the field its manifest"),
+        "{}",
+        stderr(&torn)
+    );
+    assert!(
+        !d.join("torn").exists(),
+        "a refused start leaves no directory behind"
+    );
+    // A state left between the two renames of a save (only state.new) is whole and taken.
+    std::fs::rename(out.join("state"), out.join("state.new")).unwrap();
+    let o = roughcontact(&[
+        "sweep",
+        "--example",
+        "hertz",
+        "--n",
+        "32",
+        "--steps",
+        "3",
+        "--no-png",
+        "--save-states",
+        "--resume",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
 }

@@ -150,15 +150,7 @@ pub(crate) fn solve_in(
             value,
         });
     }
-    if !(options.tolerance >= 1e-13 && options.tolerance <= 0.1) {
-        return Err(invalid(
-            "tolerance",
-            options.tolerance,
-            "must be between 1e-13 (what f64 arithmetic resolves) and 0.1 (the gap residual is \
-             relative to the surface's RMS height: a looser one stops before the contact means \
-             anything)",
-        ));
-    }
+    options.validate()?;
     let cell = domain.cell_area();
     let n = (domain.nx * domain.ny) as f64;
     let target_load = match control {

@@ -146,7 +146,8 @@ impl Settings {
         }
     }
 
-    pub(crate) fn validate(&self) -> Result<()> {
+    /// Refuses a tolerance outside (0, 0.1] and a relaxation outside (0, 1].
+    pub fn validate(&self) -> Result<()> {
         if !(self.tolerance > 0.0 && self.tolerance <= 0.1) {
             return Err(invalid(
                 "tolerance",

@@ -37,6 +37,22 @@ impl ContactOptions {
     pub const DEFAULT_TOLERANCE: f64 = 1e-8;
     /// The default iteration limit.
     pub const DEFAULT_MAX_ITERATIONS: usize = 10_000;
+
+    /// Refuses a tolerance outside [1e-13, 0.1]: what f64 arithmetic resolves, and a gap
+    /// residual (relative to the RMS height) loose enough to stop before the contact means
+    /// anything.
+    pub fn validate(&self) -> crate::Result<()> {
+        if !(self.tolerance >= 1e-13 && self.tolerance <= 0.1) {
+            return Err(crate::error::invalid(
+                "tolerance",
+                self.tolerance,
+                "must be between 1e-13 (what f64 arithmetic resolves) and 0.1 (the gap residual is \
+                 relative to the surface's RMS height: a looser one stops before the contact means \
+                 anything)",
+            ));
+        }
+        Ok(())
+    }
 }
 
 impl Default for ContactOptions {
