@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize, de::DeserializeOwned};
 use serde_json::Value;
 use solver::geometry::SphereProfile;
 use solver::{ContactOptions, ContactProblem, Method, Settings, Shape};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use surfgen::io::{self, ReadOptions};
 use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec};
@@ -227,7 +227,25 @@ where
         }
         table.extend(flags);
     }
-    Ok((ta.try_into()?, tb.try_into()?))
+    let source = text.map_or("the flags".to_string(), |(name, _)| name.to_string());
+    let a = ta
+        .try_into()
+        .with_context(|| format!("{source}: a key has a value of the wrong type"))?;
+    let b = tb
+        .try_into()
+        .with_context(|| format!("{source}: a key has a value of the wrong type"))?;
+    Ok((a, b))
+}
+
+/// A path a case file gave (`from_file`: not overridden by a flag) is relative to that file's
+/// directory, as in any file that names others; a flag's is relative to the working directory.
+pub fn beside(config: Option<&Path>, from_file: bool, path: &mut Option<PathBuf>) {
+    if let (Some(config), true, Some(p)) = (config, from_file, path.as_mut())
+        && p.is_relative()
+        && let Some(dir) = config.parent()
+    {
+        *p = dir.join(&*p);
+    }
 }
 
 /// Both option structs as one TOML case (for `--print-config`).
@@ -366,10 +384,24 @@ impl Case {
         if !(e_star.is_finite() && e_star > 0.0) {
             bail!("--modulus must be a finite E* > 0 Pa, got {e_star}");
         }
+        let law = self.law()?;
+        let periodic = self.domain.unwrap_or(DomainKind::Periodic) == DomainKind::Periodic;
+        // Auto as under approach control: the larger of its choices.
+        let method = (law.work_of_adhesion() > 0.0).then(|| {
+            self.settings()
+                .method
+                .resolve(law.as_ref(), solver::Control::Approach(0.0))
+        });
+        let check_memory = |nx: usize, ny: usize| {
+            crate::memory::check(
+                &format!("a {nx} x {ny} solve"),
+                solver::memory_estimate(nx, ny, periodic, method),
+            )
+        };
         let mut builder = ContactProblem::builder()
             .modulus(e_star)
-            .shared_law(self.law()?)
-            .periodic(self.domain.unwrap_or(DomainKind::Periodic) == DomainKind::Periodic);
+            .shared_law(law)
+            .periodic(periodic);
         let mut heights = None;
         let size;
         if let Some(path) = &self.surface {
@@ -379,7 +411,7 @@ impl Case {
                 unit: self.unit.unwrap_or(1.0),
                 periodic: true,
             };
-            let s = io::read(path, &options).with_context(|| format!("reading {}", path.display()))?;
+            let s = io::read(path, &options).map_err(|e| crate::surface::naming("reading", path, e))?;
             let expected = (
                 self.n.unwrap_or(s.grid.nx),
                 self.ny.or(self.n).unwrap_or(s.grid.ny),
@@ -393,6 +425,7 @@ impl Case {
                     s.grid.ny
                 );
             }
+            check_memory(s.grid.nx, s.grid.ny)?;
             size = (s.grid.length_x, s.grid.length_y);
             heights = Some(s.heights);
         } else {
@@ -410,6 +443,7 @@ impl Case {
                 .context("the grid needs its size: --length L [m] (and --n)")?;
             let ly = self.length_y.unwrap_or(l * ny as f64 / n as f64);
             let grid = Grid::new(n, ny, l, ly)?;
+            check_memory(n, ny)?;
             if generated {
                 let spec = SurfaceSpec {
                     grid,

@@ -6,6 +6,7 @@
 
 pub mod bench;
 pub mod case;
+pub mod memory;
 pub mod plot;
 pub mod run;
 pub mod solve;

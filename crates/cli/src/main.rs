@@ -22,24 +22,24 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Generate a periodic self-affine rough surface from its power spectrum (Eq. 13).
-    #[command(allow_negative_numbers = true)]
+    #[command(allow_hyphen_values = true)]
     Generate(surface::GenerateArgs),
     /// Print a surface's statistics (heights, slopes, curvatures, Hurst exponent).
     Stats(surface::StatsArgs),
     /// Write a surface's radially averaged power spectrum as CSV and a log-log plot.
     Psd(surface::PsdArgs),
     /// Solve one normal contact, with or without adhesion (rough flat, sphere, rough sphere).
-    #[command(allow_negative_numbers = true)]
+    #[command(allow_hyphen_values = true)]
     Solve(solve::SolveArgs),
     /// An approach-retraction cycle (or a list of approaches, loads or central gaps) with
     /// continuation: load-approach curve, pull-off, jumps and hysteresis.
-    #[command(allow_negative_numbers = true)]
+    #[command(allow_hyphen_values = true)]
     Sweep(sweep::SweepArgs),
     /// Time the non-adhesive solver on one self-affine problem at several grid sizes.
     Bench(bench::BenchArgs),
     /// Reference curves (Maugis-Dugdale, JKR, DMT, Greenwood's Lennard-Jones sphere) as CSV,
     /// or their pull-off forces.
-    #[command(allow_negative_numbers = true)]
+    #[command(allow_hyphen_values = true)]
     Theory(theory_cmd::TheoryArgs),
 }
 

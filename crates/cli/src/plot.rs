@@ -90,6 +90,8 @@ pub enum Mark {
     Circles,
     /// Filled dots.
     Dots,
+    /// Large open circles: single points singled out (a pull-off, a jump).
+    Rings,
     /// Filled dots with vertical error bars of these half-widths (one per point).
     ErrorBars(Vec<f64>),
 }
@@ -386,6 +388,13 @@ impl Chart {
                 Mark::Dots => chart
                     .draw_series(points.into_iter().map(|p| Circle::new(p, 4, color.filled())))
                     .map_err(draw_err)?,
+                Mark::Rings => chart
+                    .draw_series(
+                        points
+                            .into_iter()
+                            .map(|p| Circle::new(p, 9, color.stroke_width(2))),
+                    )
+                    .map_err(draw_err)?,
                 Mark::ErrorBars(half) => {
                     let bars: Vec<((f64, f64), f64)> = c
                         .points
@@ -419,6 +428,7 @@ impl Chart {
                 )
                 .into_dyn(),
                 Mark::Circles => Circle::new((x + 11, y), 4, color.stroke_width(2)).into_dyn(),
+                Mark::Rings => Circle::new((x + 11, y), 7, color.stroke_width(2)).into_dyn(),
                 _ => Circle::new((x + 11, y), 4, color.filled()).into_dyn(),
             });
         }

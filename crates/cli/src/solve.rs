@@ -1,11 +1,12 @@
 //! `solve`: one normal contact, with or without adhesion, from flags or a TOML case file.
 
-use crate::case::{Built, Case, layered, on_workers, results, to_toml};
+use crate::case::{Built, Case, beside, layered, on_workers, results, to_toml};
 use crate::plot;
 use crate::run::{Reuse, RunDir};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use elastic::Domain;
+use indicatif::{ProgressBar, ProgressStyle};
 use ndarray::Array2;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
@@ -74,6 +75,11 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         &args.case,
         &args.control,
     )?;
+    beside(
+        args.config.as_deref(),
+        args.case.surface.is_none(),
+        &mut case.surface,
+    );
     case.fill_defaults("run/solve");
     if args.print_config {
         println!("{}", to_toml(&case, &control)?);
@@ -121,10 +127,14 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         return solve_adhesive(&args, &case, control, &built, &run);
     }
     let options = case.contact_options();
-    let mut progress = Progress::new("");
+    let mut progress = Progress::new();
     let (state, report) =
         on_workers(|| problem.solve_without_adhesion(control, &options, None, &mut progress))?;
-    eprint!("\r{:60}\r", "");
+    progress.finish();
+    let edge = problem.edge_warning(&state.gap, &state.pressure);
+    if let Some(w) = &edge {
+        eprintln!("warning: {w}");
+    }
     let domain = problem.domain();
     run.write_field("pressure", &state.pressure)?;
     run.write_field("gap", &state.gap)?;
@@ -137,6 +147,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
                 "pressure.npy": "Pa", "gap.npy": "m", "displacement.npy": "m"
             },
             "converged": report.converged(),
+            "warnings": problem.warnings.iter().chain(&edge).collect::<Vec<_>>(),
         }),
         &report,
     )?;
@@ -202,26 +213,39 @@ pub fn finish(converged: bool, msg: String, keep_going: bool, out: &Path) -> Res
     }
 }
 
-/// Where a long solve stands, at most once a second on one line of the terminal.
+/// Where a long solve stands: a spinner line on a terminal; without one (a log file), a
+/// plain line once a minute.
 struct Progress {
-    kind: &'static str,
-    last: Instant,
+    bar: ProgressBar,
+    quiet_since: Instant,
 }
 
 impl Progress {
-    fn new(kind: &'static str) -> Progress {
+    fn new() -> Progress {
+        let bar = ProgressBar::new_spinner()
+            .with_style(ProgressStyle::with_template("{spinner} {elapsed} {msg}").expect("valid template"));
         Progress {
-            kind,
-            last: Instant::now(),
+            bar,
+            quiet_since: Instant::now(),
         }
+    }
+
+    fn finish(&self) {
+        self.bar.finish_and_clear();
     }
 }
 
 impl Observer for Progress {
     fn iteration(&mut self, _step: usize, iteration: usize, residual: f64) {
-        if self.last.elapsed().as_secs_f64() > 1.0 {
-            eprint!("\r{}iteration {iteration:>6}  residual {residual:.3e}", self.kind);
-            self.last = Instant::now();
+        if self.bar.is_hidden() {
+            if self.quiet_since.elapsed().as_secs() >= 60 {
+                eprintln!("iteration {iteration}, residual {residual:.3e}");
+                self.quiet_since = Instant::now();
+            }
+        } else if iteration.is_multiple_of(10) {
+            self.bar
+                .set_message(format!("iteration {iteration}, residual {residual:.3e}"));
+            self.bar.tick();
         }
     }
 }
@@ -249,9 +273,13 @@ fn solve_adhesive(
     let problem = &built.problem;
     let out = run.path();
     let settings = case.settings();
-    let mut progress = Progress::new("");
+    let mut progress = Progress::new();
     let (state, report) = on_workers(|| problem.solve(control, &settings, Start::Loading, &mut progress))?;
-    eprint!("\r{:60}\r", "");
+    progress.finish();
+    let edge = problem.edge_warning(&state.contact.gap, &state.contact.pressure);
+    if let Some(w) = &edge {
+        eprintln!("warning: {w}");
+    }
     let domain = problem.domain();
     run.write_adhesive_fields(&state)?;
     let summary = results(
@@ -263,7 +291,7 @@ fn solve_adhesive(
                 "gap.npy": "m", "displacement.npy": "m"
             },
             "law": problem.law.name(),
-            "warnings": problem.warnings,
+            "warnings": problem.warnings.iter().chain(&edge).collect::<Vec<_>>(),
             "converged": report.converged(),
         }),
         &report,
@@ -285,7 +313,7 @@ fn solve_adhesive(
     println!("attractive area fraction {:.6}", report.attractive_area_fraction);
     println!("attached area fraction   {:.6}", report.attached_area_fraction);
     println!(
-        "iterations               {} ({}), residual {:.2e}, {:?}",
+        "iterations               {} ({}), residual {:.2e}, {}",
         counts(&report.iterations),
         report.method,
         report.residual,
@@ -296,7 +324,7 @@ fn solve_adhesive(
     finish(
         report.converged(),
         format!(
-            "the adhesive solve did not converge: {:?}, residual {:.3e} after {} iterations ({}) \
+            "the adhesive solve did not converge: {}, residual {:.3e} after {} iterations ({}) \
              (tolerance {:.1e})",
             report.termination,
             report.residual,
@@ -317,7 +345,7 @@ fn print_summary(out: &Path, r: &solver::ContactReport) {
     println!("contact clusters       {}", r.clusters);
     println!("max pressure           {:.6e} Pa", r.max_pressure);
     println!(
-        "iterations             {} ({} operator calls), residual {:.2e}, {:?}",
+        "iterations             {} ({} operator calls), residual {:.2e}, {}",
         r.iterations, r.operator_calls, r.residual, r.termination
     );
     println!("wall time              {:.3} s", r.wall_time_s);

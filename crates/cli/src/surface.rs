@@ -8,8 +8,17 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use surfgen::io::{self, ReadOptions};
 use surfgen::{
-    Amplitudes, Analysis, Anisotropy, Grid, Metadata, Normalization, Psd, Statistics, Surface, SurfaceSpec,
+    Amplitudes, Analysis, Anisotropy, Grid, Metadata, Normalization, Psd, Statistics, SurfError, Surface,
+    SurfaceSpec,
 };
+
+/// A surface file's error, with the file named once: the reader's own errors already name it.
+pub fn naming(verb: &str, path: &Path, e: SurfError) -> anyhow::Error {
+    match e {
+        SurfError::Io { .. } | SurfError::Parse { .. } => e.into(),
+        _ => anyhow::Error::from(e).context(format!("{verb} {}", path.display())),
+    }
+}
 
 #[derive(Args, Debug)]
 pub struct GenerateArgs {
@@ -106,7 +115,7 @@ impl SurfaceFile {
             unit: self.unit,
             periodic: !self.not_periodic,
         };
-        io::read(&self.file, &options).with_context(|| format!("reading {}", self.file.display()))
+        io::read(&self.file, &options).map_err(|e| naming("reading", &self.file, e))
     }
 }
 
@@ -262,7 +271,18 @@ pub fn generate(a: GenerateArgs) -> Result<()> {
         },
         seed: a.seed,
     };
-    let generated = surfgen::generate(&spec)?;
+    crate::memory::check(
+        &format!("a {nx} x {ny} surface"),
+        surfgen::generate::memory_estimate(nx, ny),
+    )?;
+    let generated = surfgen::generate(&spec).map_err(|e| match (a.cutoff, &e) {
+        (None, SurfError::InvalidParameter { name, .. }) if *name == "cutoff_wavelength" => anyhow::anyhow!(
+            "a {nx} x {ny} grid is too coarse for the default cut-off wavelength (4 grid spacings, \
+             {cutoff:e} m): no wavevector of the grid is in the spectrum's band; give more points (--n) \
+             or --cutoff and --rolloff [m]"
+        ),
+        _ => e.into(),
+    })?;
     for w in &generated.warnings {
         eprintln!("warning: {w}");
     }
@@ -274,7 +294,7 @@ pub fn generate(a: GenerateArgs) -> Result<()> {
         ..Metadata::of(&surface)
     };
     let (written, statistics) = rayon::join(
-        || io::write(&surface, &a.output, None).with_context(|| format!("writing {}", a.output.display())),
+        || io::write(&surface, &a.output, None).map_err(|e| naming("writing", &a.output, e)),
         || -> Result<Statistics> {
             let statistics =
                 surfgen::stats::statistics_with(surface.heights.view(), &generated.analysis, true, None);

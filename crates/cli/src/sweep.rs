@@ -1,7 +1,7 @@
 //! `sweep`: a quasi-static approach-retraction cycle (or any list of approaches, mean
 //! pressures or central gaps) with continuation, written step by step and resumable.
 
-use crate::case::{Case, layered, on_workers, results, to_toml};
+use crate::case::{Case, beside, layered, on_workers, results, to_toml};
 use crate::plot::{self, Chart, Curve, Mark, PALETTE};
 use crate::run::{CurveWriter, Reuse, RunDir, read_state};
 use crate::solve::finish;
@@ -10,7 +10,9 @@ use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
 use serde_json::json;
-use solver::{AdhesiveState, Branch, Control, CyclePoint, Observer, SweepPoint, approach_cycle, summarize};
+use solver::{
+    AdhesiveState, Branch, Control, CyclePoint, CycleSummary, Observer, SweepPoint, approach_cycle, summarize,
+};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -53,17 +55,17 @@ pub struct SweepPath {
 /// Built-in cases, runnable with no input files (their TOML is in `data/examples`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Example {
-    /// Rigid sphere on an elastic flat without adhesion (Hertz), ~5 s.
+    /// Rigid sphere on an elastic flat without adhesion (Hertz), ~1 s.
     Hertz,
-    /// Sphere with the Lennard-Jones surface law at Tabor parameter 3 (JKR side), ~1 min.
+    /// Sphere with the Lennard-Jones surface law at Tabor parameter 3 (JKR side), ~20 s.
     JkrSphere,
-    /// Sphere at Tabor parameter 0.1 (DMT side), ~10 s.
+    /// Sphere at Tabor parameter 0.1 (DMT side), ~2 s.
     DmtSphere,
-    /// Rough sphere (Rq = z0) at Tabor parameter 2.
+    /// Rough sphere (Rq = z0) at Tabor parameter 2, ~15 s.
     RoughSphere,
-    /// The contact-mechanics challenge at 256^2 with its exponential adhesion, load-controlled.
+    /// The contact-mechanics challenge at 256^2 with its exponential adhesion, load-controlled, ~15 s.
     ChallengeSmall,
-    /// Rigid wave at Johnson's alpha 0.3, crests at Tabor parameter 3 (Johnson 1995).
+    /// Rigid wave at Johnson's alpha 0.3, crests at Tabor parameter 3 (Johnson 1995), ~2 s.
     WavyJkr,
 }
 
@@ -143,6 +145,16 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         &args.case,
         &args.path,
     )?;
+    beside(
+        args.config.as_deref(),
+        args.case.surface.is_none(),
+        &mut case.surface,
+    );
+    beside(
+        args.config.as_deref(),
+        args.path.start_from.is_none(),
+        &mut path.start_from,
+    );
     case.fill_defaults("run/sweep");
     if path.approaches.is_none() && path.mean_pressures.is_none() && path.central_gaps.is_none() {
         path.steps = path.steps.or(Some(20));
@@ -168,6 +180,10 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             if steps == 0 {
                 bail!("--steps must be at least 1 (steps from --from to --to; as many back)");
             }
+            crate::memory::check(
+                &format!("a sweep of {} steps", 2 * steps as u64 + 1),
+                (2.0 * steps as f64 + 1.0) * STEP_BYTES,
+            )?;
             approach_cycle(from, to, steps)
         }
         _ => bail!("give one path only"),
@@ -204,6 +220,13 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         }
         None => None,
     };
+    let max_step = path.max_step.or(problem.adhesive().then(|| problem.law.range()));
+    if let Some(h) = max_step
+        && !(h.is_finite() && h > 0.0)
+    {
+        bail!("--max-step must be a positive length [m], got {h}");
+    }
+    solver::count_substeps(&controls, max_step)?;
     // Settings are checked before the output directory is touched.
     let settings = case.settings();
     if problem.adhesive() {
@@ -255,16 +278,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     }
     let done = rows.len().min(controls.len());
 
-    let max_step = path.max_step.or(problem.adhesive().then(|| problem.law.range()));
-    if let Some(h) = max_step
-        && !(h.is_finite() && h > 0.0)
-    {
-        bail!("--max-step must be a positive length [m], got {h}");
-    }
-    let split: usize = controls[done.saturating_sub(1)..]
-        .windows(2)
-        .map(|w| solver::substeps(Some(w[0]), w[1], max_step).len())
-        .sum();
+    let split = solver::count_substeps(&controls[done.saturating_sub(1)..], max_step)?;
     if split > 0 {
         eprintln!(
             "note: {split} substeps are solved between the path's steps (none longer than {:.3e} m, \
@@ -288,12 +302,15 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         last: String::new(),
         quiet_since: Instant::now(),
         error: None,
+        problem,
+        edge: None,
     };
     let points = on_workers(|| problem.sweep(&controls[done..], max_step, &settings, start, &mut writer))?;
     bar.finish_and_clear();
     if let Some(e) = writer.error {
         return Err(e.context("writing the sweep's results"));
     }
+    let warnings: Vec<&String> = problem.warnings.iter().chain(&writer.edge).collect();
     rows.extend(points.iter().map(CyclePoint::from));
     let cycle = rows;
     let summary = summarize(&cycle);
@@ -343,13 +360,13 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         "tabor_parameter": tabor,
         "wave": johnson,
         "max_step": max_step,
-        "warnings": problem.warnings,
+        "warnings": warnings,
         "steps": cycle.len(),
         "wall_time_s": started.elapsed().as_secs_f64(),
     });
     run.write_summary(&case, &built, results(json, &summary)?)?;
     if !args.no_png && cycle.len() > 1 {
-        plot_cycle(&out.join("load_approach.png"), &cycle)?;
+        plot_cycle(&out.join("load_approach.png"), &cycle, &summary)?;
     }
     println!("steps                 {}", cycle.len());
     if let Some(w) = summary.pull_off_force {
@@ -357,6 +374,50 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             "pull-off force        {w:.6e} N at approach {:.4e} m",
             summary.pull_off_approach.unwrap_or(f64::NAN)
         );
+        // A sphere's pull-off in its natural unit, beside Maugis-Dugdale's at its Tabor parameter.
+        if let (Some(r), Some(w0), None) = (case.sphere_radius, case.work_of_adhesion, wave) {
+            let unit = std::f64::consts::PI * r * w0;
+            print!("                      = {:.4} pi R w0", w / unit);
+            if let Some(mu) = tabor {
+                let md = theory::maugis::MaugisDugdale::new(theory::maugis_parameter_of_tabor(mu));
+                print!(
+                    " (Maugis-Dugdale's least load at lambda = 1.157 mu: {:.4})",
+                    md.pull_off_load_control()
+                );
+            }
+            println!();
+        }
+    }
+    // A smooth sphere without adhesion: the deepest step against Hertz.
+    if let (Some(r), false, None, None) = (
+        case.sphere_radius,
+        problem.adhesive(),
+        built.surface_hash.as_ref(),
+        case.wave_amplitude,
+    ) && let Some(deep) = cycle.iter().max_by(|a, b| a.approach.total_cmp(&b.approach))
+        && deep.approach > 0.0
+    {
+        let hertz = theory::hertz::load_of_approach(deep.approach, r, problem.e_star());
+        println!(
+            "Hertz at the deepest approach ({:.4e} m): {hertz:.6e} N; solved {:.6e} N ({:+.2} %)",
+            deep.approach,
+            deep.load,
+            100.0 * (deep.load / hertz - 1.0)
+        );
+    }
+    // Under load control the contact area is the result: a line a step.
+    if matches!(controls[0], Control::MeanPressure(_)) {
+        println!("mean pressure [Pa]  contact area  attached area  branch");
+        let area = domain.cell_area() * (domain.nx * domain.ny) as f64;
+        for p in &cycle {
+            println!(
+                "{:>18.4e}  {:>12.6}  {:>13.6}  {}",
+                p.load / area,
+                p.contact_area_fraction,
+                p.attached_area_fraction,
+                p.branch.name()
+            );
+        }
     }
     if let Some(a) = summary.jump_in_approach {
         println!("jump in at approach   {a:.4e} m");
@@ -387,6 +448,12 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         out,
     )
 }
+
+/// The memory a step of a sweep keeps until the end [bytes]: its control, its report and its
+/// row of the summary (the report's residual history aside).
+const STEP_BYTES: f64 = (std::mem::size_of::<Control>()
+    + std::mem::size_of::<SweepPoint>()
+    + std::mem::size_of::<CyclePoint>()) as f64;
 
 /// Whether two resolved cases (TOML) are the same apart from their output directory, which
 /// may be spelt differently or moved between a sweep and its resumption.
@@ -423,7 +490,10 @@ fn check_rows(rows: &[CyclePoint], controls: &[Control]) -> Result<()> {
     Ok(())
 }
 
-fn plot_cycle(path: &Path, cycle: &[CyclePoint]) -> Result<()> {
+/// The load-approach chart: each branch a line through its steps (loading solid with dots,
+/// unloading dashed with open circles, so that neither hides the other), the pull-off and the
+/// jumps ringed.
+fn plot_cycle(path: &Path, cycle: &[CyclePoint], summary: &CycleSummary) -> Result<()> {
     let (lf, lu) = plot::length_unit(cycle.iter().map(|p| p.approach.abs()).fold(0.0, f64::max));
     let max_load = cycle.iter().map(|p| p.load.abs()).fold(0.0, f64::max);
     let (ff, fu) = force_unit(max_load);
@@ -434,15 +504,42 @@ fn plot_cycle(path: &Path, cycle: &[CyclePoint]) -> Result<()> {
             .map(|p| (p.approach * lf, p.load * ff))
             .collect()
     };
+    // The step of `branch` at `approach`, scaled.
+    let at = |b: Branch, approach: Option<f64>| -> Vec<(f64, f64)> {
+        cycle
+            .iter()
+            .filter(|p| p.branch == b && Some(p.approach) == approach)
+            .map(|p| (p.approach * lf, p.load * ff))
+            .take(1)
+            .collect()
+    };
     let mut chart = Chart::new(
         "load against approach",
         format!("approach [{lu}]"),
         format!("load [{fu}]"),
     );
+    let (loading, unloading) = (branch(Branch::Loading), branch(Branch::Unloading));
     chart.curves = vec![
-        Curve::new("loading", branch(Branch::Loading), Mark::Dots, PALETTE[0]),
-        Curve::new("unloading", branch(Branch::Unloading), Mark::Dots, PALETTE[3]),
+        Curve::new("", loading.clone(), Mark::Line, PALETTE[0]),
+        Curve::new("loading", loading, Mark::Dots, PALETTE[0]),
+        Curve::new("", unloading.clone(), Mark::Dashed, PALETTE[3]),
+        Curve::new("unloading", unloading, Mark::Circles, PALETTE[3]),
     ];
+    let pull_off: Vec<(f64, f64)> = summary
+        .pull_off_force
+        .zip(summary.pull_off_approach)
+        .map(|(w, a)| (a * lf, w * ff))
+        .into_iter()
+        .collect();
+    let jumps: Vec<(f64, f64)> = at(Branch::Loading, summary.jump_in_approach)
+        .into_iter()
+        .chain(at(Branch::Unloading, summary.jump_out_approach))
+        .collect();
+    for (label, points, color) in [("pull-off", pull_off, PALETTE[1]), ("jumps", jumps, PALETTE[2])] {
+        if !points.is_empty() {
+            chart.curves.push(Curve::new(label, points, Mark::Rings, color));
+        }
+    }
     chart.save_png(path)
 }
 
@@ -474,6 +571,9 @@ struct StepWriter<'a> {
     last: String,
     quiet_since: Instant,
     error: Option<anyhow::Error>,
+    problem: &'a solver::ContactProblem,
+    /// The first step whose contact reached a free grid's edge, as a warning.
+    edge: Option<String>,
 }
 
 impl Observer for StepWriter<'_> {
@@ -497,6 +597,15 @@ impl Observer for StepWriter<'_> {
 
     fn step(&mut self, k: usize, p: &SweepPoint, state: &AdhesiveState) -> bool {
         let r = &p.report;
+        if self.edge.is_none()
+            && let Some(w) = self
+                .problem
+                .edge_warning(&state.contact.gap, &state.contact.pressure)
+        {
+            let w = format!("from step {} on, {w}", self.done + k);
+            self.bar.suspend(|| eprintln!("warning: {w}"));
+            self.edge = Some(w);
+        }
         let saved = self
             .run
             .save_state(self.done + k, state, self.save_states)

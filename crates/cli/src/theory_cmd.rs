@@ -20,13 +20,14 @@ pub struct TheoryArgs {
     /// With --summary: as JSON (snake_case keys).
     #[arg(long, global = true)]
     json: bool,
-    /// Points on the curve.
-    #[arg(long, global = true, default_value_t = 200)]
-    points: usize,
-    /// Largest dimensionless contact radius A on the curve (the compressive end).
-    #[arg(long, global = true, default_value_t = 3.0)]
-    max_radius: f64,
-    /// Also draw the curve (load against approach) as a PNG.
+    /// Points on the curve [default: 200] (not for greenwood, whose steps follow --resolution).
+    #[arg(long, global = true)]
+    points: Option<usize>,
+    /// Largest dimensionless contact radius A on the curve (the compressive end) [default: 3]
+    /// (maugis, jkr, dmt).
+    #[arg(long, global = true)]
+    max_radius: Option<f64>,
+    /// Also draw the curve (load against approach) as a PNG (not for sticky).
     #[arg(long, global = true, value_name = "FILE")]
     plot: Option<PathBuf>,
 }
@@ -142,8 +143,8 @@ fn hertz(a: &TheoryArgs, r: f64, e: f64, max: f64) -> Result<()> {
     let mut out = open(a)?;
     writeln!(out, "approach_m,load_n,contact_radius_m,max_pressure_pa")?;
     let mut pts = Vec::new();
-    for k in 0..a.points {
-        let d = max * k as f64 / (a.points - 1) as f64;
+    for k in 0..a.points() {
+        let d = max * k as f64 / (a.points() - 1) as f64;
         let w = theory::hertz::load_of_approach(d, r, e);
         let c = (r * d).sqrt();
         let p0 = if c > 0.0 {
@@ -167,8 +168,8 @@ fn area(a: &TheoryArgs, k: f64, max: f64) -> Result<()> {
     let mut out = open(a)?;
     writeln!(out, "reduced_pressure,persson,muser")?;
     let (mut p1, mut p2) = (Vec::new(), Vec::new());
-    for i in 0..a.points {
-        let x = max * i as f64 / (a.points - 1) as f64;
+    for i in 0..a.points() {
+        let x = max * i as f64 / (a.points() - 1) as f64;
         let (ap, am) = (theory::rough::persson_area(x), theory::rough::muser_area(x, k));
         writeln!(out, "{x:e},{ap:e},{am:e}")?;
         p1.push((x, ap));
@@ -282,8 +283,8 @@ fn wavy(a: &TheoryArgs, w: &theory::wavy::Wave) -> Result<()> {
     )?;
     let (mut p1, mut p2) = (Vec::new(), Vec::new());
     // Up to (not at) complete contact, where Johnson's correction diverges.
-    for k in 0..a.points {
-        let half = 0.5 * w.wavelength * k as f64 / a.points as f64;
+    for k in 0..a.points() {
+        let half = 0.5 * w.wavelength * k as f64 / a.points() as f64;
         let (pw, pj) = (w.westergaard_pressure(half), w.jkr_pressure(half));
         let fraction = 2.0 * half / w.wavelength;
         writeln!(out, "{half:e},{fraction:e},{pw:e},{pj:e}")?;
@@ -404,8 +405,49 @@ fn draw_curves(
     chart.save_png(path)
 }
 
+impl Model {
+    fn name(&self) -> &'static str {
+        match self {
+            Model::Maugis { .. } => "maugis",
+            Model::Jkr => "jkr",
+            Model::Dmt => "dmt",
+            Model::Greenwood { .. } => "greenwood",
+            Model::Hertz { .. } => "hertz",
+            Model::Wavy { .. } => "wavy",
+            Model::Area { .. } => "area",
+            Model::Sticky { .. } => "sticky",
+        }
+    }
+}
+
+impl TheoryArgs {
+    /// Points on the curve.
+    fn points(&self) -> usize {
+        self.points.unwrap_or(200)
+    }
+}
+
 pub fn theory(a: TheoryArgs) -> Result<()> {
-    if a.points < 2 {
+    // Refuse the shared flags a model does not use, rather than ignore them.
+    let curve = !matches!(a.model, Model::Sticky { .. });
+    let sampled = curve && !matches!(a.model, Model::Greenwood { .. });
+    let radius = matches!(a.model, Model::Maugis { .. } | Model::Jkr | Model::Dmt);
+    for (given, applies, flag) in [
+        (a.points.is_some(), sampled, "--points"),
+        (a.max_radius.is_some(), radius, "--max-radius"),
+        (a.plot.is_some(), curve, "--plot"),
+    ] {
+        if given && !applies {
+            bail!("{flag} does not apply to `theory {}`", a.model.name());
+        }
+    }
+    if a.summary && (a.plot.is_some() || a.points.is_some() || a.max_radius.is_some()) {
+        bail!("--plot, --points and --max-radius shape the curve; --summary prints no curve");
+    }
+    if a.json && !a.summary && curve {
+        bail!("--json formats the summary: add --summary");
+    }
+    if a.points() < 2 {
         bail!("--points must be at least 2");
     }
     if let Model::Greenwood {
@@ -510,20 +552,27 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
                 "model": "maugis_dugdale", "lambda": lambda, "tabor_parameter": tabor,
                 "units": "pull-off forces in pi R w0",
                 "pull_off_load_control": lc, "pull_off_displacement_control": dc,
+                "displacement_control_fold": model.has_fold(),
             });
             writeln!(out, "{}", serde_json::to_string_pretty(&v)?)?;
         } else {
             writeln!(out, "Maugis-Dugdale, lambda = {lambda:.6}")?;
             writeln!(out, "pull-off under load control          {lc:.6} pi R w0")?;
-            writeln!(out, "pull-off under displacement control  {dc:.6} pi R w0")?;
+            let note = if model.has_fold() {
+                ""
+            } else {
+                " (no fold below lambda ~0.94: separation is continuous, the load-control value)"
+            };
+            writeln!(out, "pull-off under displacement control  {dc:.6} pi R w0{note}")?;
         }
         return Ok(());
     }
     writeln!(out, "m,contact_radius_A,load_P,approach_D")?;
-    if !(a.max_radius.is_finite() && a.max_radius > 0.0) {
+    let max_radius = a.max_radius.unwrap_or(3.0);
+    if !(max_radius.is_finite() && max_radius > 0.0) {
         bail!("--max-radius must be finite and > 0");
     }
-    let curve = model.curve_to_radius(a.points, a.max_radius);
+    let curve = model.curve_to_radius(a.points(), max_radius);
     for p in &curve {
         writeln!(out, "{:e},{:e},{:e},{:e}", p.m, p.radius, p.load, p.approach)?;
     }

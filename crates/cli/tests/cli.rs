@@ -223,6 +223,135 @@ fn bad_input_is_refused_clearly() {
         assert!(!o.status.success(), "{args:?} should fail");
         assert!(stderr(&o).contains(needle), "{args:?}: {}", stderr(&o));
     }
+    // Issue #31's cases: sizes this machine cannot hold are refused before allocating, flags a
+    // command does not use are refused, and every message names what is wrong.
+    let bad = d.join("bad.toml");
+    std::fs::write(&bad, "modulus = \"abc\"\n").unwrap();
+    let bad = bad.to_str().unwrap();
+    let sub = d.join("sub");
+    std::fs::create_dir_all(&sub).unwrap();
+    let sub = sub.to_str().unwrap();
+    let noext = d.join("noext");
+    let noext = noext.to_str().unwrap();
+    let sphere = [
+        "solve",
+        "--modulus",
+        "1e9",
+        "--length",
+        "1e-6",
+        "--approach",
+        "1e-9",
+        "--out",
+        run,
+    ];
+    let sticky = [
+        "theory",
+        "sticky",
+        "--work-of-adhesion",
+        "0.05",
+        "--modulus",
+        "1e6",
+        "--rms-height",
+        "1e-6",
+        "--long-wavelength",
+        "1e-4",
+        "--short-wavelength",
+        "1e-7",
+    ];
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec![
+                "sweep",
+                "--example",
+                "jkr-sphere",
+                "--max-step",
+                "1e-20",
+                "--out",
+                run,
+            ],
+            "substeps (at most 100000)",
+        ),
+        (
+            vec![
+                "sweep",
+                "--example",
+                "jkr-sphere",
+                "--steps",
+                "100000000000",
+                "--out",
+                run,
+            ],
+            "GiB of memory; this machine has",
+        ),
+        (
+            vec!["generate", "--n", "1000000", "-o", out],
+            "a 1000000 x 1000000 surface needs about",
+        ),
+        (
+            [&sphere[..], &["--sphere-radius", "1e-6", "--n", "200000"]].concat(),
+            "a 200000 x 200000 solve needs about",
+        ),
+        (
+            [&sphere[..], &["--sphere-radius", "-1e-6", "--n", "64"]].concat(),
+            "invalid sphere_radius = -0.000001: must be finite and > 0 m",
+        ),
+        (
+            [&sphere[..], &["--sphere-radius=-1e-6", "--n", "64"]].concat(),
+            "invalid sphere_radius",
+        ),
+        (vec!["stats", sub], "is a directory, not a surface file"),
+        (
+            vec!["generate", "--n", "64", "-o", noext],
+            "the file name has no extension, which names the format",
+        ),
+        (
+            vec!["solve", "--config", bad],
+            "bad.toml: a key has a value of the wrong type",
+        ),
+        (
+            vec!["generate", "--n", "3", "-o", out],
+            "a 3 x 3 grid is too coarse for the default cut-off wavelength",
+        ),
+        (
+            [&sticky[..], &["--points", "10"]].concat(),
+            "--points does not apply to `theory sticky`",
+        ),
+        (
+            [&sticky[..], &["--plot", "p.png"]].concat(),
+            "--plot does not apply to `theory sticky`",
+        ),
+        (
+            [&sticky[..], &["--max-radius", "2"]].concat(),
+            "--max-radius does not apply to `theory sticky`",
+        ),
+        (
+            vec!["theory", "greenwood", "--tabor", "1", "--points", "5"],
+            "--points does not apply to `theory greenwood`",
+        ),
+        (
+            vec![
+                "theory",
+                "maugis",
+                "--lambda",
+                "1",
+                "--summary",
+                "--plot",
+                "p.png",
+            ],
+            "--summary prints no curve",
+        ),
+    ];
+    for (args, needle) in &cases {
+        let o = roughcontact(args);
+        assert!(!o.status.success(), "{args:?} should fail");
+        assert!(stderr(&o).contains(needle), "{args:?}: {}", stderr(&o));
+        assert!(
+            o.status.code() == Some(1) || o.status.code() == Some(2),
+            "{args:?}: {:?}",
+            o.status
+        );
+    }
+    assert!(!d.join("run").exists(), "refused runs leave no output directory");
     let nan = d.join("nan.txt");
     std::fs::write(&nan, "0 1\nnan 2\n").unwrap();
     let o = roughcontact(&["stats", nan.to_str().unwrap(), "--length", "1e-6"]);

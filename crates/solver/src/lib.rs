@@ -59,11 +59,14 @@ pub use adhesive::{AdhesiveReport, AdhesiveState, Iterations, Start};
 pub use error::{Result, SolverError};
 pub use method::{Method, Mixing, Observer, Settings};
 pub use options::{ContactOptions, Control};
-pub use problem::{ContactProblem, ProblemBuilder, Shape};
+pub use problem::{ContactProblem, ProblemBuilder, Shape, memory_estimate};
 pub use pull_off::{PullOff, PullOffSearch};
 pub use report::{ContactReport, Termination};
 pub use state::ContactState;
-pub use sweep::{Branch, CyclePoint, CycleSummary, RETRIES, SweepPoint, approach_cycle, substeps, summarize};
+pub use sweep::{
+    Branch, CyclePoint, CycleSummary, MAX_SUBSTEPS, RETRIES, SweepPoint, approach_cycle, count_substeps,
+    substeps, summarize,
+};
 
 /// The README's library example, run as a doctest.
 #[cfg(doctest)]

@@ -6,7 +6,7 @@
 use crate::adhesive::{AdhesiveReport, AdhesiveState, Start};
 use crate::error::{Result, SolverError, invalid};
 use crate::geometry::{SphereProfile, flat_on_rough, sphere, wave};
-use crate::method::{Observer, Settings};
+use crate::method::{Method, Observer, Settings};
 use crate::options::{ContactOptions, Control};
 use crate::report::ContactReport;
 use crate::state::ContactState;
@@ -155,6 +155,34 @@ impl ContactProblem {
     }
 
     /// The warnings of this set-up (see [`ContactProblem::warnings`]).
+    /// On a free grid, a warning when a solution's contact (compressive pressure > 0) or, with
+    /// adhesion, its attached zone (gaps within the law's range) reaches the grid's border: the
+    /// half-space carries no pressure beyond the grid, so the box is too small and the loads
+    /// are off. `None` on periodic grids and inside the border.
+    pub fn edge_warning(&self, gap: &Array2<f64>, compressive_pressure: &Array2<f64>) -> Option<String> {
+        let domain = self.domain();
+        if domain.periodic {
+            return None;
+        }
+        let (ny, nx) = gap.dim();
+        let range = if self.adhesive() { self.law.range() } else { 0.0 };
+        let reached =
+            ndarray::Zip::indexed(gap)
+                .and(compressive_pressure)
+                .fold(0usize, |n, (j, i), &g, &p| {
+                    let border = j == 0 || i == 0 || j == ny - 1 || i == nx - 1;
+                    n + usize::from(border && (p > 0.0 || g < range))
+                });
+        (reached > 0).then(|| {
+            format!(
+                "the contact{} reaches the edge of the free grid ({reached} border cells): the \
+                 half-space carries no pressure beyond the grid, so the loads are off; enlarge \
+                 the box (--length)",
+                if range > 0.0 { " or the attached zone" } else { "" }
+            )
+        })
+    }
+
     fn check(&self) -> Vec<String> {
         let mut warnings = Vec::new();
         if !self.adhesive() {
@@ -196,6 +224,23 @@ impl ContactProblem {
         }
         warnings
     }
+}
+
+/// Roughly the peak memory \[bytes\] a solve on an `nx` x `ny` grid takes with `method`
+/// (`None`: without adhesion; `Auto` counts as Newton, the largest): the bytes a cell measured
+/// at 256^2-1024^2 (`docs/performance.md`), plus a fixed 16 MiB. For refusing a grid the
+/// machine cannot hold before anything is allocated; not a bound.
+pub fn memory_estimate(nx: usize, ny: usize, periodic: bool, method: Option<Method>) -> f64 {
+    let per_cell = match (method, periodic) {
+        (None, _) => 128.0,
+        (Some(Method::EnergyDescent), true) => 256.0,
+        (Some(Method::EnergyDescent), false) => 768.0,
+        (Some(Method::DualLoop | Method::Accelerated), true) => 384.0,
+        (Some(Method::DualLoop | Method::Accelerated), false) => 1024.0,
+        (Some(Method::Newton | Method::Auto), true) => 640.0,
+        (Some(Method::Newton | Method::Auto), false) => 2048.0,
+    };
+    per_cell * nx as f64 * ny as f64 + 16.0 * 1024.0 * 1024.0
 }
 
 impl std::fmt::Debug for ContactProblem {

@@ -17,6 +17,18 @@ pub enum Termination {
     PulledOff,
 }
 
+impl std::fmt::Display for Termination {
+    /// In words, for people: "converged", "stopped at the iteration limit", ...
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Termination::Converged => "converged",
+            Termination::MaxIterations => "stopped at the iteration limit (not converged)",
+            Termination::NoContact => "no contact (nothing to solve)",
+            Termination::PulledOff => "pulled off (no equilibrium in contact at this load)",
+        })
+    }
+}
+
 /// Scalars of a contact solution and the history of the solve. SI units.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct ContactReport {

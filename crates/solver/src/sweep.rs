@@ -141,6 +141,7 @@ impl ContactProblem {
             }
             _ => None,
         };
+        count_substeps(&[previous.as_slice(), path].concat(), max_step)?;
         // The first step's branch follows from where the start state stands (a resumed sweep).
         let branch = match previous {
             Some(p) => branches(&[&[p], path].concat())[1..].to_vec(),
@@ -231,24 +232,63 @@ fn retried_length(previous: Control, next: Control) -> Option<f64> {
     }
 }
 
-/// The controls strictly between `previous` and `next` that split the step into equal parts
-/// no longer than `max_step` \[m\] (none for load control, a change of kind, or no positive
-/// limit): the substeps [`ContactProblem::sweep`] solves before `next`.
-pub fn substeps(previous: Option<Control>, next: Control, max_step: Option<f64>) -> Vec<Control> {
-    let (Some(previous), Some(h)) = (previous, max_step.filter(|h| h.is_finite() && *h > 0.0)) else {
-        return Vec::new();
-    };
+/// The most substeps one step of a sweep may be split into (before retries, which split up to
+/// `2^RETRIES` times finer): beyond it a `max_step` is a typing error, not a sweep that ends.
+pub const MAX_SUBSTEPS: usize = 100_000;
+
+/// A step as (start, end, the control of a value, the number of equal parts).
+type Split = (f64, f64, fn(f64) -> Control, f64);
+
+/// The step from `previous` to `next`, if it is one that [`substeps`] splits under `max_step`.
+fn split(previous: Option<Control>, next: Control, max_step: Option<f64>) -> Option<Split> {
+    let (previous, h) = (previous?, max_step.filter(|h| h.is_finite() && *h > 0.0)?);
     let (a, b, make): (f64, f64, fn(f64) -> Control) = match (previous, next) {
         (Control::Approach(a), Control::Approach(b)) => (a, b, Control::Approach),
         (Control::CentralGap(a), Control::CentralGap(b)) => (a, b, Control::CentralGap),
-        _ => return Vec::new(),
+        _ => return None,
     };
     // A step of exactly `h` written in decimals (4e-9 to 3e-9 by 1e-9) can exceed it by an
     // ulp: that is no reason to solve it twice.
-    let parts = ((b - a).abs() / h * (1.0 - 1e-9)).ceil().max(1.0) as usize;
+    let parts = ((b - a).abs() / h * (1.0 - 1e-9)).ceil().max(1.0);
+    Some((a, b, make, parts))
+}
+
+/// The controls strictly between `previous` and `next` that split the step into equal parts
+/// no longer than `max_step` \[m\] (none for load control, a change of kind, or no positive
+/// limit): the substeps [`ContactProblem::sweep`] solves before `next`. At most
+/// [`MAX_SUBSTEPS`] (see [`count_substeps`]).
+pub fn substeps(previous: Option<Control>, next: Control, max_step: Option<f64>) -> Vec<Control> {
+    let Some((a, b, make, parts)) = split(previous, next, max_step) else {
+        return Vec::new();
+    };
+    let parts = parts.min((MAX_SUBSTEPS + 1) as f64) as usize;
     (1..parts)
         .map(|i| make(a + (b - a) * i as f64 / parts as f64))
         .collect()
+}
+
+/// The substeps a sweep along `path` solves in all (see [`substeps`]), counted without making
+/// them.
+///
+/// # Errors
+/// A step that `max_step` would split into more than [`MAX_SUBSTEPS`].
+pub fn count_substeps(path: &[Control], max_step: Option<f64>) -> Result<usize> {
+    let mut total = 0;
+    for w in path.windows(2) {
+        let parts = split(Some(w[0]), w[1], max_step).map_or(1.0, |s| s.3);
+        if parts - 1.0 > MAX_SUBSTEPS as f64 {
+            return Err(invalid(
+                "max_step",
+                max_step.unwrap_or(f64::NAN),
+                format!(
+                    "splits a step of the path into {parts:.3e} substeps (at most {MAX_SUBSTEPS}): give a \
+                     larger --max-step [m] (by default the adhesive law's range)"
+                ),
+            ));
+        }
+        total += parts as usize - 1;
+    }
+    Ok(total)
 }
 
 /// What a load-approach cycle shows. Loads in N, approaches in m.

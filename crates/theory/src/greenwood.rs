@@ -314,6 +314,8 @@ impl Greenwood {
         let mut alpha = 1.0 - hc;
         let mut h: Vec<f64> = self.centres.iter().map(|r| hc + 0.5 * r * r).collect();
         let mut points = Vec::new();
+        // Each point's (alpha, profile): the warm starts of the folds' refinement.
+        let mut states: Vec<(f64, Vec<f64>)> = Vec::new();
         let mut dh = 0.02;
         let mut previous: Option<(f64, Vec<f64>)> = None;
         loop {
@@ -345,6 +347,7 @@ impl Greenwood {
                             dh = (dh * 1.5).min(0.2);
                         }
                     }
+                    states.push((a, hn.clone()));
                     previous = Some((alpha, std::mem::replace(&mut h, hn)));
                     alpha = a;
                     hc = target;
@@ -362,7 +365,55 @@ impl Greenwood {
                 }
             }
         }
-        Ok(characterise(points))
+        let mut curve = characterise(points);
+        // The sampled turning points are up to a step off the folds: solve at the folds (where
+        // a warm-started Newton solve fails, the sampled point stays, within `resolution`).
+        for k in [curve.jump_in, curve.jump_out].into_iter().flatten() {
+            if let Ok(p) = self.turning_point(&curve.points[k - 1..=k + 1], &states[k]) {
+                curve.points[k] = p;
+            }
+        }
+        if let Some(k) = curve.jump_out {
+            curve.pull_off_displacement_control = curve.points[k].load;
+        }
+        Ok(curve)
+    }
+
+    /// The fold of the approach (a local extremum against the central separation) bracketed by
+    /// three traced points, the middle one the extreme: by successive parabolic interpolation
+    /// through the best three, solving at each vertex, until the separation moves less than
+    /// 1e-9; each solve starts from `start` (the middle point's alpha and profile).
+    fn turning_point(&self, around: &[Point], start: &(f64, Vec<f64>)) -> Result<Point, NoConvergence> {
+        let sign = if around[1].approach > around[0].approach {
+            -1.0
+        } else {
+            1.0
+        };
+        let f = |p: &Point| sign * p.approach;
+        let (lo, hi) = (
+            around[0].central_separation.min(around[2].central_separation),
+            around[0].central_separation.max(around[2].central_separation),
+        );
+        let mut best: Vec<Point> = around.to_vec();
+        for _ in 0..20 {
+            best.sort_by(|a, b| f(a).total_cmp(&f(b)));
+            let [a, b, c] = [best[0], best[1], best[2]].map(|p| (p.central_separation, f(&p)));
+            let den = (b.0 - a.0) * (b.1 - c.1) - (b.0 - c.0) * (b.1 - a.1);
+            if den == 0.0 {
+                break;
+            }
+            let num = (b.0 - a.0).powi(2) * (b.1 - c.1) - (b.0 - c.0).powi(2) * (b.1 - a.1);
+            let h = (b.0 - 0.5 * num / den).clamp(lo, hi);
+            if best.iter().any(|p| (p.central_separation - h).abs() < 1e-9) {
+                break;
+            }
+            let shift = h - start.1[0];
+            let guess = start.1.iter().map(|x| x + shift).collect();
+            let (alpha, profile) = self.newton(h, start.0 - shift, guess)?;
+            best[2] = self.point(alpha, &profile);
+        }
+        best.sort_by(|a, b| f(a).total_cmp(&f(b)));
+        Ok(best[0])
     }
 }
 

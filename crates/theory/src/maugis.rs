@@ -143,8 +143,23 @@ impl MaugisDugdale {
     }
 
     /// Pull-off force under displacement control [-]: the load where the approach is smallest
-    /// (where a rigid grip loses stability).
+    /// (where a rigid grip loses stability). Where the curve has no such fold (lambda below
+    /// about 0.94: the approach falls until the contact vanishes, and separation is
+    /// continuous) the load-control value, as Greenwood's curves report it.
     pub fn pull_off_displacement_control(&self) -> f64 {
-        self.minimum(|p| p.approach).load
+        if self.has_fold() {
+            self.minimum(|p| p.approach).load
+        } else {
+            self.pull_off_load_control()
+        }
+    }
+
+    /// Whether the approach has a minimum before the contact vanishes (a jump out under
+    /// displacement control).
+    pub fn has_fold(&self) -> bool {
+        let (_, hi) = self.m_range();
+        let fold = self.minimum(|p| p.approach);
+        let end = self.point_from_excess(hi.exp());
+        fold.approach < end.approach - 1e-9 * end.approach.abs().max(1.0)
     }
 }

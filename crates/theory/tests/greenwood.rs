@@ -55,6 +55,28 @@ fn pull_off_goes_from_bradley_to_jkr_and_the_mesh_is_converged() {
 }
 
 #[test]
+fn the_displacement_control_pull_off_is_solved_at_the_fold_not_read_off_a_sample() {
+    // Read off the nearest traced point, the default steps (0.02) put it 2 % off (-0.527 against
+    // -0.516 at mu = 1); solved at the fold it matches a five times finer trace.
+    let g = Greenwood::new(1.0, Mesh::default());
+    let (coarse, fine) = (
+        g.curve(5.0, 3.0, 0.02).unwrap(),
+        g.curve(5.0, 3.0, 0.004).unwrap(),
+    );
+    let (a, b) = (
+        coarse.pull_off_displacement_control,
+        fine.pull_off_displacement_control,
+    );
+    println!("mu = 1: displacement-control pull-off {a:.6} (steps 0.02), {b:.6} (0.004)");
+    assert!((a - b).abs() < 1e-5, "{a} vs {b}");
+    assert!((a + 0.5162).abs() < 1e-3, "{a}");
+    // At the fold the approach is extreme: no traced point lies below the jump out's.
+    let out = coarse.points[coarse.jump_out.unwrap()].approach;
+    let after_in = &coarse.points[coarse.jump_in.unwrap()..];
+    assert!(after_in.iter().all(|p| p.approach >= out - 1e-12));
+}
+
+#[test]
 fn s_curve_is_continuous_with_jumps_at_the_turning_points() {
     let c = curve(2.0, Mesh::default());
     let (i, o) = (

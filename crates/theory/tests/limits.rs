@@ -42,8 +42,33 @@ fn the_limits_are_approached_at_the_expected_rate() {
     }
     let fixed_grips = MaugisDugdale::new(1e7).pull_off_displacement_control();
     assert!((fixed_grips + 5.0 / 6.0).abs() < 1e-6, "{fixed_grips}");
-    let dmt_grips = MaugisDugdale::new(1e-7).pull_off_displacement_control();
-    println!("DMT limit under fixed grips: {dmt_grips}");
+    // DMT's side has no fold: separation is continuous, under fixed grips as under load.
+    let dmt = MaugisDugdale::new(1e-7);
+    assert!(!dmt.has_fold());
+    assert_eq!(dmt.pull_off_displacement_control(), dmt.pull_off_load_control());
+}
+
+#[test]
+fn the_displacement_control_fold_appears_near_lambda_0_94() {
+    // Below the fold's appearance the approach falls until the contact vanishes; above, it
+    // turns first, at a load well above the load-control pull-off.
+    for (l, fold) in [
+        (0.3, false),
+        (0.9, false),
+        (0.93, false),
+        (0.95, true),
+        (1.0, true),
+        (5.0, true),
+    ] {
+        let m = MaugisDugdale::new(l);
+        assert_eq!(m.has_fold(), fold, "lambda {l}");
+        let (lc, dc) = (m.pull_off_load_control(), m.pull_off_displacement_control());
+        if fold {
+            assert!(dc > lc + 0.5, "lambda {l}: {dc} vs {lc}");
+        } else {
+            assert_eq!(dc, lc, "lambda {l}");
+        }
+    }
 }
 
 #[test]

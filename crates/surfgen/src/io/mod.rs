@@ -146,6 +146,12 @@ impl Format {
             "txt" | "dat" | "asc" | "csv" => Ok(Format::Matrix),
             "xyz" | "xyh" => Ok(Format::Xyh),
             "gsf" => Ok(Format::Gsf),
+            "" => Err(SurfError::parse(
+                path,
+                None,
+                "the file name has no extension, which names the format: give one of .npy, \
+                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf",
+            )),
             _ => Err(SurfError::parse(
                 path,
                 None,
@@ -170,6 +176,9 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
             options.unit,
             "metres per file unit must be > 0",
         ));
+    }
+    if path.is_dir() {
+        return Err(SurfError::parse(path, None, "is a directory, not a surface file"));
     }
     let surface = match Format::of(path)? {
         Format::Npy => npy::read(path, options)?,
