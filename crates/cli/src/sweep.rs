@@ -425,7 +425,9 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     if let Some(a) = summary.jump_out_approach {
         println!("jump out at approach  {a:.4e} m");
     }
-    println!("hysteresis energy     {:.6e} J", summary.hysteresis_energy);
+    if let Some(w) = summary.hysteresis_energy {
+        println!("hysteresis energy     {w:.6e} J (lost around the closed part of the cycle)");
+    }
     if let Some(mu) = tabor {
         println!("Tabor parameter       {mu:.4}");
     }

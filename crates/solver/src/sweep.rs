@@ -309,10 +309,12 @@ pub struct CycleSummary {
     pub jump_in_approach: Option<f64>,
     /// The first unloading step apart after an attached step \[m\] (same condition).
     pub jump_out_approach: Option<f64>,
-    /// Work lost over the cycle: the work `sum W d(delta)` done on the bodies along the path
-    /// (trapezoidal rule) \[J\], >= 0 for a dissipative cycle; meaningful when the path returns to
-    /// its start.
-    pub hysteresis_energy: f64,
+    /// Energy lost in the cycle \[J\]: the work `sum W d(delta)` done on the bodies around the
+    /// closed part of the path's first out-and-back (its first two monotone legs, over the
+    /// approaches both cover; trapezoidal rule, linear at the ends), >= 0 for a dissipative
+    /// cycle. `None` when the path never turns back. A leg's work beyond the other's range is
+    /// no loss, and is left out (see [`closed_loop_work`]).
+    pub hysteresis_energy: Option<f64>,
     /// Whether every step converged (`converged` when serialised).
     #[serde(rename = "converged")]
     pub all_converged: bool,
@@ -353,7 +355,6 @@ impl From<&SweepPoint> for CyclePoint {
 pub fn summarize(points: &[CyclePoint]) -> CycleSummary {
     let mut pull_off: Option<(f64, f64)> = None;
     let (mut jump_in, mut jump_out) = (None, None);
-    let mut work = 0.0;
     for (k, p) in points.iter().enumerate() {
         if p.branch == Branch::Unloading && pull_off.is_none_or(|(w, _)| p.load < w) {
             pull_off = Some((p.load, p.approach));
@@ -367,7 +368,6 @@ pub fn summarize(points: &[CyclePoint]) -> CycleSummary {
             if p.branch == Branch::Unloading && was && !is && jump_out.is_none() {
                 jump_out = Some(p.approach);
             }
-            work += 0.5 * (p.load + prev.load) * (p.approach - prev.approach);
         }
     }
     let pull_off = pull_off.filter(|p| p.0 < 0.0);
@@ -386,9 +386,48 @@ pub fn summarize(points: &[CyclePoint]) -> CycleSummary {
         pull_off_approach: pull_off.map(|p| p.1),
         jump_in_approach: jump_in.filter(|_| hysteresis),
         jump_out_approach: jump_out.filter(|_| hysteresis),
-        hysteresis_energy: work,
+        hysteresis_energy: closed_loop_work(points),
         all_converged: points.iter().all(|p| p.converged),
     }
+}
+
+/// The work `sum W d(delta)` \[J\] around the closed part of the first out-and-back of
+/// `points`: the first leg up to its first turn and the leg back, each over the approaches both
+/// cover (a leg that goes further than the other contributes only inside the common range,
+/// with the load interpolated linearly at its ends). `None` when the path does not turn.
+pub fn closed_loop_work(points: &[CyclePoint]) -> Option<f64> {
+    let a: Vec<f64> = points.iter().map(|p| p.approach).collect();
+    // The direction of each step, steps of zero length skipped.
+    let steps: Vec<(usize, f64)> = (1..a.len())
+        .map(|k| (k, (a[k] - a[k - 1]).signum()))
+        .filter(|(k, d)| *d != 0.0 && a[*k] != a[*k - 1])
+        .collect();
+    let first = steps.first()?.1;
+    let turn = steps.iter().find(|(_, d)| *d != first)?.0 - 1;
+    let end = steps
+        .iter()
+        .filter(|(k, _)| *k > turn)
+        .find(|(_, d)| *d == first)
+        .map_or(a.len() - 1, |(k, _)| k - 1);
+    let near = |x: f64| (x - a[turn]).abs();
+    let other_end = if near(a[0]) < near(a[end]) { a[0] } else { a[end] };
+    let (lo, hi) = (other_end.min(a[turn]), other_end.max(a[turn]));
+    Some(clipped_work(&points[..=turn], lo, hi) + clipped_work(&points[turn..=end], lo, hi))
+}
+
+/// `sum W d(delta)` along `leg` over approaches in `[lo, hi]` only.
+fn clipped_work(leg: &[CyclePoint], lo: f64, hi: f64) -> f64 {
+    leg.windows(2)
+        .map(|w| {
+            let (p, q) = (w[0], w[1]);
+            if p.approach == q.approach {
+                return 0.0;
+            }
+            let load = |x: f64| p.load + (x - p.approach) / (q.approach - p.approach) * (q.load - p.load);
+            let (x1, x2) = (p.approach.clamp(lo, hi), q.approach.clamp(lo, hi));
+            0.5 * (load(x1) + load(x2)) * (x2 - x1)
+        })
+        .sum()
 }
 
 #[cfg(test)]
@@ -425,6 +464,40 @@ mod tests {
         assert_eq!(s.jump_out_approach, Some(-3.0));
         assert_eq!(s.pull_off_force, Some(-0.8));
         assert_eq!(s.pull_off_approach, Some(-1.0));
+    }
+
+    #[test]
+    fn the_hysteresis_is_the_work_around_the_closed_part_of_the_cycle_only() {
+        use Branch::{Loading, Unloading};
+        let at = |pairs: &[(f64, f64, Branch)]| -> Vec<CyclePoint> {
+            pairs.iter().map(|&(a, w, b)| point(a, w, 0.0, 0.0, b)).collect()
+        };
+        // In at zero load, back through -1 N, and on past the start: the loop over [0, 2] holds
+        // 0.5 + 1 J; the way back's last metre (1 J more), beyond where the cycle began, is no
+        // loss.
+        let cycle = at(&[
+            (0.0, 0.0, Loading),
+            (1.0, 0.0, Loading),
+            (2.0, 0.0, Loading),
+            (1.0, -1.0, Unloading),
+            (0.0, -1.0, Unloading),
+            (-1.0, -1.0, Unloading),
+        ]);
+        assert_eq!(summarize(&cycle).hysteresis_energy, Some(1.5));
+        // The path, 0.07 -> 0.015 -> 0.075, with the same load both ways: no loss,
+        // however far the way back overshoots, and within a step (linear ends).
+        let there: Vec<(f64, f64, Branch)> = (0..=11)
+            .map(|k| 0.07 - 0.005 * k as f64)
+            .map(|a| (a, 1e-3 * (0.07 - a).powi(2), Loading))
+            .collect();
+        let back: Vec<(f64, f64, Branch)> = (1..=12)
+            .map(|k| 0.015 + 0.005 * k as f64)
+            .map(|a| (a, 1e-3 * (0.07 - a).powi(2), Unloading))
+            .collect();
+        let w = summarize(&at(&[there, back].concat())).hysteresis_energy.unwrap();
+        assert!(w.abs() < 1e-15, "{w}");
+        // A path that never turns holds no cycle.
+        assert_eq!(summarize(&cycle[..3]).hysteresis_energy, None);
     }
 
     #[test]

@@ -162,7 +162,7 @@ fn johnson_agreement(law: Law, mu: f64, n: usize, top: i32, bottom: i32) -> Agre
         .unwrap();
     assert!(0.5 * last_attached.report.attached_area_fraction * theory.wavelength < a_min);
     let summary = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
-    assert!(summary.jump_out_approach.is_some() && summary.hysteresis_energy > 0.0);
+    assert!(summary.jump_out_approach.is_some() && summary.hysteresis_energy.is_some_and(|w| w > 0.0));
     println!(
         "{law:?} law, mu = {mu}, {n} cells ({:.1} per process zone): within {:.2e} (loading) and {:.2e} \
          (unloading) p* + a cell's worth of Johnson's; pull-off {:.5} p*, Johnson {:.5} p*",

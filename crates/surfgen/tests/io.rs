@@ -152,6 +152,14 @@ fn malformed_files_are_refused_with_their_line() {
     let (line, msg) = parse_error("ymix.xyz", b"0 0 1\n1 0 2\n\n0 1 3\n1 2 4\n", lx);
     assert_eq!(line, Some(5));
     assert!(msg.contains("changes within a row"), "{msg}");
+    let (_, msg) = parse_error("uneven.xyz", b"0 0 1\n1 0 2\n3 0 3\n\n0 1 1\n1 1 2\n3 1 3\n", lx);
+    assert!(msg.contains("the x spacing is not uniform: x = 0 to 1"), "{msg}");
+    let (_, msg) = parse_error(
+        "uneven-y.xyz",
+        b"0 0 1\n1 0 2\n\n0 1 1\n1 1 2\n\n0 5 1\n1 5 2\n",
+        lx,
+    );
+    assert!(msg.contains("the y spacing is not uniform"), "{msg}");
     let (line, msg) = parse_error("inf.xyz", b"0 0 1\n1 0 inf\n\n0 1 3\n1 1 4\n", lx);
     assert_eq!(line, Some(2));
     assert!(msg.contains("non-finite"), "{msg}");

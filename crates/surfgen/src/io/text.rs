@@ -188,6 +188,22 @@ pub(super) fn read_xyh(path: &Path, options: &ReadOptions) -> Result<Surface> {
             format!("need at least 2 x 2 points, found {ny} rows of {nx}"),
         ));
     }
+    // The coordinates must be a uniform grid (to 1e-6 of a spacing, what decimal files keep):
+    // an average spacing would silently move every point.
+    for (axis, c) in [("x", &first_x), ("y", &row_y)] {
+        let step = (c[c.len() - 1] - c[0]) / (c.len() - 1) as f64;
+        if let Some(k) = (1..c.len()).find(|&k| ((c[k] - c[k - 1]) - step).abs() > 1e-6 * step.abs()) {
+            return Err(SurfError::parse(
+                path,
+                None,
+                format!(
+                    "the {axis} spacing is not uniform: {axis} = {} to {} differs from the mean spacing {step:e}",
+                    c[k - 1],
+                    c[k]
+                ),
+            ));
+        }
+    }
     // A periodic grid of n points spans n spacings.
     let lx = (first_x[nx - 1] - first_x[0]) / (nx - 1) as f64 * nx as f64;
     let ly = (row_y[ny - 1] - row_y[0]) / (ny - 1) as f64 * ny as f64;
