@@ -354,6 +354,12 @@ fn state_fields(state: &AdhesiveState) -> [(&'static str, &Array2<f64>); 4] {
 /// its `state/`): for `--start-from` and `--resume`. Its fields must be the ones its manifest
 /// fingerprints: a state torn between two steps is refused.
 pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
+    if !dir.exists() {
+        bail!(
+            "{} does not exist: give a sweep's directory or one of its saved states",
+            dir.display()
+        );
+    }
     let has = |d: &Path| d.join(MANIFEST).exists();
     let dir = [dir.to_path_buf(), dir.join("state"), dir.join("state.new")]
         .into_iter()

@@ -1009,6 +1009,19 @@ fn a_sweep_started_from_a_saved_state_continues_its_branch() {
     ]);
     assert!(!o.status.success());
     assert!(stderr(&o).contains("holds no saved state"), "{}", stderr(&o));
+    let missing = d.join("missing");
+    let o = run(&[
+        &last,
+        "--start-from",
+        missing.to_str().unwrap(),
+        "--out",
+        d.join("none").to_str().unwrap(),
+    ]);
+    assert!(
+        stderr(&o).contains(&format!("{} does not exist", missing.display())),
+        "{}",
+        stderr(&o)
+    );
     // Another grid is refused ...
     let o = roughcontact(&[
         "sweep",
