@@ -313,6 +313,17 @@ impl Case {
         self.out = self.out.clone().or_else(|| Some(PathBuf::from(out)));
     }
 
+    /// Checks the settings that apply (the adhesive ones or the non-adhesive ones), so that a
+    /// bad one is refused before the output directory is touched.
+    pub fn validate_settings(&self, adhesive: bool) -> Result<()> {
+        if adhesive {
+            self.settings().validate()?;
+        } else {
+            self.contact_options().validate()?;
+        }
+        Ok(())
+    }
+
     /// The non-adhesive solve's settings.
     pub fn contact_options(&self) -> ContactOptions {
         ContactOptions {

@@ -354,12 +354,6 @@ fn state_fields(state: &AdhesiveState) -> [(&'static str, &Array2<f64>); 4] {
 /// its `state/`): for `--start-from` and `--resume`. Its fields must be the ones its manifest
 /// fingerprints: a state torn between two steps is refused.
 pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
-    if !dir.exists() {
-        bail!(
-            "{} does not exist: give a sweep's directory or one of its saved states",
-            dir.display()
-        );
-    }
     let has = |d: &Path| d.join(MANIFEST).exists();
     let dir = [dir.to_path_buf(), dir.join("state"), dir.join("state.new")]
         .into_iter()
@@ -370,11 +364,18 @@ pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
         }))
         .find(|d| has(d))
         .with_context(|| {
-            format!(
-                "{} holds no saved state: give a sweep's directory, its state/ or one of its \
-                 states/step-NNNN (with --save-states)",
-                dir.display()
-            )
+            if dir.exists() {
+                format!(
+                    "{} holds no saved state: give a sweep's directory, its state/ or one of its \
+                     states/step-NNNN (with --save-states)",
+                    dir.display()
+                )
+            } else {
+                format!(
+                    "{} does not exist: give a sweep's directory or one of its saved states",
+                    dir.display()
+                )
+            }
         })?;
     let manifest_path = dir.join(MANIFEST);
     let manifest: Value = serde_json::from_str(

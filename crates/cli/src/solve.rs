@@ -110,12 +110,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     for w in &problem.warnings {
         eprintln!("warning: {w}");
     }
-    // Settings are checked before the output directory is touched.
-    if problem.adhesive() {
-        case.settings().validate()?;
-    } else {
-        case.contact_options().validate()?;
-    }
+    case.validate_settings(problem.adhesive())?;
     let reuse = if args.overwrite {
         Reuse::Overwrite
     } else {

@@ -227,13 +227,8 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         bail!("--max-step must be a positive length [m], got {h}");
     }
     solver::count_substeps(&controls, max_step)?;
-    // Settings are checked before the output directory is touched.
+    case.validate_settings(problem.adhesive())?;
     let settings = case.settings();
-    if problem.adhesive() {
-        settings.validate()?;
-    } else {
-        case.contact_options().validate()?;
-    }
     let reuse = match (args.resume, args.overwrite) {
         (true, _) => Reuse::Resume,
         (false, true) => Reuse::Overwrite,

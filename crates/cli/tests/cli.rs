@@ -1402,3 +1402,119 @@ fn a_state_torn_between_two_steps_is_refused() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+#[test]
+fn what_a_user_reads_warnings_comparisons_and_paths_beside_the_case() {
+    let d = dir("reads");
+    // A free-grid sphere whose contact fills the grid: warned, also in the summary.
+    let filled = d.join("filled");
+    let o = roughcontact(&[
+        "solve",
+        "--sphere-radius",
+        "1e-6",
+        "--modulus",
+        "1e9",
+        "--length",
+        "5e-7",
+        "--n",
+        "32",
+        "--approach",
+        "8e-8",
+        "--no-png",
+        "--out",
+        filled.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("reaches the edge of the free grid"),
+        "{}",
+        stderr(&o)
+    );
+    let warnings = json(&filled.join("summary.json"))["warnings"].to_string();
+    assert!(warnings.contains("reaches the edge"), "{warnings}");
+    assert!(stdout(&o).contains(", converged"), "{}", stdout(&o));
+    // Inside the grid: no warning.
+    let o = roughcontact(&[
+        "solve",
+        "--sphere-radius",
+        "1e-6",
+        "--modulus",
+        "1e9",
+        "--length",
+        "5e-7",
+        "--n",
+        "32",
+        "--approach",
+        "1e-8",
+        "--no-png",
+        "--out",
+        d.join("inside").to_str().unwrap(),
+    ]);
+    assert!(!stderr(&o).contains("edge"), "{}", stderr(&o));
+    // A case file's surface is found beside the case file, wherever the command runs.
+    let cases = d.join("cases");
+    std::fs::create_dir_all(&cases).unwrap();
+    let o = roughcontact(&[
+        "generate",
+        "--n",
+        "32",
+        "--length",
+        "1e-5",
+        "--no-png",
+        "-o",
+        cases.join("s.npy").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    std::fs::write(
+        cases.join("case.toml"),
+        "surface = \"s.npy\"\nmodulus = 25e6\nmean_pressure = 2e5\nno_such_thing = 1\n",
+    )
+    .unwrap();
+    let case = cases.join("case.toml");
+    let o = roughcontact(&["solve", "--config", case.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains("unknown key `no_such_thing`"),
+        "{}",
+        stderr(&o)
+    );
+    std::fs::write(
+        &case,
+        "surface = \"s.npy\"\nmodulus = 25e6\nmean_pressure = 2e5\n",
+    )
+    .unwrap();
+    let o = roughcontact(&[
+        "solve",
+        "--config",
+        case.to_str().unwrap(),
+        "--no-png",
+        "--out",
+        d.join("beside").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // A smooth sphere without adhesion is compared with Hertz; load steps print their areas.
+    let o = sweep_example(
+        "hertz",
+        d.join("hertz").to_str().unwrap(),
+        &["--n", "32", "--steps", "2"],
+    );
+    assert!(
+        stdout(&o).contains("Hertz at the deepest approach"),
+        "{}",
+        stdout(&o)
+    );
+    let o = sweep_example(
+        "hertz",
+        d.join("loads").to_str().unwrap(),
+        &["--n", "32", "--mean-pressures", "1e7,2e7,1e7"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let table = stdout(&o);
+    assert!(table.contains("mean pressure [Pa]  contact area"), "{table}");
+    assert_eq!(
+        table
+            .lines()
+            .filter(|l| l.ends_with("loading") || l.ends_with("unloading"))
+            .count(),
+        3
+    );
+}
