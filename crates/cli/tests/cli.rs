@@ -1406,24 +1406,27 @@ fn a_state_torn_between_two_steps_is_refused() {
 #[test]
 fn what_a_user_reads_warnings_comparisons_and_paths_beside_the_case() {
     let d = dir("reads");
+    let sphere = |approach: &str, out: &std::path::Path| {
+        roughcontact(&[
+            "solve",
+            "--sphere-radius",
+            "1e-6",
+            "--modulus",
+            "1e9",
+            "--length",
+            "5e-7",
+            "--n",
+            "32",
+            "--approach",
+            approach,
+            "--no-png",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
     // A free-grid sphere whose contact fills the grid: warned, also in the summary.
     let filled = d.join("filled");
-    let o = roughcontact(&[
-        "solve",
-        "--sphere-radius",
-        "1e-6",
-        "--modulus",
-        "1e9",
-        "--length",
-        "5e-7",
-        "--n",
-        "32",
-        "--approach",
-        "8e-8",
-        "--no-png",
-        "--out",
-        filled.to_str().unwrap(),
-    ]);
+    let o = sphere("8e-8", &filled);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(
         stderr(&o).contains("reaches the edge of the free grid"),
@@ -1434,22 +1437,7 @@ fn what_a_user_reads_warnings_comparisons_and_paths_beside_the_case() {
     assert!(warnings.contains("reaches the edge"), "{warnings}");
     assert!(stdout(&o).contains(", converged"), "{}", stdout(&o));
     // Inside the grid: no warning.
-    let o = roughcontact(&[
-        "solve",
-        "--sphere-radius",
-        "1e-6",
-        "--modulus",
-        "1e9",
-        "--length",
-        "5e-7",
-        "--n",
-        "32",
-        "--approach",
-        "1e-8",
-        "--no-png",
-        "--out",
-        d.join("inside").to_str().unwrap(),
-    ]);
+    let o = sphere("1e-8", &d.join("inside"));
     assert!(!stderr(&o).contains("edge"), "{}", stderr(&o));
     // A case file's surface is found beside the case file, wherever the command runs.
     let cases = d.join("cases");
