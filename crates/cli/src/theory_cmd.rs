@@ -14,7 +14,8 @@ pub struct TheoryArgs {
     /// Write the curve to this CSV file instead of standard output.
     #[arg(short, long, global = true)]
     output: Option<PathBuf>,
-    /// Print the model's characteristic numbers instead of the curve.
+    /// Print the model's characteristic numbers instead of the curve (maugis, jkr, dmt,
+    /// greenwood, wavy; sticky prints only those).
     #[arg(long, global = true)]
     summary: bool,
     /// With --summary: as JSON (snake_case keys).
@@ -432,7 +433,12 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
     let curve = !matches!(a.model, Model::Sticky { .. });
     let sampled = curve && !matches!(a.model, Model::Greenwood { .. });
     let radius = matches!(a.model, Model::Maugis { .. } | Model::Jkr | Model::Dmt);
+    let summarised = !matches!(
+        a.model,
+        Model::Hertz { .. } | Model::Area { .. } | Model::Sticky { .. }
+    );
     for (given, applies, flag) in [
+        (a.summary, summarised, "--summary"),
         (a.points.is_some(), sampled, "--points"),
         (a.max_radius.is_some(), radius, "--max-radius"),
         (a.plot.is_some(), curve, "--plot"),

@@ -340,6 +340,10 @@ fn bad_input_is_refused_clearly() {
             ],
             "--summary prints no curve",
         ),
+        (
+            vec!["theory", "area", "--summary"],
+            "--summary does not apply to `theory area`",
+        ),
     ];
     for (args, needle) in &cases {
         let o = roughcontact(args);
