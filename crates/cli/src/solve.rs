@@ -111,6 +111,9 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         eprintln!("warning: {w}");
     }
     case.validate_settings(problem.adhesive())?;
+    if !problem.adhesive() {
+        control.validate_without_adhesion()?;
+    }
     let reuse = if args.overwrite {
         Reuse::Overwrite
     } else {

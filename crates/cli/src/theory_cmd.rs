@@ -549,22 +549,23 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
     let model = MaugisDugdale::new(lambda);
     let mut out = open(&a)?;
     if a.summary {
-        let (lc, dc) = (
+        let (lc, dc, fold) = (
             model.pull_off_load_control(),
             model.pull_off_displacement_control(),
+            model.has_fold(),
         );
         if a.json {
             let v = json!({
                 "model": "maugis_dugdale", "lambda": lambda, "tabor_parameter": tabor,
                 "units": "pull-off forces in pi R w0",
                 "pull_off_load_control": lc, "pull_off_displacement_control": dc,
-                "displacement_control_fold": model.has_fold(),
+                "displacement_control_fold": fold,
             });
             writeln!(out, "{}", serde_json::to_string_pretty(&v)?)?;
         } else {
             writeln!(out, "Maugis-Dugdale, lambda = {lambda:.6}")?;
             writeln!(out, "pull-off under load control          {lc:.6} pi R w0")?;
-            let note = if model.has_fold() {
+            let note = if fold {
                 ""
             } else {
                 " (no fold below lambda ~0.94: separation is continuous, the load-control value)"

@@ -1218,20 +1218,19 @@ fn output_into_a_closed_pipe_ends_quietly() {
 fn run_directories_are_locked_kept_apart_and_resumed_wherever_they_are() {
     let d = dir("rundir");
     let out = d.join("hertz");
-    let o = |extra: &[&str]| {
-        roughcontact(
-            &[
-                &["sweep", "--example", "hertz", "--n", "32", "--no-png"][..],
-                extra,
-            ]
-            .concat(),
+    // A 32^2 Hertz sweep of `steps` steps each way into `out`.
+    let o = |out: &str, steps: &str, extra: &[&str]| {
+        sweep_example(
+            "hertz",
+            out,
+            &[&["--n", "32", "--steps", steps][..], extra].concat(),
         )
     };
-    let first = o(&["--steps", "3", "--save-states", "--out", out.to_str().unwrap()]);
+    let first = o(out.to_str().unwrap(), "3", &["--save-states"]);
     assert!(first.status.success(), "{}", stderr(&first));
     // Another run into it is refused, and nothing there changes.
     let curve = std::fs::read_to_string(out.join("curve.csv")).unwrap();
-    let again = o(&["--steps", "3", "--out", out.to_str().unwrap()]);
+    let again = o(out.to_str().unwrap(), "3", &[]);
     assert!(!again.status.success());
     assert!(
         stderr(&again).contains("already holds a run"),
@@ -1265,7 +1264,7 @@ fn run_directories_are_locked_kept_apart_and_resumed_wherever_they_are() {
     let moved = d.join("moved");
     std::fs::rename(&out, &moved).unwrap();
     let spelt = format!("{}/./", moved.display());
-    let resumed = o(&["--steps", "3", "--save-states", "--resume", "--out", &spelt]);
+    let resumed = o(&spelt, "3", &["--save-states", "--resume"]);
     assert!(resumed.status.success(), "{}", stderr(&resumed));
     assert!(
         stderr(&resumed).contains("resuming after 7 of 7 steps"),
@@ -1274,7 +1273,7 @@ fn run_directories_are_locked_kept_apart_and_resumed_wherever_they_are() {
     );
     // --overwrite replaces the run's files and leaves other files alone.
     std::fs::write(moved.join("notes.txt"), "mine").unwrap();
-    let replaced = o(&["--steps", "2", "--overwrite", "--out", moved.to_str().unwrap()]);
+    let replaced = o(moved.to_str().unwrap(), "2", &["--overwrite"]);
     assert!(replaced.status.success(), "{}", stderr(&replaced));
     assert!(!moved.join("states").exists());
     assert_eq!(std::fs::read_to_string(moved.join("notes.txt")).unwrap(), "mine");
@@ -1338,35 +1337,17 @@ fn two_sweeps_into_one_directory_one_is_refused() {
 fn a_state_torn_between_two_steps_is_refused() {
     let d = dir("torn");
     let out = d.join("cycle");
-    let o = roughcontact(&[
-        "sweep",
-        "--example",
-        "hertz",
-        "--n",
-        "32",
-        "--steps",
-        "3",
-        "--no-png",
-        "--save-states",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let out_s = out.to_str().unwrap();
+    let hertz = ["--n", "32", "--steps", "3"];
+    let o = sweep_example("hertz", out_s, &[&hertz[..], &["--save-states"]].concat());
     assert!(o.status.success(), "{}", stderr(&o));
     let start_from = |state: &std::path::Path, name: &str| {
-        roughcontact(&[
-            "sweep",
-            "--example",
+        let into = d.join(name);
+        sweep_example(
             "hertz",
-            "--n",
-            "32",
-            "--steps",
-            "3",
-            "--no-png",
-            "--start-from",
-            state.to_str().unwrap(),
-            "--out",
-            d.join(name).to_str().unwrap(),
-        ])
+            into.to_str().unwrap(),
+            &[&hertz[..], &["--start-from", state.to_str().unwrap()]].concat(),
+        )
     };
     // Whole states are taken.
     let good = start_from(&out.join("states/step-0002"), "good");
@@ -1390,20 +1371,11 @@ fn a_state_torn_between_two_steps_is_refused() {
     );
     // A state left between the two renames of a save (only state.new) is whole and taken.
     std::fs::rename(out.join("state"), out.join("state.new")).unwrap();
-    let o = roughcontact(&[
-        "sweep",
-        "--example",
+    let o = sweep_example(
         "hertz",
-        "--n",
-        "32",
-        "--steps",
-        "3",
-        "--no-png",
-        "--save-states",
-        "--resume",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+        out_s,
+        &[&hertz[..], &["--save-states", "--resume"]].concat(),
+    );
     assert!(o.status.success(), "{}", stderr(&o));
 }
 

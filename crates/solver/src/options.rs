@@ -16,6 +16,35 @@ pub enum Control {
     CentralGap(f64),
 }
 
+impl Control {
+    /// Refuses what a contact without adhesion cannot take: a tensile or non-finite load, a
+    /// negative approach, a prescribed central gap (the adhesive solver's).
+    pub fn validate_without_adhesion(&self) -> crate::Result<()> {
+        use crate::error::invalid;
+        match *self {
+            Control::MeanPressure(v) | Control::Force(v) if !(v.is_finite() && v >= 0.0) => {
+                let name = if matches!(self, Control::Force(_)) {
+                    "load"
+                } else {
+                    "mean_pressure"
+                };
+                Err(invalid(name, v, "a compressive load must be finite and >= 0"))
+            }
+            Control::Approach(d) if !(d.is_finite() && d >= 0.0) => Err(invalid(
+                "approach",
+                d,
+                "must be finite and >= 0 m (positive pushes the bodies together)",
+            )),
+            Control::CentralGap(g) => Err(invalid(
+                "central_gap",
+                g,
+                "prescribing the central gap needs adhesion (use the adhesive solver)",
+            )),
+            _ => Ok(()),
+        }
+    }
+}
+
 /// Solver settings, independent of the problem.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactOptions {

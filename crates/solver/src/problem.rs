@@ -154,7 +154,6 @@ impl ContactProblem {
         )
     }
 
-    /// The warnings of this set-up (see [`ContactProblem::warnings`]).
     /// On a free grid, a warning when a solution's contact (compressive pressure > 0) or, with
     /// adhesion, its attached zone (gaps within the law's range) reaches the grid's border: the
     /// half-space carries no pressure beyond the grid, so the box is too small and the loads
@@ -183,6 +182,7 @@ impl ContactProblem {
         })
     }
 
+    /// The warnings of this set-up (see [`ContactProblem::warnings`]).
     fn check(&self) -> Vec<String> {
         let mut warnings = Vec::new();
         if !self.adhesive() {
@@ -235,8 +235,7 @@ pub fn memory_estimate(nx: usize, ny: usize, periodic: bool, method: Option<Meth
         (None, _) => 128.0,
         (Some(Method::EnergyDescent), true) => 256.0,
         (Some(Method::EnergyDescent), false) => 768.0,
-        (Some(Method::DualLoop | Method::Accelerated), true) => 384.0,
-        (Some(Method::DualLoop | Method::Accelerated), false) => 1024.0,
+        (Some(Method::DualLoop | Method::Accelerated), _) => 384.0,
         (Some(Method::Newton | Method::Auto), true) => 640.0,
         (Some(Method::Newton | Method::Auto), false) => 2048.0,
     };

@@ -256,12 +256,14 @@ fn split(previous: Option<Control>, next: Control, max_step: Option<f64>) -> Opt
 /// The controls strictly between `previous` and `next` that split the step into equal parts
 /// no longer than `max_step` \[m\] (none for load control, a change of kind, or no positive
 /// limit): the substeps [`ContactProblem::sweep`] solves before `next`. At most
-/// [`MAX_SUBSTEPS`] (see [`count_substeps`]).
+/// [`MAX_SUBSTEPS`] times `2^RETRIES` (a sweep refuses more than [`MAX_SUBSTEPS`] before its
+/// retries: [`count_substeps`]).
 pub fn substeps(previous: Option<Control>, next: Control, max_step: Option<f64>) -> Vec<Control> {
     let Some((a, b, make, parts)) = split(previous, next, max_step) else {
         return Vec::new();
     };
-    let parts = parts.min((MAX_SUBSTEPS + 1) as f64) as usize;
+    // A bound on the allocation for direct callers; a sweep's retries stay within it.
+    let parts = parts.min(((MAX_SUBSTEPS << RETRIES) + 1) as f64) as usize;
     (1..parts)
         .map(|i| make(a + (b - a) * i as f64 / parts as f64))
         .collect()

@@ -147,19 +147,21 @@ impl MaugisDugdale {
     /// about 0.94: the approach falls until the contact vanishes, and separation is
     /// continuous) the load-control value, as Greenwood's curves report it.
     pub fn pull_off_displacement_control(&self) -> f64 {
-        if self.has_fold() {
-            self.minimum(|p| p.approach).load
-        } else {
-            self.pull_off_load_control()
-        }
+        self.fold()
+            .map_or_else(|| self.pull_off_load_control(), |p| p.load)
     }
 
     /// Whether the approach has a minimum before the contact vanishes (a jump out under
     /// displacement control).
     pub fn has_fold(&self) -> bool {
+        self.fold().is_some()
+    }
+
+    /// The point of least approach, if it lies before the contact vanishes.
+    fn fold(&self) -> Option<Point> {
         let (_, hi) = self.m_range();
         let fold = self.minimum(|p| p.approach);
         let end = self.point_from_excess(hi.exp());
-        fold.approach < end.approach - 1e-9 * end.approach.abs().max(1.0)
+        (fold.approach < end.approach - 1e-9 * end.approach.abs().max(1.0)).then_some(fold)
     }
 }
