@@ -62,6 +62,11 @@ pub enum OuterKind {
     /// No outer loop, any law but Dugdale's (surface included): Newton-Krylov on the cells'
     /// force balance (approach or mean-gap control).
     Newton,
+    /// No outer loop, any law but Dugdale's (surface included): the overdamped flow, which
+    /// settles on stable states where the others circle (the surface law on cells far coarser
+    /// than the process zone); approach or mean-gap control, or load control on periodic
+    /// domains.
+    Flow,
 }
 
 impl OuterKind {
@@ -73,6 +78,7 @@ impl OuterKind {
             OuterKind::Accelerated => Method::Accelerated,
             OuterKind::Energy => Method::EnergyDescent,
             OuterKind::Newton => Method::Newton,
+            OuterKind::Flow => Method::Flow,
         }
     }
 }

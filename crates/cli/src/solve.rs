@@ -253,6 +253,7 @@ pub fn counts(iterations: &Iterations) -> String {
     match *iterations {
         Iterations::Loop { outer, inner, .. } => format!("{outer} outer, {inner} inner"),
         Iterations::Descent { iterations } => format!("{iterations} descent"),
+        Iterations::Flow { steps } => format!("{steps} flow steps"),
         Iterations::Newton {
             steps,
             krylov,

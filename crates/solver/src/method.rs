@@ -30,20 +30,27 @@ pub enum Method {
     /// continuation, for any law but Dugdale's (the surface law included), under approach
     /// control.
     Newton,
+    /// No outer loop: the overdamped flow `M dg/dt = -r` integrated in explicit projected
+    /// steps until it rests, for any law with a finite stiffness (the line and surface laws
+    /// included), under approach control, or load control on periodic domains. It settles on
+    /// stable states where no other method converges (the surface law on cells far coarser
+    /// than the process zone), in many cheap iterations.
+    Flow,
 }
 
 impl Method {
     /// Every method, `Auto` first.
-    pub const ALL: [Method; 5] = [
+    pub const ALL: [Method; 6] = [
         Method::Auto,
         Method::DualLoop,
         Method::Accelerated,
         Method::EnergyDescent,
         Method::Newton,
+        Method::Flow,
     ];
 
     /// The method's name as the command line takes it (`auto`, `dual-loop`, `accelerated`,
-    /// `energy`, `newton`).
+    /// `energy`, `newton`, `flow`).
     pub fn name(self) -> &'static str {
         match self {
             Method::Auto => "auto",
@@ -51,6 +58,7 @@ impl Method {
             Method::Accelerated => "accelerated",
             Method::EnergyDescent => "energy",
             Method::Newton => "newton",
+            Method::Flow => "flow",
         }
     }
 

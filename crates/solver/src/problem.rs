@@ -233,8 +233,8 @@ impl ContactProblem {
 pub fn memory_estimate(nx: usize, ny: usize, periodic: bool, method: Option<Method>) -> f64 {
     let per_cell = match (method, periodic) {
         (None, _) => 128.0,
-        (Some(Method::EnergyDescent), true) => 256.0,
-        (Some(Method::EnergyDescent), false) => 768.0,
+        (Some(Method::EnergyDescent | Method::Flow), true) => 256.0,
+        (Some(Method::EnergyDescent | Method::Flow), false) => 768.0,
         (Some(Method::DualLoop | Method::Accelerated), _) => 384.0,
         (Some(Method::Newton | Method::Auto), true) => 640.0,
         (Some(Method::Newton | Method::Auto), false) => 2048.0,

@@ -176,6 +176,7 @@ fn every_method_agrees_with_the_others_on_every_problem_it_accepts() {
                         Iterations::Loop { .. } => matches!(method, Method::DualLoop | Method::Accelerated),
                         Iterations::Descent { .. } => method == Method::EnergyDescent,
                         Iterations::Newton { .. } => method == Method::Newton,
+                        Iterations::Flow { .. } => method == Method::Flow,
                     };
                     assert!(kind_matches, "{:?} from {}", report.iterations, method.name());
                 }

@@ -12,6 +12,7 @@ mod anderson;
 mod driver;
 mod dual_loop;
 mod energy;
+mod flow;
 mod gap_problem;
 mod krylov;
 mod newton;
@@ -95,6 +96,11 @@ pub enum Iterations {
         /// Descent iterations.
         iterations: usize,
     },
+    /// The overdamped flow.
+    Flow {
+        /// Explicit steps.
+        steps: usize,
+    },
     /// Newton.
     Newton {
         /// Newton steps.
@@ -114,6 +120,7 @@ impl Iterations {
         match *self {
             Iterations::Loop { outer, .. } => outer,
             Iterations::Descent { iterations } => iterations,
+            Iterations::Flow { steps } => steps,
             Iterations::Newton { steps, .. } => steps,
         }
     }
@@ -123,7 +130,7 @@ impl Iterations {
     pub fn inner(&self) -> Option<usize> {
         match *self {
             Iterations::Loop { inner, .. } => Some(inner),
-            Iterations::Descent { .. } => None,
+            Iterations::Descent { .. } | Iterations::Flow { .. } => None,
             Iterations::Newton { krylov, .. } => Some(krylov),
         }
     }
@@ -149,6 +156,7 @@ impl Iterations {
                 *relaxation = *r;
             }
             (Iterations::Descent { iterations }, Iterations::Descent { iterations: i }) => *iterations += i,
+            (Iterations::Flow { steps }, Iterations::Flow { steps: s }) => *steps += s,
             (
                 Iterations::Newton {
                     steps,
@@ -277,6 +285,7 @@ fn implementation(method: Method) -> &'static dyn AdhesiveMethod {
         Method::Auto | Method::Accelerated => &dual_loop::DualLoop { accelerated: true },
         Method::EnergyDescent => &energy::EnergyDescent,
         Method::Newton => &newton::Newton,
+        Method::Flow => &flow::Flow,
     }
 }
 
