@@ -27,7 +27,8 @@ pub const STUDIES: [(&str, &str); 4] = [
     (
         "challenge-mesh",
         "the contact-mechanics challenge's load cycle, relative contact area against the cell size for the \
-         point, surface-energy and exponential laws, by the energy descent (SIZES=256,512,1024; LAWS=...)",
+         surface, line, point and exponential laws, by the overdamped flow (SIZES=256,512,1024; LAWS=...; \
+         METHOD=flow)",
     ),
 ];
 
@@ -271,14 +272,14 @@ fn bench_gap(n: usize) -> Result<ndarray::Array2<f64>> {
 /// at every k-th node for the coarser ones (band-limited, so the samples are the same
 /// surface). Prints the relative contact area of each law on each grid at each load.
 fn challenge_mesh() -> Result<()> {
-    use ljadhesion::{ExponentialLaw, SurfaceEnergyLaw};
+    use ljadhesion::{ExponentialLaw, LineLaw, SurfaceEnergyLaw, SurfaceLaw};
     let sizes: Vec<usize> = std::env::var("SIZES")
         .unwrap_or_else(|_| "256,512,1024".into())
         .split(',')
         .map(|s| s.trim().parse())
         .collect::<Result<_, _>>()?;
     let laws: Vec<String> = std::env::var("LAWS")
-        .unwrap_or_else(|_| "point,surface-energy,exponential".into())
+        .unwrap_or_else(|_| "surface,line,point,exponential".into())
         .split(',')
         .map(|s| s.trim().to_string())
         .collect();
@@ -300,7 +301,14 @@ fn challenge_mesh() -> Result<()> {
         0.00125, 0.0025, 0.005, 0.01, 0.02, 0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125,
     ];
     let path: Vec<_> = loads.iter().map(|&p| Control::MeanPressure(p * e_star)).collect();
-    let settings = Settings::with_method(Method::EnergyDescent);
+    let method: Method = std::env::var("METHOD")
+        .unwrap_or_else(|_| "flow".into())
+        .parse()
+        .map_err(|e: String| anyhow::anyhow!(e))?;
+    let settings = Settings {
+        max_iterations: 1_000_000,
+        ..Settings::with_method(method)
+    };
     println!(
         "| law | n | cell / process zone | {} | wall [s] | all converged |",
         loads.map(|p| format!("{p}")).join(" | ")
@@ -317,10 +325,12 @@ fn challenge_mesh() -> Result<()> {
                 .periodic(true)
                 .modulus(e_star);
             let problem = match law.as_str() {
+                "surface" => builder.law(SurfaceLaw(lj)),
+                "line" => builder.law(LineLaw(lj)),
                 "point" => builder.law(PointLaw(lj)),
                 "surface-energy" => builder.law(SurfaceEnergyLaw(lj)),
                 "exponential" => builder.law(ExponentialLaw::new(w0, z0)?),
-                other => bail!("unknown law `{other}` (point, surface-energy, exponential)"),
+                other => bail!("unknown law `{other}` (surface, line, point, surface-energy, exponential)"),
             }
             .build()?;
             let started = Instant::now();

@@ -50,7 +50,8 @@ pub enum LawKind {
 #[serde(rename_all = "kebab-case")]
 pub enum OuterKind {
     /// `energy` for the point, surface-energy and exponential laws, `newton` for the line and surface laws
-    /// (approach or mean-gap control, both), `accelerated` elsewhere.
+    /// (approach or mean-gap control, both), `flow` for the line and surface laws under load
+    /// control on periodic domains, `accelerated` elsewhere.
     Auto,
     /// The paper's relaxation of the adhesive pressure.
     DualLoop,
@@ -155,8 +156,8 @@ pub struct Case {
     /// Range of the exponential or Dugdale law [m] (Dugdale default: 0.974 z0 if --z0 given).
     #[arg(long)]
     pub range: Option<f64>,
-    /// Adhesive solver: auto (the default: energy or newton where they are the tested choice,
-    /// else accelerated), dual-loop, accelerated, energy or newton.
+    /// Adhesive solver: auto (the default: energy, newton or flow where they are the tested
+    /// choice, else accelerated), dual-loop, accelerated, energy, newton or flow.
     #[arg(long, value_enum)]
     pub solver: Option<OuterKind>,
     /// Convergence tolerance: without adhesion the scale-free gap residual (default 1e-8, at
@@ -408,7 +409,7 @@ impl Case {
         let method = (law.work_of_adhesion() > 0.0).then(|| {
             self.settings()
                 .method
-                .resolve(law.as_ref(), solver::Control::Approach(0.0))
+                .resolve(law.as_ref(), solver::Control::Approach(0.0), periodic)
         });
         let check_memory = |nx: usize, ny: usize| {
             crate::memory::check(

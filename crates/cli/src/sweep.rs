@@ -349,7 +349,12 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         "law": problem.law.name(),
         "method": problem
             .adhesive()
-            .then(|| settings.method.resolve(problem.law.as_ref(), controls[0]).name()),
+            .then(|| {
+                settings
+                    .method
+                    .resolve(problem.law.as_ref(), controls[0], domain.periodic)
+                    .name()
+            }),
         "adhesive_range": problem.adhesive().then_some(range),
         "adhesive_range_per_cell": problem.adhesive().then_some(range / domain.dx.max(domain.dy)),
         "tabor_parameter": tabor,

@@ -1184,7 +1184,7 @@ fn auto_picks_the_librarys_method_for_every_built_in_example() {
         let expected = law
             .work_of_adhesion()
             .gt(&0.0)
-            .then(|| Method::Auto.resolve(law.as_ref(), control).name());
+            .then(|| Method::Auto.resolve(law.as_ref(), control, true).name());
         // The command line's choice, as its summary records it.
         let out = d.join(name);
         let o = sweep_example(name, out.to_str().unwrap(), &extra);

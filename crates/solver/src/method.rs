@@ -62,22 +62,29 @@ impl Method {
         }
     }
 
-    /// The method for `law` under `control`: itself, or for [`Method::Auto`] the energy
-    /// descent for the laws with an energy (local or of the field) and Newton for the line and surface laws under
-    /// approach control, the accelerated loop elsewhere (load and central-gap control,
-    /// Dugdale's law, no adhesion). Near a fold the accelerated loop leaves a branch early,
-    /// where the two methods that relax from the last state hold on (`docs/solvers.md`).
-    pub fn resolve(self, law: &dyn AdhesionLaw, control: Control) -> Method {
+    /// The method for `law` under `control` on a domain that is `periodic` or not: itself, or
+    /// for [`Method::Auto`] the energy descent for the laws with an energy (local or of the
+    /// field) and Newton for the line and surface laws under approach control, the overdamped
+    /// flow for the line and surface laws under load control on periodic domains, the
+    /// accelerated loop elsewhere (central-gap control, Dugdale's law, no adhesion, loads on
+    /// free domains). Near a fold the accelerated loop leaves a branch early, where the methods
+    /// that relax from the last state hold on; under load control on coarse cells it circles
+    /// with the line and surface laws, where the flow settles (`docs/solvers.md`).
+    pub fn resolve(self, law: &dyn AdhesionLaw, control: Control, periodic: bool) -> Method {
         if self != Method::Auto {
             return self;
         }
         let approach = matches!(control, Control::Approach(_));
+        let load = matches!(control, Control::Force(_) | Control::MeanPressure(_));
         let adhesive = law.work_of_adhesion() > 0.0;
-        if approach && adhesive && (law.local_potential().is_some() || law.field_potential().is_some()) {
+        let energy = law.local_potential().is_some() || law.field_potential().is_some();
+        let averaged = !energy && law.flat_potential().is_some() && law.stiffness_bound().is_finite();
+        if approach && adhesive && energy {
             Method::EnergyDescent
-        } else if approach && adhesive && law.flat_potential().is_some() && law.stiffness_bound().is_finite()
-        {
+        } else if approach && adhesive && averaged {
             Method::Newton
+        } else if load && periodic && adhesive && averaged {
+            Method::Flow
         } else {
             Method::Accelerated
         }

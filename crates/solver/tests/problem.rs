@@ -77,7 +77,7 @@ fn the_builder_refuses_what_is_missing_or_inconsistent() {
 fn auto_takes_the_tested_method_for_each_law_and_control() {
     let approach = Control::Approach(0.0);
     let load = Control::MeanPressure(0.0);
-    let cases: [(&dyn ljadhesion::AdhesionLaw, Control, Method); 8] = [
+    let cases: [(&dyn ljadhesion::AdhesionLaw, Control, Method); 10] = [
         (&PointLaw(lj()), approach, Method::EnergyDescent),
         (
             &ExponentialLaw::new(0.05, Z0).unwrap(),
@@ -88,18 +88,24 @@ fn auto_takes_the_tested_method_for_each_law_and_control() {
         (&LineLaw(lj()), approach, Method::Newton),
         (&DugdaleLaw::equivalent_to(&lj()), approach, Method::Accelerated),
         (&NoAdhesion, approach, Method::Accelerated),
-        (&SurfaceLaw(lj()), load, Method::Accelerated),
+        (&SurfaceLaw(lj()), load, Method::Flow),
+        (&LineLaw(lj()), load, Method::Flow),
+        (&PointLaw(lj()), load, Method::Accelerated),
         (&PointLaw(lj()), Control::CentralGap(Z0), Method::Accelerated),
     ];
     for (law, control, expected) in cases {
         assert_eq!(
-            Method::Auto.resolve(law, control),
+            Method::Auto.resolve(law, control, true),
             expected,
             "{} {control:?}",
             law.name()
         );
         // A chosen method stays chosen.
-        assert_eq!(Method::DualLoop.resolve(law, control), Method::DualLoop);
+        assert_eq!(Method::DualLoop.resolve(law, control, true), Method::DualLoop);
+        // Loads on free domains: the flow takes the approach only there.
+        if expected == Method::Flow {
+            assert_eq!(Method::Auto.resolve(law, control, false), Method::Accelerated);
+        }
     }
     for m in Method::ALL {
         assert_eq!(m.name().parse::<Method>(), Ok(m));

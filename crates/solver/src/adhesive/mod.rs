@@ -348,7 +348,7 @@ pub(crate) fn solve(
         other => other,
     };
     let law = problem.law.as_ref();
-    let method = settings.method.resolve(law, control);
+    let method = settings.method.resolve(law, control, op.domain().periodic);
     let job = Job {
         op,
         law,
