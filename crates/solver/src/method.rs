@@ -1,6 +1,6 @@
 //! Which adhesive method solves a problem, how hard it tries, and who watches.
 //!
-//! The four methods (`docs/solvers.md` says which one when) share one entry point,
+//! The five methods (`docs/solvers.md` says which one when) share one entry point,
 //! [`crate::ContactProblem::solve`], one set of [`Settings`] and one report. [`Method::Auto`]
 //! is resolved here, from the law and the control, so the library and the command line pick
 //! the same method for the same problem.

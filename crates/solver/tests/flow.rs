@@ -39,13 +39,16 @@ fn the_flow_follows_newton_through_surface_law_sphere_cycles() {
                     n.report.contact_area_fraction,
                     f.report.contact_area_fraction
                 );
-                assert!(difference < 1e-5, "mu = {mu} at {}: {difference}", n.report.approach);
+                assert!(
+                    difference < 1e-5,
+                    "mu = {mu} at {}: {difference}",
+                    n.report.approach
+                );
                 assert_eq!(n.report.contact_area_fraction, f.report.contact_area_fraction);
             }
         }
     });
 }
-
 
 #[test]
 fn at_a_high_tabor_parameter_the_flow_lands_where_it_would_in_smaller_steps() {
@@ -61,8 +64,8 @@ fn at_a_high_tabor_parameter_the_flow_lands_where_it_would_in_smaller_steps() {
             ..Settings::with_method(Method::Flow)
         };
         let problem = problem(&op, &law, g0.view());
-        let [whole, split] = [None, Some(0.25 * Z0)]
-            .map(|h| problem.sweep(&path, h, &settings, None, &mut ()).unwrap());
+        let [whole, split] =
+            [None, Some(0.25 * Z0)].map(|h| problem.sweep(&path, h, &settings, None, &mut ()).unwrap());
         print_cycle(&whole, PI * R * w0);
         for (a, b) in whole.iter().zip(&split) {
             assert!(a.report.converged() && b.report.converged());
@@ -70,4 +73,52 @@ fn at_a_high_tabor_parameter_the_flow_lands_where_it_would_in_smaller_steps() {
             assert_eq!(a.report.contact_area_fraction, b.report.contact_area_fraction);
         }
     });
+}
+
+#[test]
+fn the_flow_on_coarse_rough_cells_does_not_depend_on_the_number_of_threads() {
+    use ljadhesion::{LennardJones, SurfaceLaw};
+    use solver::{Control, Start};
+    use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec};
+    // The challenge's surface and material on 64^2 cells of 390 nm (190 process zones).
+    let l = 2.5e-5;
+    let grid = Grid::square(64, l).unwrap();
+    let e_star = 25e6;
+    let (op, g0) = flat_on_periodic(
+        SurfaceSpec {
+            grid,
+            psd: Psd::self_affine(0.8, l / 5.0, 4.0 * grid.dx()),
+            normalization: Normalization::RmsGradient(1.0),
+            amplitudes: Amplitudes::Exact,
+            seed: 1,
+        },
+        e_star,
+    );
+    let law = SurfaceLaw(LennardJones::new(0.05, 2.071e-9).unwrap());
+    let problem = problem(&op, &law, g0.view());
+    let settings = Settings {
+        max_iterations: 200_000,
+        ..Settings::with_method(Method::Flow)
+    };
+    let run = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| {
+                problem
+                    .solve(
+                        Control::MeanPressure(0.005 * e_star),
+                        &settings,
+                        Start::Loading,
+                        &mut (),
+                    )
+                    .unwrap()
+            })
+    };
+    let (a, ra) = run(1);
+    let (b, rb) = run(3);
+    assert!(ra.converged());
+    assert_eq!(ra.iterations, rb.iterations);
+    assert_eq!(a, b);
 }

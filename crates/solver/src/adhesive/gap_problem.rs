@@ -1,4 +1,4 @@
-//! The gap problem shared by the energy descent and Newton: the unknown (the gap, or the
+//! The gap problem shared by the energy descent, Newton and the flow: the unknown (the gap, or the
 //! padded displacement on free domains), its constraints, and the law and stiffness evaluated
 //! at a point.
 //!

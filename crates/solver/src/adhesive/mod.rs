@@ -1,10 +1,11 @@
-//! Adhesive contact: what the four methods share (`docs/method.md` section 4 for the physics,
+//! Adhesive contact: what the five methods share (`docs/method.md` section 4 for the physics,
 //! `docs/solvers.md` for the methods).
 //!
 //! The pressure is split into a compressive part `p_c >= 0` (the contact constraint) and an
 //! adhesive part `p_a <= 0` (the law). Every method implements the trait `AdhesiveMethod` in a file
-//! of its own: the dual loops (`dual_loop`), the energy descent (`energy`) and Newton
-//! (`newton`), the last two over the gap problem of `gap_problem`; Newton's linear solves
+//! of its own: the dual loops (`dual_loop`), the energy descent (`energy`), Newton
+//! (`newton`) and the overdamped flow (`flow`), the last three over the gap problem of
+//! `gap_problem`; Newton's linear solves
 //! are the GMRES of `krylov`. `solve` checks the input,
 //! resolves [`Method::Auto`], asks the method whether it can solve the problem, and runs it.
 
