@@ -163,12 +163,13 @@ pub struct Case {
     /// Convergence tolerance: without adhesion the scale-free gap residual (default 1e-8, at
     /// least 1e-13); with adhesion, in units of the law's range [-] (default 1e-6, the paper's
     /// criterion), for dual-loop and accelerated the outer residual (a mean gap error: loads
-    /// to ~2e-4 of the peak at the default, 1e-8 gives ~1e-6), for energy and newton the worst
-    /// cell's force imbalance times its compliance.
+    /// to ~2e-4 of the peak at the default, 1e-8 gives ~1e-6), for energy, newton and flow the
+    /// worst cell's force imbalance times its compliance.
     #[arg(long)]
     pub tolerance: Option<f64>,
     /// Iteration limit: conjugate-gradient iterations without adhesion (default 10000); with
-    /// it (default 20000) outer iterations, descent iterations (energy) or Newton steps.
+    /// it (default 20000) outer iterations, descent iterations (energy), Newton steps or flow
+    /// steps (flow: thousands a solve on coarse rough grids, more at the smallest loads).
     #[arg(long)]
     pub max_iterations: Option<usize>,
     /// Output directory (default: run/solve for solve, run/sweep for sweep); one that holds
