@@ -168,21 +168,8 @@ fn an_energy_descent_cycle_shows_adhesive_hysteresis() {
 #[test]
 fn the_lennard_jones_laws_converge_on_cells_far_coarser_than_the_process_zone() {
     use ljadhesion::{LennardJones, LineLaw, PointLaw, SurfaceEnergyLaw, SurfaceLaw};
-    use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec};
     pool().install(|| {
-        let l = 2.5e-5;
-        let grid = Grid::square(64, l).unwrap();
-        let e_star = 25e6;
-        let (op, g0) = flat_on_periodic(
-            SurfaceSpec {
-                grid,
-                psd: Psd::self_affine(0.8, l / 5.0, 4.0 * grid.dx()),
-                normalization: Normalization::RmsGradient(1.0),
-                amplitudes: Amplitudes::Exact,
-                seed: 1,
-            },
-            e_star,
-        );
+        let (op, g0, e_star) = coarse_challenge();
         let lj = LennardJones::new(0.05, 2.071e-9).unwrap();
         let loads = [0.00125, 0.005, 0.02, 0.04, 0.02, 0.005, 0.00125];
         let path: Vec<_> = loads.iter().map(|&p| Control::MeanPressure(p * e_star)).collect();

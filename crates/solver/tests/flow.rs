@@ -79,21 +79,7 @@ fn at_a_high_tabor_parameter_the_flow_lands_where_it_would_in_smaller_steps() {
 fn the_flow_on_coarse_rough_cells_does_not_depend_on_the_number_of_threads() {
     use ljadhesion::{LennardJones, SurfaceLaw};
     use solver::{Control, Start};
-    use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec};
-    // The challenge's surface and material on 64^2 cells of 390 nm (190 process zones).
-    let l = 2.5e-5;
-    let grid = Grid::square(64, l).unwrap();
-    let e_star = 25e6;
-    let (op, g0) = flat_on_periodic(
-        SurfaceSpec {
-            grid,
-            psd: Psd::self_affine(0.8, l / 5.0, 4.0 * grid.dx()),
-            normalization: Normalization::RmsGradient(1.0),
-            amplitudes: Amplitudes::Exact,
-            seed: 1,
-        },
-        e_star,
-    );
+    let (op, g0, e_star) = coarse_challenge();
     let law = SurfaceLaw(LennardJones::new(0.05, 2.071e-9).unwrap());
     let problem = problem(&op, &law, g0.view());
     let settings = Settings {

@@ -19,9 +19,8 @@
 
 use super::driver::Driver;
 use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job};
-use crate::error::{Result, SolverError, invalid};
+use crate::error::{Result, SolverError};
 use crate::fields::{flat, flat_mut};
-use crate::options::Control;
 use crate::report::Termination;
 use ndarray::Array2;
 use rayon::prelude::*;
@@ -63,20 +62,7 @@ fn potential<'a>(job: &Job<'a>) -> Result<Energy<'a>> {
             )));
         }
     };
-    if !job.op.domain().periodic && !matches!(job.control, Control::Approach(_)) {
-        return Err(SolverError::Unsupported(
-            "energy descent on a free domain takes the approach only (use `accelerated` for loads \
-             and central gaps)"
-                .into(),
-        ));
-    }
-    if let Control::CentralGap(g) = job.control {
-        return Err(invalid(
-            "central_gap",
-            g,
-            "energy descent takes the approach (or mean gap), the load or the mean pressure",
-        ));
-    }
+    super::gap_problem::check_control(job, "energy descent")?;
     Ok(potential)
 }
 

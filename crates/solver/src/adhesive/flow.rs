@@ -19,10 +19,9 @@
 //! explicit step moves long wavelengths slowly (`docs/solvers.md`).
 
 use super::driver::Driver;
-use super::gap_problem::{Energy, Point, Setup, finish, setup};
+use super::gap_problem::{Energy, Point, Setup, check_control, finish, setup};
 use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job};
-use crate::error::{Result, SolverError, invalid};
-use crate::options::Control;
+use crate::error::{Result, SolverError};
 use crate::report::Termination;
 use ndarray::Array2;
 use std::time::Instant;
@@ -59,20 +58,7 @@ fn energy<'a>(job: &Job<'a>) -> Result<Energy<'a>> {
             law.name()
         )));
     }
-    if !job.op.domain().periodic && !matches!(job.control, Control::Approach(_)) {
-        return Err(SolverError::Unsupported(
-            "the overdamped flow on a free domain takes the approach only (use `accelerated` for \
-             loads and central gaps)"
-                .into(),
-        ));
-    }
-    if let Control::CentralGap(g) = job.control {
-        return Err(invalid(
-            "central_gap",
-            g,
-            "the overdamped flow takes the approach (or mean gap), the load or the mean pressure",
-        ));
-    }
+    check_control(job, "the overdamped flow")?;
     Ok(match (law.local_potential(), law.field_potential()) {
         (Some(local), _) => Energy::Local(local),
         (None, Some(field)) => Energy::Field(field),

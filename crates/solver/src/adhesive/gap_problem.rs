@@ -458,6 +458,25 @@ pub(super) fn on_wall(j: usize, i: usize, g: f64, nx: usize, ny: usize) -> bool 
     g <= 0.0 && j < ny && i < nx
 }
 
+/// Refuses, for the solver `name`, the controls the gap problem does not take: loads and
+/// central gaps on free domains, central gaps anywhere.
+pub(super) fn check_control(job: &Job, name: &str) -> Result<()> {
+    if !job.op.domain().periodic && !matches!(job.control, Control::Approach(_)) {
+        return Err(SolverError::Unsupported(format!(
+            "{name} on a free domain takes the approach only (use `accelerated` for loads and \
+             central gaps)"
+        )));
+    }
+    if let Control::CentralGap(g) = job.control {
+        return Err(invalid(
+            "central_gap",
+            g,
+            format!("{name} takes the approach (or mean gap), the load or the mean pressure"),
+        ));
+    }
+    Ok(())
+}
+
 /// A problem over the gap, set up from a solve's arguments, at its first admissible point.
 pub(super) struct Setup<'a> {
     pub(super) problem: Problem<'a>,

@@ -103,6 +103,26 @@ pub fn flat_on_periodic(spec: SurfaceSpec, e_star: f64) -> (Periodic, Array2<f64
     )
 }
 
+/// The contact-mechanics challenge's surface and material (H = 0.8, roll-off L/5, RMS gradient
+/// 1, E* = 25 MPa) on 64^2 cells of 390 nm, the challenge's own cells at 256^2 (190 Lennard-Jones
+/// process zones at w0 = 50 mJ/m^2, z0 = 2.071 nm): the operator, g0 and E* \[Pa\].
+pub fn coarse_challenge() -> (Periodic, Array2<f64>, f64) {
+    let l = 2.5e-5;
+    let grid = Grid::square(64, l).unwrap();
+    let e_star = 25e6;
+    let (op, g0) = flat_on_periodic(
+        SurfaceSpec {
+            grid,
+            psd: Psd::self_affine(0.8, l / 5.0, 4.0 * grid.dx()),
+            normalization: Normalization::RmsGradient(1.0),
+            amplitudes: Amplitudes::Exact,
+            seed: 1,
+        },
+        e_star,
+    );
+    (op, g0, e_star)
+}
+
 /// The largest deviation of an adhesive solution from its equations, in units of the law's
 /// range: gaps against `g0 - delta + K (p_c + p_a)` (zero in contact), the adhesive pressure
 /// against the law times the cell compliance; and whether complementarity holds.
