@@ -51,16 +51,15 @@ impl AdhesiveMethod for EnergyDescent {
 /// The law's energy, if the descent can solve this problem; else why not.
 fn potential<'a>(job: &Job<'a>) -> Result<Energy<'a>> {
     let law = job.law;
-    let potential = match (law.local_potential(), law.field_potential()) {
-        (Some(local), _) => Energy::Local(local),
-        (None, Some(field)) => Energy::Field(field),
-        (None, None) => {
+    let potential = match Energy::of(law) {
+        Energy::None => {
             return Err(SolverError::Unsupported(format!(
                 "energy descent needs a law with an energy (point, surface-energy, exponential), \
                  not `{}`",
                 law.name()
             )));
         }
+        energy => energy,
     };
     super::gap_problem::check_control(job, "energy descent")?;
     Ok(potential)

@@ -59,11 +59,7 @@ fn energy<'a>(job: &Job<'a>) -> Result<Energy<'a>> {
         )));
     }
     check_control(job, "the overdamped flow")?;
-    Ok(match (law.local_potential(), law.field_potential()) {
-        (Some(local), _) => Energy::Local(local),
-        (None, Some(field)) => Energy::Field(field),
-        (None, None) => Energy::None,
-    })
+    Ok(Energy::of(law))
 }
 
 fn solve<'a>(

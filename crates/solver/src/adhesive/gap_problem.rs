@@ -1,6 +1,6 @@
-//! The gap problem shared by the energy descent, Newton and the flow: the unknown (the gap, or the
-//! padded displacement on free domains), its constraints, and the law and stiffness evaluated
-//! at a point.
+//! The gap problem shared by the energy descent, Newton and the flow: the unknown (the gap,
+//! or the padded displacement on free domains), its constraints, and the law and stiffness
+//! evaluated at a point.
 //!
 //! With the approach `delta` given on a periodic domain the mean displacement is zero, so the
 //! mean gap is fixed, `mean(g) = mean(g0) - delta`, and the total energy per area is
@@ -120,6 +120,17 @@ pub(super) enum Energy<'a> {
     Local(&'a dyn LocalPotential),
     /// Of the whole field.
     Field(&'a dyn FieldPotential),
+}
+
+impl<'a> Energy<'a> {
+    /// The energy `law` derives from: of each cell's own gap, of the whole field, or none.
+    pub(super) fn of(law: &'a dyn AdhesionLaw) -> Energy<'a> {
+        match (law.local_potential(), law.field_potential()) {
+            (Some(local), _) => Energy::Local(local),
+            (None, Some(field)) => Energy::Field(field),
+            (None, None) => Energy::None,
+        }
+    }
 }
 
 pub(super) struct Problem<'a> {
