@@ -27,7 +27,7 @@ pub const STUDIES: [(&str, &str); 4] = [
     (
         "challenge-mesh",
         "the contact-mechanics challenge's load cycle, relative contact area against the cell size for the \
-         surface, line, point and exponential laws, by the overdamped flow (SIZES=256,512,1024; LAWS=...; \
+         surface, line, point and exponential laws, by the relaxation (SIZES=256,512,1024; LAWS=...; \
          METHOD=flow)",
     ),
 ];

@@ -63,7 +63,7 @@ pub enum OuterKind {
     /// No outer loop, any law but Dugdale's (surface included): Newton-Krylov on the cells'
     /// force balance (approach or mean-gap control).
     Newton,
-    /// No outer loop, any law but Dugdale's (surface included): the overdamped flow, which
+    /// No outer loop, any law but Dugdale's (surface included): the damped relaxation, which
     /// settles on stable states where the others circle (the surface law on cells far coarser
     /// than the process zone); approach or mean-gap control, or load control on periodic
     /// domains.

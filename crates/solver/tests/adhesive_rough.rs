@@ -162,7 +162,7 @@ fn an_energy_descent_cycle_shows_adhesive_hysteresis() {
 /// The contact-mechanics challenge's surface and material (H = 0.8, roll-off L/5, RMS gradient
 /// 1, E* = 25 MPa) on 64^2 cells of 390 nm: the challenge's own cells at 256^2, 190 times the
 /// Lennard-Jones process zone (w0 = 50 mJ/m^2, z0 = 2.071 nm). Each cell holds on or lets go
-/// alone; the paper's surface law and the line law converge there by the overdamped flow
+/// alone; the paper's surface law and the line law converge there by the damped relaxation
 /// only, the point law and the surface law's energy form by the energy descent too
 /// (docs/validation.md).
 #[test]

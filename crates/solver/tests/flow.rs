@@ -1,4 +1,4 @@
-//! The overdamped flow (`Method::Flow`) on smooth spheres with the paper's surface law:
+//! The damped relaxation (`Method::Flow`) on smooth spheres with the paper's surface law:
 //! against Newton through whole approach cycles at Tabor parameters 1 and 3, and at 5, where
 //! the contact edge's cells are bistable, against itself in smaller steps.
 

@@ -1,37 +1,68 @@
-//! Overdamped flow: adhesive contact under any law with a finite stiffness, the line and
-//! surface laws included, as the state the surface relaxes to when each cell moves at a speed
-//! proportional to the force on it, `M dg/dt = -r`, over the gap problem of `gap_problem` (the
-//! unknown, constraints and force balance `r = S (g - g0) - p(g)` of the energy descent and
-//! Newton), integrated by explicit projected steps.
+//! Relaxation: adhesive contact under any law with a finite stiffness, the line and surface
+//! laws included, as the stable state a surface comes to rest on when each cell is driven by
+//! the force on it and damped, over the gap problem of `gap_problem` (the unknown,
+//! constraints and force balance `r = S (g - g0) - p(g)` of the energy descent and Newton).
 //!
-//! The mobility is `1 / M` with `M = S_ii + max(K_ii, 0)`, the cell's own elastic stiffness
-//! and the stable part of the law's (`K = -dp/dg`, just above the wall many times a cell's):
-//! each step moves a cell by [`STEP`] times the displacement that would balance it were its
-//! neighbours held, then projects onto `g >= 0` (and the prescribed mean gap). A state the flow
-//! comes to rest on is stable: perturbed, it flows back; a saddle or an unstable branch repels
-//! it. This holds for laws without an energy too, which is why the flow is the method for the
-//! paper's surface law (Eq. 11) on cells coarser than the process zone: there every cell holds
-//! on or lets go alone, Eq. 11's forces are not the gradient of any energy, and Newton and the
-//! loops circle between states (`docs/validation.md`), where the flow settles.
+//! The dynamics is FIRE's (Bitzek et al., Phys. Rev. Lett. 97, 2006; the constants of FIRE
+//! 2.0, Guenole et al., Comput. Mater. Sci. 175, 2020): `M dv/dt = -r`, `dg/dt = v`, with the
+//! velocity turned towards the force by a mixing that decays while the force does work and
+//! zeroed, with the time step cut, when it stops doing work. The mass `M = S_ii + max(K_ii,
+//! 0)` is the cell's own elastic stiffness and the stable part of the law's (`K = -dp/dg`,
+//! just above the wall many times a cell's), so that every cell has about the same natural
+//! period. Each step is projected onto `g >= 0` (and the prescribed mean gap); a cell that
+//! meets the wall stops there, and so does a cell that would move against the force on it.
+//! Where the residual stops falling the longest step is cut ([`STALL`]). Only a stable state is a state of rest: perturbed, the
+//! dynamics carries it back; a saddle or an unstable branch repels it. This holds for laws
+//! without an energy too, which is why this is the method for the paper's surface law
+//! (Eq. 11) on cells coarser than the process zone: there every cell holds on or lets go
+//! alone, Eq. 11's forces are not the gradient of any energy, and Newton and the loops circle
+//! between states (`docs/validation.md`), where the relaxation settles.
 //!
-//! Cost: one application of the stiffness and one evaluation of the law an iteration (two for
-//! laws without a local potential, whose stiffness is probed); many iterations, since the
-//! explicit step moves long wavelengths slowly (`docs/solvers.md`).
+//! The damping is strong enough that the states reached are those of the overdamped flow
+//! `M dg/dt = -r` from the same start, on the cases measured (`docs/decisions.md`), in
+//! `sqrt` of its number of steps: the inertia carries the long wavelengths, which the
+//! overdamped flow moves slowly.
+//!
+//! Cost: one application of the stiffness and one evaluation of the law a step (two for laws
+//! without a local potential, whose stiffness is probed).
 
 use super::driver::Driver;
 use super::gap_problem::{Energy, Point, Setup, check_control, finish, setup};
 use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job};
 use crate::error::{Result, SolverError};
 use crate::report::Termination;
-use ndarray::Array2;
+use crate::sum::dot_rows;
+use ndarray::{Array2, Zip, s};
 use std::time::Instant;
 
-/// The explicit step, in units of a cell's relaxation `1 / M`: below the stability limit of
-/// the stiffest elastic mode, whose stiffness is about 1.85 times a cell's own on a periodic
-/// grid (the corner of the Brillouin zone against the mean of `E* |q| / 2`).
-const STEP: f64 = 0.5;
+/// The first time step, in units of a cell's period `sqrt(M / S_ii)` over `2 pi`.
+const FIRST_STEP: f64 = 0.25;
+/// The largest time step: below the limit `2 / sqrt(1.85)` of the stiffest elastic mode,
+/// whose stiffness is about 1.85 times a cell's own on a periodic grid (the corner of the
+/// Brillouin zone against the mean of `E* |q| / 2`), with a margin for the law's stiffness
+/// rising within a step (`docs/decisions.md`).
+const MAX_STEP: f64 = 1.0;
+/// The largest time step after a stall: a cell stopped every step moves by `dt^2` times its
+/// pull, stable for a law stiffness up to `2 / dt^2 - 1` times its mass's (7 here, 1 at
+/// [`MAX_STEP`]).
+const SAFE_STEP: f64 = 0.5;
+/// The smallest time step.
+const MIN_STEP: f64 = 0.005;
+/// The mixing of the velocity towards the force after a stop, and its decay a step while the
+/// force does work: strong damping, which keeps the overdamped flow's states.
+const MIXING: f64 = 0.25;
+const MIXING_DECAY: f64 = 0.99;
+/// Steps the force must do work after a stop before the time step grows, and its growth and
+/// cut.
+const DELAY: usize = 20;
+const GROWTH: f64 = 1.1;
+const CUT: f64 = 0.5;
+/// Steps without a 10 % fall of the best residual after which the largest time step is cut:
+/// a few cells whose law stiffens faster than their mass tells chatter about their state
+/// at a long step (the surface law at a Tabor parameter of 5, `docs/decisions.md`).
+const STALL: usize = 500;
 
-/// The overdamped flow of the module docs.
+/// The relaxation of the module docs.
 pub(super) struct Flow;
 
 impl AdhesiveMethod for Flow {
@@ -54,11 +85,11 @@ fn energy<'a>(job: &Job<'a>) -> Result<Energy<'a>> {
     let law = job.law;
     if !law.stiffness_bound().is_finite() {
         return Err(SolverError::Unsupported(format!(
-            "the overdamped flow needs a law with a finite stiffness, not `{}` (use `accelerated`)",
+            "the relaxation (`flow`) needs a law with a finite stiffness, not `{}` (use `accelerated`)",
             law.name()
         )));
     }
-    check_control(job, "the overdamped flow")?;
+    check_control(job, "the relaxation (`flow`)")?;
     Ok(Energy::of(law))
 }
 
@@ -77,10 +108,14 @@ fn solve<'a>(
     } = setup(job, energy)?;
     let unknown = x.gap.dim();
     let mut sums = problem.project_gradient(&mut x);
+    // `M^-1 r` (the acceleration's opposite) and the velocity [m per time unit].
+    let mut pull = Array2::zeros(unknown);
     let mut velocity = Array2::zeros(unknown);
     let mut trial = Point::new(Array2::zeros(unknown));
     let scale = job.residual_scale();
     let mut driver = Driver::new(settings, observer, started);
+    let (mut dt, mut mixing, mut working) = (FIRST_STEP, MIXING, 0);
+    let mut max_step = MAX_STEP;
     let mut steps = 0;
     loop {
         if driver.stop(steps, sums.max * scale, true) {
@@ -92,8 +127,54 @@ fn solve<'a>(
             break;
         }
         steps += 1;
-        problem.precondition(&x, &x.gradient, &mut velocity);
-        problem.step_and_project(&x.gap, &velocity, -STEP, &mut trial.gap, None);
+        let [force_weight, _] = problem.precondition(&x, &x.gradient, &mut pull);
+        if driver.since_progress(steps, sums.max * scale) > STALL {
+            // Cells chattering about a state the step is too long to settle in.
+            max_step = (max_step * CUT).max(SAFE_STEP);
+            dt = dt.min(max_step);
+            velocity.fill(0.0);
+            driver.restart_stall_count(steps);
+        }
+        // The force's power on the velocity: stop when it turns against it.
+        let power = -dot_rows(x.gradient.view(), velocity.view());
+        if power > 0.0 {
+            working += 1;
+            if working > DELAY {
+                dt = (dt * GROWTH).min(max_step);
+                mixing *= MIXING_DECAY;
+            }
+        } else if power < 0.0 {
+            working = 0;
+            dt = (dt * CUT).max(MIN_STEP);
+            mixing = MIXING;
+            velocity.fill(0.0);
+        }
+        velocity.zip_mut_with(&pull, |v, &a| *v -= dt * a);
+        // Turn the velocity towards the force, keeping its kinetic energy (mass-weighted).
+        if force_weight > 0.0 {
+            let turn = mixing * (problem.kinetic(&x, &velocity) / force_weight).sqrt();
+            velocity.zip_mut_with(&pull, |v, &a| *v = (1.0 - mixing) * *v - turn * a);
+        }
+        // No cell of the block moves against the force on it: a cell that would climb stops
+        // (inelastically, like one meeting the wall), so that inertia carries no cell over a
+        // barrier of its own, and a cell falling into the law's well does not bounce off its
+        // core, whose stiffness the mass of the step before does not know.
+        let block = s![..problem.ny, ..problem.nx];
+        Zip::from(velocity.slice_mut(block))
+            .and(pull.slice(block))
+            .for_each(|v, &a| {
+                if *v * a > 0.0 {
+                    *v = 0.0
+                }
+            });
+        problem.step_and_project(&x.gap, &velocity, dt, &mut trial.gap, None);
+        Zip::from(velocity.slice_mut(block))
+            .and(trial.gap.slice(block))
+            .for_each(|v, &g| {
+                if g <= 0.0 && *v < 0.0 {
+                    *v = 0.0
+                }
+            });
         problem.evaluate(&mut trial)?;
         std::mem::swap(&mut x, &mut trial);
         sums = problem.project_gradient(&mut x);

@@ -463,6 +463,25 @@ impl Problem<'_> {
     }
 }
 
+impl Problem<'_> {
+    /// `sum m v^2` over the unknown, with `m` the mass of [`Problem::precondition`] (`S_ii +
+    /// max(V'', 0)` on the domain's block, `S_ii` in the padding): twice the kinetic energy of
+    /// `velocity` \[Pa m/s^2 in the flow's time units\], summed in a fixed order.
+    pub(super) fn kinetic(&self, at: &Point, velocity: &Array2<f64>) -> f64 {
+        let (mx, nx, ny, s0) = (self.mx, self.nx, self.ny, self.diagonal);
+        let (cs, vs) = (flat(&at.curvature), flat(velocity));
+        let [sum] = crate::sum::ordered(self.my, |j| {
+            let row = (0..mx).map(|i| {
+                let k = j * mx + i;
+                let law = if j < ny && i < nx { cs[k].max(0.0) } else { 0.0 };
+                (s0 + law) * vs[k] * vs[k]
+            });
+            [row.sum()]
+        });
+        sum
+    }
+}
+
 /// Whether cell `(j, i)` of the unknown, at `g`, is on the wall: the unknown is the gap (the
 /// domain's `(ny, nx)` block) and it is closed.
 pub(super) fn on_wall(j: usize, i: usize, g: f64, nx: usize, ny: usize) -> bool {

@@ -4,7 +4,7 @@
 //! The pressure is split into a compressive part `p_c >= 0` (the contact constraint) and an
 //! adhesive part `p_a <= 0` (the law). Every method implements the trait `AdhesiveMethod` in a file
 //! of its own: the dual loops (`dual_loop`), the energy descent (`energy`), Newton
-//! (`newton`) and the overdamped flow (`flow`), the last three over the gap problem of
+//! (`newton`) and the damped relaxation (`flow`), the last three over the gap problem of
 //! `gap_problem`; Newton's linear solves
 //! are the GMRES of `krylov`. `solve` checks the input,
 //! resolves [`Method::Auto`], asks the method whether it can solve the problem, and runs it.
@@ -97,7 +97,7 @@ pub enum Iterations {
         /// Descent iterations.
         iterations: usize,
     },
-    /// The overdamped flow.
+    /// The damped relaxation.
     Flow {
         /// Explicit steps.
         steps: usize,
