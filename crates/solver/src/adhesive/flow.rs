@@ -43,7 +43,7 @@ const FIRST_STEP: f64 = 0.25;
 /// rising within a step (`docs/decisions.md`).
 const MAX_STEP: f64 = 1.0;
 /// The largest time step after a stall: a cell stopped every step moves by `dt^2` times its
-/// pull, stable for a law stiffness up to `2 / dt^2 - 1` times its mass's (7 here, 1 at
+/// pull, which is stable while its stiffness is below `2 / dt^2` times its mass (8 here, 2 at
 /// [`MAX_STEP`]).
 const SAFE_STEP: f64 = 0.5;
 /// The smallest time step.

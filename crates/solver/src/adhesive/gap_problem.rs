@@ -461,12 +461,10 @@ impl Problem<'_> {
             .collect();
         parts.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
     }
-}
 
-impl Problem<'_> {
     /// `sum m v^2` over the unknown, with `m` the mass of [`Problem::precondition`] (`S_ii +
     /// max(V'', 0)` on the domain's block, `S_ii` in the padding): twice the kinetic energy of
-    /// `velocity` \[Pa m/s^2 in the flow's time units\], summed in a fixed order.
+    /// `velocity` (in the flow's units), summed in a fixed order.
     pub(super) fn kinetic(&self, at: &Point, velocity: &Array2<f64>) -> f64 {
         let (mx, nx, ny, s0) = (self.mx, self.nx, self.ny, self.diagonal);
         let (cs, vs) = (flat(&at.curvature), flat(velocity));
