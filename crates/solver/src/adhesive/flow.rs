@@ -19,9 +19,9 @@
 //! between states (`docs/validation.md`), where the relaxation settles.
 //!
 //! The damping is strong enough that the states reached are those of the overdamped flow
-//! `M dg/dt = -r` from the same start, on the cases measured (`docs/decisions.md`), in
-//! `sqrt` of its number of steps: the inertia carries the long wavelengths, which the
-//! overdamped flow moves slowly.
+//! `M dg/dt = -r` from the same start, on the cases measured (`docs/decisions.md`), in a
+//! fraction of its steps (a fifth on the challenge at 256^2): the inertia carries the long
+//! wavelengths, which the overdamped flow moves slowly.
 //!
 //! Cost: one application of the stiffness and one evaluation of the law a step (two for laws
 //! without a local potential, whose stiffness is probed).
