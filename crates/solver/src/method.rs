@@ -32,9 +32,9 @@ pub enum Method {
     Newton,
     /// No outer loop: a damped relaxation of the cells under the force on them (FIRE) in
     /// explicit projected steps until it rests, for any law with a finite stiffness (the line
-    /// and surface laws included), under approach control, or load control on periodic domains. It settles on
-    /// stable states where no other method converges (the surface law on cells far coarser
-    /// than the process zone), in many cheap iterations.
+    /// and surface laws included), under approach control, or load control on periodic
+    /// domains. It settles on stable states where no other method converges (the surface law
+    /// on cells far coarser than the process zone), in many cheap iterations.
     Flow,
 }
 

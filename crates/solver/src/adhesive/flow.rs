@@ -11,8 +11,9 @@
 //! just above the wall many times a cell's), so that every cell has about the same natural
 //! period. Each step is projected onto `g >= 0` (and the prescribed mean gap); a cell that
 //! meets the wall stops there, and so does a cell that would move against the force on it.
-//! Where the residual stops falling the longest step is cut ([`STALL`]). Only a stable state is a state of rest: perturbed, the
-//! dynamics carries it back; a saddle or an unstable branch repels it. This holds for laws
+//! Where the residual stops falling the longest step is cut ([`STALL`]). Only a stable state
+//! is a state of rest: perturbed, the dynamics carries it back; a saddle or an unstable
+//! branch repels it. This holds for laws
 //! without an energy too, which is why this is the method for the paper's surface law
 //! (Eq. 11) on cells coarser than the process zone: there every cell holds on or lets go
 //! alone, Eq. 11's forces are not the gradient of any energy, and Newton and the loops circle

@@ -413,16 +413,10 @@ impl Problem<'_> {
     /// that keeps the moving cells' sum at zero when the mean gap is prescribed. Returns
     /// `<z, r>` and `<z, old>`.
     pub(super) fn precondition(&self, at: &Point, old: &Array2<f64>, out: &mut Array2<f64>) -> [f64; 2] {
-        let (mx, nx, ny, s0) = (self.mx, self.nx, self.ny, self.diagonal);
+        let mx = self.mx;
         let rs = flat(&at.gradient);
         let cs = flat(&at.curvature);
-        let weight = |j: usize, i: usize, k: usize| {
-            if j < ny && i < nx {
-                1.0 / (s0 + cs[k].max(0.0))
-            } else {
-                1.0 / s0
-            }
-        };
+        let weight = |j: usize, i: usize, k: usize| 1.0 / self.mass(cs, j, i, k);
         let mu = if self.mean_gap.is_some() {
             let [a, b] = crate::sum::ordered(self.my, |j| {
                 let mut sums = [0.0; 2];
@@ -462,21 +456,29 @@ impl Problem<'_> {
         parts.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
     }
 
-    /// `sum m v^2` over the unknown, with `m` the mass of [`Problem::precondition`] (`S_ii +
-    /// max(V'', 0)` on the domain's block, `S_ii` in the padding): twice the kinetic energy of
+    /// `sum m v^2` over the unknown, with `m` the mass of [`Problem::precondition`]: twice the kinetic energy of
     /// `velocity` (in the flow's units), summed in a fixed order.
     pub(super) fn kinetic(&self, at: &Point, velocity: &Array2<f64>) -> f64 {
-        let (mx, nx, ny, s0) = (self.mx, self.nx, self.ny, self.diagonal);
+        let mx = self.mx;
         let (cs, vs) = (flat(&at.curvature), flat(velocity));
         let [sum] = crate::sum::ordered(self.my, |j| {
             let row = (0..mx).map(|i| {
                 let k = j * mx + i;
-                let law = if j < ny && i < nx { cs[k].max(0.0) } else { 0.0 };
-                (s0 + law) * vs[k] * vs[k]
+                self.mass(cs, j, i, k) * vs[k] * vs[k]
             });
             [row.sum()]
         });
         sum
+    }
+
+    /// Cell `(j, i)`'s mass \[Pa/m\], `k` its flat index and `curvature` the law's stiffness
+    /// field: `S_ii + max(V'', 0)` on the domain's block, `S_ii` in the padding.
+    fn mass(&self, curvature: &[f64], j: usize, i: usize, k: usize) -> f64 {
+        if j < self.ny && i < self.nx {
+            self.diagonal + curvature[k].max(0.0)
+        } else {
+            self.diagonal
+        }
     }
 }
 
