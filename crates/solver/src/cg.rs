@@ -24,6 +24,10 @@ use ndarray::{Array2, ArrayView2, Zip};
 use rayon::prelude::*;
 use std::time::Instant;
 
+/// The preconditioned iteration keeps its conjugate directions through a step whose projection
+/// onto `p >= 0` changed it by at most this share (in the 2-norm).
+const KEEP_DIRECTIONS: f64 = 0.3;
+
 /// Solves the normal contact of the half-space `op` with the initial gap `g0` \[m\] (minimum 0,
 /// see [`crate::geometry`]) under `control`, telling `observer` each iteration's residual.
 /// `warm` (a previous state on the same grid) seeds the pressure; otherwise the solve starts
@@ -388,38 +392,56 @@ pub(crate) fn solve_in(
         // pressure (free ones and those just clipped: releasing the clipped ones too saves about
         // a tenth of the iterations on rough surfaces), and the matching update of u while it
         // stays exact.
-        let rows: Vec<(f64, bool, bool)> = flat_mut(p)
+        let rows: Vec<[f64; 5]> = flat_mut(p)
             .par_chunks_mut(nx)
             .zip(flat_mut(u).par_chunks_mut(nx))
             .zip(flat(gap).par_chunks(nx))
             .zip(flat(t).par_chunks(nx))
             .zip(flat(r).par_chunks(nx))
             .map(|((((p, u), g), t), r)| {
-                let (mut total, mut clipped, mut released) = (0.0, false, false);
+                // The new load, the cells clipped or released, those released, and the squares
+                // of the step and of what the projection changed in it.
+                let mut acc = [0.0; 5];
                 for i in 0..p.len() {
                     let old = p[i];
-                    let mut new = old - tau * t[i];
+                    let step = old - tau * t[i];
+                    let mut new = step;
+                    let mut changed = false;
                     if old > 0.0 && new < 0.0 {
                         new = 0.0;
-                        clipped = true;
+                        changed = true;
                     }
                     if new == 0.0 {
                         new = if g[i] < 0.0 { -tau * g[i] } else { 0.0 };
-                        released |= new > 0.0;
+                        if new > 0.0 {
+                            changed = true;
+                            acc[2] += 1.0;
+                        }
                     }
                     p[i] = new;
                     u[i] -= tau * r[i];
-                    total += new;
+                    acc[0] += new;
+                    acc[1] += f64::from(u8::from(changed));
+                    acc[3] += (tau * t[i]).powi(2);
+                    acc[4] += (new - step).powi(2);
                 }
-                (total, clipped, released)
+                acc
             })
             .collect();
-        let released = rows.iter().any(|r| r.2);
-        // Releasing cells restarts the conjugate directions (Polonsky & Keer); any change of
-        // the active set makes the updated u inexact.
-        conjugate = !released;
-        fresh_needed |= released || rows.iter().any(|r| r.1);
-        let p_sum: f64 = rows.iter().map(|r| r.0).sum();
+        let [p_sum, changed, released, moved, bent] = rows.iter().fold([0.0; 5], |mut a, b| {
+            a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
+            a
+        });
+        // Polonsky & Keer restart the conjugate directions on every release. Preconditioned, a
+        // few edge cells then flip in and out each iteration and the search zig-zags, so there
+        // the directions are kept while the projection changes little of the step
+        // (`docs/decisions.md`). Any change of the active set makes the updated u inexact.
+        conjugate = if preconditioned {
+            bent <= KEEP_DIRECTIONS * KEEP_DIRECTIONS * moved
+        } else {
+            released == 0.0
+        };
+        fresh_needed |= changed > 0.0;
         if p_sum == 0.0 {
             termination = Termination::NoContact;
             u.fill(0.0);

@@ -64,7 +64,7 @@ impl Method {
 
     /// The method for `law` under `control` on a domain that is `periodic` or not: itself, or
     /// for [`Method::Auto`] the energy descent for the laws with an energy (local or of the
-    /// field) and Newton for the line and surface laws under approach control, the overdamped
+    /// field) and Newton for the line and surface laws under approach control, the
     /// flow for the line and surface laws under load control on periodic domains, the
     /// accelerated loop elsewhere (central-gap control, Dugdale's law, no adhesion, loads on
     /// free domains). Near a fold the accelerated loop leaves a branch early, where the methods
