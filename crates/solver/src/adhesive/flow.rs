@@ -13,11 +13,11 @@
 //! meets the wall stops there, and so does a cell that would move against the force on it.
 //! Where the residual stops falling the longest step is cut ([`STALL`]). Only a stable state
 //! is a state of rest: perturbed, the dynamics carries it back; a saddle or an unstable
-//! branch repels it. This holds for laws
-//! without an energy too, which is why this is the method for the paper's surface law
-//! (Eq. 11) on cells coarser than the process zone: there every cell holds on or lets go
-//! alone, Eq. 11's forces are not the gradient of any energy, and Newton and the loops circle
-//! between states (`docs/validation.md`), where the relaxation settles.
+//! branch repels it. This holds for laws without an energy too, which is why this is the
+//! method for the paper's surface law (Eq. 11) on cells coarser than the process zone: there
+//! every cell holds on or lets go alone, Eq. 11's forces are not the gradient of any energy,
+//! and Newton and the loops circle between states (`docs/validation.md`), where the
+//! relaxation settles.
 //!
 //! The damping is strong enough that the states reached are those of the overdamped flow
 //! `M dg/dt = -r` from the same start, on the cases measured (`docs/decisions.md`), in a

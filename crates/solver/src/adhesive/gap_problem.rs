@@ -456,8 +456,8 @@ impl Problem<'_> {
         parts.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
     }
 
-    /// `sum m v^2` over the unknown, with `m` the mass of [`Problem::precondition`]: twice the kinetic energy of
-    /// `velocity` (in the flow's units), summed in a fixed order.
+    /// `sum m v^2` over the unknown, with `m` the mass of [`Problem::precondition`]: twice the
+    /// kinetic energy of `velocity` (in the flow's units), summed in a fixed order.
     pub(super) fn kinetic(&self, at: &Point, velocity: &Array2<f64>) -> f64 {
         let mx = self.mx;
         let (cs, vs) = (flat(&at.curvature), flat(velocity));
