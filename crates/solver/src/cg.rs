@@ -24,8 +24,8 @@ use ndarray::{Array2, ArrayView2, Zip};
 use rayon::prelude::*;
 use std::time::Instant;
 
-/// The preconditioned iteration keeps its conjugate directions through a step whose projection
-/// onto `p >= 0` changed it by at most this share (in the 2-norm).
+/// The preconditioned iteration, started cold, keeps its conjugate directions through a step
+/// whose projection onto `p >= 0` changed it by at most this share (in the 2-norm).
 const KEEP_DIRECTIONS: f64 = 0.3;
 
 /// Solves the normal contact of the half-space `op` with the initial gap `g0` \[m\] (minimum 0,
@@ -432,11 +432,12 @@ pub(crate) fn solve_in(
             a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
             a
         });
-        // Polonsky & Keer restart the conjugate directions on every release. Preconditioned, a
-        // few edge cells then flip in and out each iteration and the search zig-zags, so there
-        // the directions are kept while the projection changes little of the step
+        // Polonsky & Keer restart the conjugate directions on every release. Preconditioned and
+        // cold, a few edge cells then flip in and out each iteration and the search zig-zags,
+        // so there the directions are kept while the projection changes little of the step; a
+        // warm start is next to its solution, where restarts are cheaper than stale directions
         // (`docs/decisions.md`). Any change of the active set makes the updated u inexact.
-        conjugate = if preconditioned {
+        conjugate = if preconditioned && !warm {
             bent <= KEEP_DIRECTIONS * KEEP_DIRECTIONS * moved
         } else {
             released == 0.0
