@@ -135,36 +135,35 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         Mark::Line,
         GREY,
     ));
-    chart.curves.push(Curve::new(
+    chart.curves.push(Curve::solved(
         "BEM, no adhesion",
         plain
             .points
             .iter()
-            .map(|p| (p.reduced, p.contact_area_fraction))
+            .map(|p| (p.reduced, p.contact_area_fraction, p.converged))
             .collect(),
-        Mark::Circles,
+        Mark::Triangles,
         PALETTE[0],
     ));
-    chart.curves.push(Curve::new(
+    chart.curves.push(Curve::solved(
         "BEM, adhesion (challenge law)",
         sticky
             .points
             .iter()
-            .map(|p| (p.reduced, p.contact_area_fraction))
+            .map(|p| (p.reduced, p.contact_area_fraction, p.converged))
             .collect(),
         Mark::Dots,
         PALETTE[3],
     ));
-    chart.curves.push(Curve::new(
+    chart.curves.push(Curve::solved(
         "BEM, adhesion, unloading",
         back.iter()
-            .map(|p| (p.reduced, p.contact_area_fraction))
+            .map(|p| (p.reduced, p.contact_area_fraction, p.converged))
             .collect(),
         Mark::Line,
         PALETTE[3],
     ));
-    chart.save(&ctx.options.out, "fig08")?;
-    report.images.push("fig08".into());
+    report.save(&[chart], &ctx.options.out, "fig08")?;
 
     // Small-load slope a_r / p~ over the two lightest loads.
     let slope = plain.points[..2]

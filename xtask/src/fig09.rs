@@ -39,8 +39,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         Mark::Line,
         PALETTE[3],
     ));
-    chart.save(&ctx.options.out, "fig09")?;
-    report.images.push("fig09".into());
+    report.save(&[chart], &ctx.options.out, "fig09")?;
     let closed = |g: &[f64]| g.iter().filter(|&&v| v <= 0.0).count() as f64 / g.len() as f64;
     let mean = |g: &[f64]| g.iter().sum::<f64>() / g.len() as f64;
     report.agreement.push(format!(

@@ -82,22 +82,22 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             Mark::Line,
             color,
         ));
-        chart.curves.push(Curve::new(
+        chart.curves.push(Curve::solved(
             format!("BEM no adhesion, ḡ = {g}"),
             plain
                 .points
                 .iter()
-                .map(|p| (p.mean_pressure * 1e-3, p.contact_area_fraction))
+                .map(|p| (p.mean_pressure * 1e-3, p.contact_area_fraction, p.converged))
                 .collect(),
-            Mark::Circles,
+            Mark::Triangles,
             color,
         ));
-        chart.curves.push(Curve::new(
+        chart.curves.push(Curve::solved(
             format!("BEM adhesion μ = 3, ḡ = {g}"),
             sticky
                 .points
                 .iter()
-                .map(|p| (p.mean_pressure * 1e-3, p.contact_area_fraction))
+                .map(|p| (p.mean_pressure * 1e-3, p.contact_area_fraction, p.converged))
                 .collect(),
             Mark::Dots,
             color,
@@ -132,8 +132,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             challenge::cutoff(n) * 1e6
         ),
     );
-    chart.save(&ctx.options.out, "fig10")?;
-    report.images.push("fig10".into());
+    report.save(&[chart], &ctx.options.out, "fig10")?;
     report.tables.push(table);
     Ok(report)
 }

@@ -1,6 +1,7 @@
 //! What a figure leaves behind: its data tables (CSV), its report lines, and `FIGURES.md`.
 
 use crate::Options;
+use crate::plot::{Chart, save_panels};
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
@@ -53,6 +54,9 @@ pub struct FigureReport {
     /// Measured agreement with the reference, with numbers.
     pub agreement: Vec<String>,
     pub tables: Vec<Table>,
+    /// Plotted points whose solve did not converge (drawn hollow).
+    #[serde(default)]
+    pub unconverged_points: usize,
     /// Solver time summed over the figure's runs (cached runs included) \[s\].
     pub solver_seconds: f64,
     /// Wall time of building the figure in this invocation \[s\].
@@ -66,6 +70,19 @@ impl FigureReport {
             title: title.to_string(),
             ..FigureReport::default()
         }
+    }
+
+    /// Draws `charts` side by side as the image `stem` (PNG and SVG) in `dir`, and counts
+    /// their unconverged points.
+    pub fn save(&mut self, charts: &[Chart], dir: &Path, stem: &str) -> Result<()> {
+        save_panels(charts, dir, stem)?;
+        self.images.push(stem.to_string());
+        self.unconverged_points += charts
+            .iter()
+            .flat_map(|c| &c.curves)
+            .map(|c| c.unconverged())
+            .sum::<usize>();
+        Ok(())
     }
 
     /// Writes the tables as CSV into `dir`, and the report itself as `figNN.json` (from which
@@ -123,6 +140,13 @@ pub fn write_markdown(options: &Options) -> Result<()> {
                 .collect::<Vec<_>>()
                 .join(", ")
         )?;
+        if r.unconverged_points > 0 {
+            writeln!(
+                s,
+                "**Not converged:** {} plotted point(s), drawn hollow (see the `converged` column).\n",
+                r.unconverged_points
+            )?;
+        }
         writeln!(s, "**Agreement.**\n")?;
         for line in &r.agreement {
             writeln!(s, "- {line}")?;

@@ -454,19 +454,20 @@ impl PullOffFigure<'_> {
         mus.dedup();
         let mut curves = Vec::new();
         for (i, &mu) in mus.iter().enumerate() {
-            let mut pts: Vec<(f64, f64, f64)> = points
+            // A point is converged when every realisation's sweep is.
+            let mut pts: Vec<(f64, f64, f64, bool)> = points
                 .iter()
                 .filter(|p| p.spec.mu == mu)
                 .map(|p| {
                     let (m, s) = p.pull_off();
-                    (x(p), m, s)
+                    (x(p), m, s, p.outcomes.iter().all(|o| o.all_converged))
                 })
                 .collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
             let color = PALETTE[[0, 3, 2][i % 3]];
-            chart.curves.push(Curve::new(
+            chart.curves.push(Curve::solved(
                 format!("μ = {mu} (w0 = {} J/m²)", work_of_adhesion(mu)),
-                pts.iter().map(|p| (p.0, p.1)).collect(),
+                pts.iter().map(|p| (p.0, p.1, p.3)).collect(),
                 Mark::ErrorBars(pts.iter().map(|p| p.2).collect()),
                 color,
             ));
@@ -492,8 +493,7 @@ impl PullOffFigure<'_> {
             ]);
             report.solver_seconds += p.outcomes.iter().map(|o| o.wall_time_s).sum::<f64>();
         }
-        chart.save(&ctx.options.out, &format!("fig{}", self.number))?;
-        report.images.push(format!("fig{}", self.number));
+        report.save(&[chart], &ctx.options.out, &format!("fig{}", self.number))?;
         report.tables.push(table);
         let plan = plan(ctx);
         report.computed.push(format!(

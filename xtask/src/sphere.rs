@@ -385,19 +385,22 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
             Mark::Dashed,
             lighter(color, 0.45),
         ));
-        let pick = |unloading: bool| -> Vec<(f64, f64)> {
+        let pick = |unloading: bool| -> Vec<(f64, f64, bool)> {
             cycle
                 .iter()
                 .filter(|s| s.unloading == unloading)
-                .map(|s| (s.approach, s.load))
+                .map(|s| (s.approach, s.load, s.converged))
                 .collect()
         };
+        chart.curves.push(Curve::solved(
+            "BEM loading",
+            pick(false),
+            Mark::Triangles,
+            PALETTE[3],
+        ));
         chart
             .curves
-            .push(Curve::new("BEM loading", pick(false), Mark::Circles, PALETTE[3]));
-        chart
-            .curves
-            .push(Curve::new("BEM unloading", pick(true), Mark::Dots, PALETTE[3]));
+            .push(Curve::solved("BEM unloading", pick(true), Mark::Dots, PALETTE[3]));
 
         // Agreement: pull-off, tensile branch, compressive shift (the hard wall of Eq. 12).
         let unloading: Vec<&Step> = cycle.iter().filter(|s| s.unloading).collect();
@@ -477,9 +480,9 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
                         .map(|a| (a - q.approach).abs())
                 })
                 .fold(0.0, f64::max);
-            chart.curves.push(Curve::new(
+            chart.curves.push(Curve::solved(
                 "BEM, central gap prescribed",
-                s.iter().map(|q| (q.approach, q.load)).collect(),
+                s.iter().map(|q| (q.approach, q.load, q.converged)).collect(),
                 Mark::Dots,
                 PALETTE[2],
             ));
@@ -552,8 +555,7 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
          surfaces touch)."
             .into(),
     );
-    crate::plot::save_panels(&panels, &ctx.options.out, &format!("fig{number:02}"))?;
-    report.images.push(format!("fig{number:02}"));
+    report.save(&panels, &ctx.options.out, &format!("fig{number:02}"))?;
     report.tables.push(table);
     report.tables.push(theory_table);
     Ok(report)

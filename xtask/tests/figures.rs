@@ -66,6 +66,17 @@ fn quick_mode_regenerates_every_figure() {
                 );
             }
         }
+        // Every unconverged row of a figure whose rows are its plotted points is drawn hollow.
+        if [5, 6, 11, 12, 13, 14].contains(&r.number) {
+            let t = &r.tables[0];
+            let c = t
+                .columns
+                .iter()
+                .position(|c| c == "converged" || c == "all_converged")
+                .unwrap();
+            let failed = t.rows.iter().filter(|row| row[c] == 0.0).count();
+            assert_eq!(r.unconverged_points, failed, "figure {}", r.number);
+        }
         for t in &r.tables {
             assert!(out.join(format!("{}.csv", t.name)).exists());
             // Greenwood's curves are snapshotted by the theory crate's own tests.

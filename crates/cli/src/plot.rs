@@ -1,6 +1,8 @@
 //! Every picture the command line and the figures draw, in one style: a [`Chart`] of curves
 //! (lines, dashed lines, markers, markers with error bars) on linear or logarithmic axes, and
-//! a colour map of a field ([`field_map`], [`map`]) with its colour bar.
+//! a colour map of a field ([`field_map`], [`map`]) with its colour bar. A point whose solve
+//! did not converge ([`Curve::solved`]) is drawn as a hollow circle, whatever its curve's mark,
+//! and the legend then says what hollow means; no other mark is hollow but the large rings.
 //!
 //! Machines here have no system fonts, so the DejaVu Sans font shipped in `assets/fonts` is
 //! compiled in and registered before the first text is drawn.
@@ -86,8 +88,8 @@ pub fn lighter(c: RGBColor, t: f64) -> RGBColor {
 pub enum Mark {
     Line,
     Dashed,
-    /// Open circles.
-    Circles,
+    /// Filled triangles.
+    Triangles,
     /// Filled dots.
     Dots,
     /// Large open circles: single points singled out (a pull-off, a jump).
@@ -103,6 +105,9 @@ pub struct Curve {
     pub points: Vec<(f64, f64)>,
     pub mark: Mark,
     pub color: RGBColor,
+    /// Whether the solve behind each point converged; empty for curves that are not solver
+    /// output (references, theory).
+    pub converged: Vec<bool>,
 }
 
 impl Curve {
@@ -112,9 +117,42 @@ impl Curve {
             points,
             mark,
             color,
+            converged: Vec::new(),
         }
     }
+
+    /// A curve of solver output: each point with whether its solve converged. The unconverged
+    /// ones are drawn hollow.
+    pub fn solved(
+        label: impl Into<String>,
+        points: Vec<(f64, f64, bool)>,
+        mark: Mark,
+        color: RGBColor,
+    ) -> Self {
+        let converged = points.iter().map(|p| p.2).collect();
+        Curve {
+            converged,
+            ..Curve::new(
+                label,
+                points.into_iter().map(|p| (p.0, p.1)).collect(),
+                mark,
+                color,
+            )
+        }
+    }
+
+    /// The points whose solve did not converge.
+    pub fn unconverged(&self) -> usize {
+        self.converged.iter().filter(|&&c| !c).count()
+    }
+
+    fn converged_at(&self, k: usize) -> bool {
+        self.converged.get(k).copied().unwrap_or(true)
+    }
 }
+
+/// The radius of the hollow circle of an unconverged point [px].
+const HOLLOW: i32 = 5;
 
 /// Where the legend sits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -370,38 +408,41 @@ impl Chart {
             .map_err(draw_err)?;
         for c in &self.curves {
             let color = c.color;
-            let points: Vec<(f64, f64)> = c.points.iter().copied().filter(|&p| self.usable(p)).collect();
+            let usable: Vec<(usize, (f64, f64))> = c
+                .points
+                .iter()
+                .copied()
+                .enumerate()
+                .filter(|&(_, p)| self.usable(p))
+                .collect();
+            let all: Vec<(f64, f64)> = usable.iter().map(|&(_, p)| p).collect();
+            // Markers only where the solve converged; lines run through every point.
+            let marked = || {
+                usable
+                    .iter()
+                    .filter(|&&(k, _)| c.converged_at(k))
+                    .map(|&(_, p)| p)
+            };
             let anno = match &c.mark {
                 Mark::Line => chart
-                    .draw_series(LineSeries::new(points, color.stroke_width(2)))
+                    .draw_series(LineSeries::new(all, color.stroke_width(2)))
                     .map_err(draw_err)?,
                 Mark::Dashed => chart
-                    .draw_series(DashedLineSeries::new(points, 8, 5, color.stroke_width(2)))
+                    .draw_series(DashedLineSeries::new(all, 8, 5, color.stroke_width(2)))
                     .map_err(draw_err)?,
-                Mark::Circles => chart
-                    .draw_series(
-                        points
-                            .into_iter()
-                            .map(|p| Circle::new(p, 4, color.stroke_width(2))),
-                    )
+                Mark::Triangles => chart
+                    .draw_series(marked().map(|p| TriangleMarker::new(p, 6, color.filled())))
                     .map_err(draw_err)?,
                 Mark::Dots => chart
-                    .draw_series(points.into_iter().map(|p| Circle::new(p, 4, color.filled())))
+                    .draw_series(marked().map(|p| Circle::new(p, 4, color.filled())))
                     .map_err(draw_err)?,
                 Mark::Rings => chart
-                    .draw_series(
-                        points
-                            .into_iter()
-                            .map(|p| Circle::new(p, 9, color.stroke_width(2))),
-                    )
+                    .draw_series(marked().map(|p| Circle::new(p, 9, color.stroke_width(2))))
                     .map_err(draw_err)?,
                 Mark::ErrorBars(half) => {
-                    let bars: Vec<((f64, f64), f64)> = c
-                        .points
+                    let bars: Vec<((f64, f64), f64)> = usable
                         .iter()
-                        .zip(half)
-                        .filter(|(p, _)| self.usable(**p))
-                        .map(|(p, e)| (*p, *e))
+                        .filter_map(|&(k, p)| half.get(k).map(|&e| (p, e)))
                         .collect();
                     chart
                         .draw_series(bars.iter().map(|&((x, y), e)| {
@@ -409,28 +450,45 @@ impl Chart {
                         }))
                         .map_err(draw_err)?;
                     chart
-                        .draw_series(bars.iter().map(|&(p, _)| Circle::new(p, 4, color.filled())))
+                        .draw_series(marked().map(|p| Circle::new(p, 4, color.filled())))
                         .map_err(draw_err)?
                 }
             };
-            if c.label.is_empty() {
-                continue;
+            if !c.label.is_empty() {
+                let mark = c.mark.clone();
+                anno.label(c.label.clone()).legend(move |(x, y)| match mark {
+                    Mark::Line => {
+                        PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(2)).into_dyn()
+                    }
+                    // Two dashes, as the curve draws them (8 px on, 5 off).
+                    Mark::Dashed => plotters::element::DashedPathElement::new(
+                        vec![(x, y), (x + 21, y)],
+                        8,
+                        5,
+                        color.stroke_width(2),
+                    )
+                    .into_dyn(),
+                    Mark::Triangles => TriangleMarker::new((x + 11, y), 6, color.filled()).into_dyn(),
+                    Mark::Rings => Circle::new((x + 11, y), 7, color.stroke_width(2)).into_dyn(),
+                    _ => Circle::new((x + 11, y), 4, color.filled()).into_dyn(),
+                });
             }
-            let mark = c.mark.clone();
-            anno.label(c.label.clone()).legend(move |(x, y)| match mark {
-                Mark::Line => PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(2)).into_dyn(),
-                // Two dashes, as the curve draws them (8 px on, 5 off).
-                Mark::Dashed => plotters::element::DashedPathElement::new(
-                    vec![(x, y), (x + 21, y)],
-                    8,
-                    5,
-                    color.stroke_width(2),
-                )
-                .into_dyn(),
-                Mark::Circles => Circle::new((x + 11, y), 4, color.stroke_width(2)).into_dyn(),
-                Mark::Rings => Circle::new((x + 11, y), 7, color.stroke_width(2)).into_dyn(),
-                _ => Circle::new((x + 11, y), 4, color.filled()).into_dyn(),
-            });
+            let hollow = usable.iter().filter(|&&(k, _)| !c.converged_at(k));
+            chart
+                .draw_series(hollow.flat_map(|&(_, p)| {
+                    [
+                        Circle::new(p, HOLLOW, WHITE.filled()),
+                        Circle::new(p, HOLLOW, color.stroke_width(2)),
+                    ]
+                }))
+                .map_err(draw_err)?;
+        }
+        if self.curves.iter().any(|c| c.unconverged() > 0) {
+            chart
+                .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+                .map_err(draw_err)?
+                .label("hollow: not converged")
+                .legend(|(x, y)| Circle::new((x + 11, y), HOLLOW, GREY.stroke_width(2)));
         }
         chart
             .configure_series_labels()

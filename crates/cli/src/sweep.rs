@@ -63,7 +63,7 @@ pub enum Example {
     DmtSphere,
     /// Rough sphere (Rq = z0) at Tabor parameter 2, ~15 s.
     RoughSphere,
-    /// The contact-mechanics challenge at 256^2 with its exponential adhesion, load-controlled, ~15 s.
+    /// The contact-mechanics challenge at 256^2 with its exponential adhesion, load-controlled, ~9 s.
     ChallengeSmall,
     /// Rigid wave at Johnson's alpha 0.3, crests at Tabor parameter 3 (Johnson 1995), ~2 s.
     WavyJkr,
@@ -493,19 +493,20 @@ fn check_rows(rows: &[CyclePoint], controls: &[Control]) -> Result<()> {
 }
 
 /// The load-approach chart: each branch a line through its steps (loading solid with dots,
-/// unloading dashed with open circles, so that neither hides the other), the pull-off and the
-/// jumps ringed.
+/// unloading dashed with triangles, so that neither hides the other; unconverged steps
+/// hollow), the pull-off and the jumps ringed.
 fn plot_cycle(path: &Path, cycle: &[CyclePoint], summary: &CycleSummary) -> Result<()> {
     let (lf, lu) = plot::length_unit(cycle.iter().map(|p| p.approach.abs()).fold(0.0, f64::max));
     let max_load = cycle.iter().map(|p| p.load.abs()).fold(0.0, f64::max);
     let (ff, fu) = force_unit(max_load);
-    let branch = |b: Branch| -> Vec<(f64, f64)> {
+    let branch = |b: Branch| -> Vec<(f64, f64, bool)> {
         cycle
             .iter()
             .filter(|p| p.branch == b)
-            .map(|p| (p.approach * lf, p.load * ff))
+            .map(|p| (p.approach * lf, p.load * ff, p.converged))
             .collect()
     };
+    let line = |points: &[(f64, f64, bool)]| points.iter().map(|p| (p.0, p.1)).collect();
     // The step of `branch` at `approach`, scaled.
     let at = |b: Branch, approach: Option<f64>| -> Vec<(f64, f64)> {
         cycle
@@ -522,10 +523,10 @@ fn plot_cycle(path: &Path, cycle: &[CyclePoint], summary: &CycleSummary) -> Resu
     );
     let (loading, unloading) = (branch(Branch::Loading), branch(Branch::Unloading));
     chart.curves = vec![
-        Curve::new("", loading.clone(), Mark::Line, PALETTE[0]),
-        Curve::new("loading", loading, Mark::Dots, PALETTE[0]),
-        Curve::new("", unloading.clone(), Mark::Dashed, PALETTE[3]),
-        Curve::new("unloading", unloading, Mark::Circles, PALETTE[3]),
+        Curve::new("", line(&loading), Mark::Line, PALETTE[0]),
+        Curve::solved("loading", loading, Mark::Dots, PALETTE[0]),
+        Curve::new("", line(&unloading), Mark::Dashed, PALETTE[3]),
+        Curve::solved("unloading", unloading, Mark::Triangles, PALETTE[3]),
     ];
     let pull_off: Vec<(f64, f64)> = summary
         .pull_off_force
