@@ -33,6 +33,11 @@ impl Setup {
         2.0 * self.half_width / self.n as f64
     }
 
+    /// The undeformed gap at the middle of the box's edge \[z0\].
+    pub fn edge_gap(&self) -> f64 {
+        self.half_width * self.half_width * Z0 / (2.0 * RADIUS)
+    }
+
     pub fn case(&self) -> Case {
         Case {
             sphere_radius: Some(RADIUS),
@@ -272,15 +277,16 @@ pub fn maugis_dugdale(setup: &Setup) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// The grid of a sphere figure: finer boxes for the higher Tabor parameters, whose adhesive
-/// zone is narrower; the box reaches an undeformed gap of >= 5 z0 (20 z0 for mu <= 1).
+/// The grid of a sphere figure with `n` cells a side at mu <= 2: finer cells for the higher
+/// Tabor parameters, whose adhesive zone is narrower, and a box reaching an undeformed gap of
+/// 20 z0 (11 z0 at mu = 2), so that the attraction it leaves out is small beside the pull-off.
 pub fn setup(mu: f64, n: usize) -> Setup {
-    let half_width = if mu <= 1.0 {
-        200.0
+    let (half_width, n) = if mu <= 1.0 {
+        (200.0, n)
     } else if mu <= 2.0 {
-        150.0
+        (150.0, n)
     } else {
-        100.0
+        (200.0, 2 * n)
     };
     Setup { mu, n, half_width }
 }
@@ -447,9 +453,21 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
             None => String::new(),
         };
         let failed = cycle.iter().filter(|s| !s.converged).count();
+        // The deepest step, where a box too small for the attraction shows most.
+        let deepest = cycle
+            .iter()
+            .max_by(|a, b| a.approach.total_cmp(&b.approach))
+            .expect("a step");
+        let deepest = match g.load_on_branch(deepest.approach, 1.0 + deepest.central_gap) {
+            Some(w) => format!(
+                "; at the deepest approach ({:.2} z0) {:.4} vs {w:.4}",
+                deepest.approach, deepest.load
+            ),
+            None => String::new(),
+        };
         report.agreement.push(format!(
             "μ = {mu}: pull-off {pull_off:.4} (BEM) vs {:.4} (Greenwood), {:+.1} %; tensile unloading branch \
-             (α ≤ -0.5 z0) within {tensile:.4} of Greenwood; {compressive}{jump}{}.",
+             (α ≤ -0.5 z0) within {tensile:.4} of Greenwood{deepest}; {compressive}{jump}{}.",
             g.pull_off_load_control,
             100.0 * (pull_off / g.pull_off_load_control - 1.0),
             if failed > 0 {
@@ -531,13 +549,21 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
         }
         panels.push(chart);
     }
-    let st = setup(mus[0], n);
+    let grid = |mu: f64| {
+        let st = setup(mu, n);
+        format!(
+            "{} z0 on {}² with the box's edge at a gap of {:.0} z0",
+            fmt_cell(st.cell()),
+            st.n,
+            st.edge_gap()
+        )
+    };
     report.computed.push(format!(
-        "Rigid paraboloid R = 1000 z0 on a free {n}² grid, Lennard-Jones surface law (Eq. 11), E* = 1 GPa, \
-         z0 = 1 nm, w0 from the Tabor parameter; cells of {} z0 (μ ≤ 1), {} z0 (μ = 2), {} z0 (μ = 3).",
-        fmt_cell(st.cell()),
-        fmt_cell(setup(2.0, n).cell()),
-        fmt_cell(setup(3.0, n).cell()),
+        "Rigid paraboloid R = 1000 z0 on a free grid, Lennard-Jones surface law (Eq. 11), E* = 1 GPa, z0 = 1 nm, \
+         w0 from the Tabor parameter; cells of {} (μ ≤ 1), {} (μ = 2), {} (μ = 3).",
+        grid(1.0),
+        grid(2.0),
+        grid(3.0),
     ));
     report.computed.push(format!(
         "Approach-controlled cycle from {from} to {to} z0 in steps of {h_in} z0 and back to {back} z0 in \
