@@ -5,8 +5,6 @@
 #![allow(rustdoc::broken_intra_doc_links, rustdoc::invalid_html_tags)]
 
 pub mod bench;
-pub mod case;
-pub mod memory;
 pub mod plot;
 pub mod run;
 pub mod solve;

@@ -11,8 +11,8 @@
 //! the system when the process ends, also when it is killed), and a directory that holds
 //! another run's files is refused unless the run resumes it or overwrites it.
 
-use crate::case::{Built, fingerprint};
 use anyhow::{Context, Result, bail};
+use case::{Built, fingerprint};
 use ndarray::Array2;
 use serde::Serialize;
 use serde_json::Value;
@@ -414,4 +414,19 @@ pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
         bail!("{}: the fields' shapes differ", dir.display());
     }
     Ok(state)
+}
+
+/// `extra` (a JSON object) with the fields of `report` added: the summary's results.
+pub fn results(extra: Value, report: &impl Serialize) -> Result<Value> {
+    let (Value::Object(mut all), Value::Object(fields)) = (extra, serde_json::to_value(report)?) else {
+        bail!("a summary's results are JSON objects");
+    };
+    all.extend(fields);
+    Ok(Value::Object(all))
+}
+
+/// Runs `f` on the worker threads, so that the solvers' parallel passes do not each pay a
+/// hand-off from the main thread (which dominates on small grids).
+pub fn on_workers<R: Send>(f: impl FnOnce() -> R + Send) -> R {
+    rayon::scope(|_| f())
 }

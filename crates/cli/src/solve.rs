@@ -1,38 +1,17 @@
 //! `solve`: one normal contact, with or without adhesion, from flags or a TOML case file.
 
-use crate::case::{Built, Case, beside, layered, on_workers, results, to_toml};
 use crate::plot;
-use crate::run::{Reuse, RunDir};
+use crate::run::{Reuse, RunDir, on_workers, results};
 use anyhow::{Context, Result, bail};
+use case::{Built, Case, SolveControl, beside, layered, to_toml};
 use clap::Args;
 use elastic::Domain;
 use indicatif::{ProgressBar, ProgressStyle};
 use ndarray::Array2;
-use serde::{Deserialize, Serialize};
 use serde_json::json;
 use solver::{Control, Iterations, Observer, Start};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-
-/// What a single solve prescribes (keys of the case file like the others).
-#[derive(Args, Debug, Default, Clone, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct SolveControl {
-    /// Load control: mean pressure over the box [Pa] (negative pulls, with adhesion).
-    #[arg(long, allow_hyphen_values = true)]
-    pub mean_pressure: Option<f64>,
-    /// Load control: total normal force [N] (negative pulls, with adhesion).
-    #[arg(long, allow_hyphen_values = true)]
-    pub load: Option<f64>,
-    /// Displacement control: approach from first touch [m], positive pushes together
-    /// (negative holds the bodies apart, with adhesion).
-    #[arg(long, allow_hyphen_values = true)]
-    pub approach: Option<f64>,
-    /// Displacement control by the mean gap over the box [m] (periodic domains, where the
-    /// mean displacement is zero: the approach is mean(initial gap) - mean gap).
-    #[arg(long)]
-    pub mean_gap: Option<f64>,
-}
 
 #[derive(Args, Debug)]
 pub struct SolveArgs {
@@ -87,26 +66,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     }
     let built = case.build()?;
     let problem = &built.problem;
-    let control = match (
-        control.mean_pressure,
-        control.load,
-        control.approach,
-        control.mean_gap,
-    ) {
-        (Some(p), None, None, None) => Control::MeanPressure(p),
-        (None, Some(w), None, None) => Control::Force(w),
-        (None, None, Some(d), None) => Control::Approach(d),
-        (None, None, None, Some(g)) => {
-            if !problem.domain().periodic {
-                bail!("--mean-gap needs a periodic domain (on a free one the mean displacement is not zero)");
-            }
-            if !(g.is_finite() && g >= 0.0) {
-                bail!("--mean-gap must be finite and >= 0 m, got {g}");
-            }
-            Control::Approach(problem.initial_gap.mean().unwrap_or(0.0) - g)
-        }
-        _ => bail!("give exactly one of --mean-pressure [Pa], --load [N], --approach [m] or --mean-gap [m]"),
-    };
+    let control = control.control(problem)?;
     for w in &problem.warnings {
         eprintln!("warning: {w}");
     }

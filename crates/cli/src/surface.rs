@@ -12,14 +12,6 @@ use surfgen::{
     SurfaceSpec,
 };
 
-/// A surface file's error, with the file named once: the reader's own errors already name it.
-pub fn naming(verb: &str, path: &Path, e: SurfError) -> anyhow::Error {
-    match e {
-        SurfError::Io { .. } | SurfError::Parse { .. } => e.into(),
-        _ => anyhow::Error::from(e).context(format!("{verb} {}", path.display())),
-    }
-}
-
 #[derive(Args, Debug)]
 pub struct GenerateArgs {
     /// Grid points per side (square grid); overridden by --nx/--ny.
@@ -115,7 +107,7 @@ impl SurfaceFile {
             unit: self.unit,
             periodic: !self.not_periodic,
         };
-        io::read(&self.file, &options).map_err(|e| naming("reading", &self.file, e))
+        io::read(&self.file, &options).map_err(|e| case::naming("reading", &self.file, e))
     }
 }
 
@@ -271,7 +263,7 @@ pub fn generate(a: GenerateArgs) -> Result<()> {
         },
         seed: a.seed,
     };
-    crate::memory::check(
+    case::memory::check(
         &format!("a {nx} x {ny} surface"),
         surfgen::generate::memory_estimate(nx, ny),
     )?;
@@ -294,7 +286,7 @@ pub fn generate(a: GenerateArgs) -> Result<()> {
         ..Metadata::of(&surface)
     };
     let (written, statistics) = rayon::join(
-        || io::write(&surface, &a.output, None).map_err(|e| naming("writing", &a.output, e)),
+        || io::write(&surface, &a.output, None).map_err(|e| case::naming("writing", &a.output, e)),
         || -> Result<Statistics> {
             let statistics =
                 surfgen::stats::statistics_with(surface.heights.view(), &generated.analysis, true, None);

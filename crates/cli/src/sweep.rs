@@ -1,56 +1,18 @@
 //! `sweep`: a quasi-static approach-retraction cycle (or any list of approaches, mean
 //! pressures or central gaps) with continuation, written step by step and resumable.
 
-use crate::case::{Case, beside, layered, on_workers, results, to_toml};
 use crate::plot::{self, Chart, Curve, Mark, PALETTE};
-use crate::run::{CurveWriter, Reuse, RunDir, read_state};
+use crate::run::{CurveWriter, Reuse, RunDir, on_workers, read_state, results};
 use crate::solve::finish;
 use anyhow::{Context, Result, bail};
+use case::{Case, SweepPath, beside, layered, to_toml};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use serde::{Deserialize, Serialize};
+
 use serde_json::json;
-use solver::{
-    AdhesiveState, Branch, Control, CyclePoint, CycleSummary, Observer, SweepPoint, approach_cycle, summarize,
-};
+use solver::{AdhesiveState, Branch, Control, CyclePoint, CycleSummary, Observer, SweepPoint, summarize};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-
-/// The path of a sweep (keys of the case file like the others).
-#[derive(Args, Debug, Default, Clone, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct SweepPath {
-    /// Approach at the start and the end of the cycle [m] (negative: bodies apart).
-    #[arg(long, allow_hyphen_values = true)]
-    pub from: Option<f64>,
-    /// Turning point of the cycle [m].
-    #[arg(long, allow_hyphen_values = true)]
-    pub to: Option<f64>,
-    /// Steps from --from to --to; the way back takes as many again (default 20).
-    #[arg(long)]
-    pub steps: Option<usize>,
-    /// Explicit approaches [m], comma-separated, solved in this order.
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, conflicts_with_all = ["from", "to", "steps"])]
-    pub approaches: Option<Vec<f64>>,
-    /// Explicit mean pressures [Pa] (load control), comma-separated, in this order.
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, conflicts_with_all = ["from", "to", "steps", "approaches"])]
-    pub mean_pressures: Option<Vec<f64>>,
-    /// Explicit central gaps [m] (> 0), comma-separated: the approach follows, which traces the
-    /// unstable middle of a sphere's S-shaped curve.
-    #[arg(long, value_delimiter = ',', conflicts_with_all = ["from", "to", "steps", "approaches", "mean_pressures"])]
-    pub central_gaps: Option<Vec<f64>>,
-    /// Largest change of approach or central gap between two solves [m]: a longer step is
-    /// split into substeps that are solved (their iterations count in curve.csv) but not
-    /// written, which keeps the sweep quasi-static [default: the adhesive law's range, z0 for
-    /// Lennard-Jones; no splitting without adhesion]. Load steps are never split.
-    #[arg(long)]
-    pub max_step: Option<f64>,
-    /// Start from a saved state instead of apart: a sweep's output directory (its last state),
-    /// its `state/`, or one of its `states/step-NNNN` (with --save-states), on the same grid.
-    /// To continue a cycle with another law, solver, tolerance or path.
-    #[arg(long, value_name = "DIR")]
-    pub start_from: Option<PathBuf>,
-}
 
 /// Built-in cases, runnable with no input files (their TOML is in `data/examples`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -156,48 +118,13 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         &mut path.start_from,
     );
     case.fill_defaults("run/sweep");
-    if path.approaches.is_none() && path.mean_pressures.is_none() && path.central_gaps.is_none() {
-        path.steps = path.steps.or(Some(20));
-    }
+    path.fill_defaults();
     let resolved = to_toml(&case, &path)?;
     if args.print_config {
         println!("{resolved}");
         return Ok(());
     }
-    let controls: Vec<Control> = match (&path.approaches, &path.mean_pressures, &path.central_gaps) {
-        (Some(a), None, None) => a.iter().map(|&v| Control::Approach(v)).collect(),
-        (None, Some(p), None) => p.iter().map(|&v| Control::MeanPressure(v)).collect(),
-        (None, None, Some(g)) => g.iter().map(|&v| Control::CentralGap(v)).collect(),
-        (None, None, None) => {
-            let (from, to) = match (path.from, path.to) {
-                (Some(f), Some(t)) => (f, t),
-                _ => bail!(
-                    "give the path: --from A --to B [m] (--steps N), or --approaches, --mean-pressures or \
-                     --central-gaps, or run a built-in case with --example"
-                ),
-            };
-            let steps = path.steps.unwrap_or(20);
-            if steps == 0 {
-                bail!("--steps must be at least 1 (steps from --from to --to; as many back)");
-            }
-            crate::memory::check(
-                &format!("a sweep of {} steps", 2 * steps as u64 + 1),
-                (2.0 * steps as f64 + 1.0) * STEP_BYTES,
-            )?;
-            approach_cycle(from, to, steps)
-        }
-        _ => bail!("give one path only"),
-    };
-    if controls.is_empty() {
-        bail!("the sweep path is empty");
-    }
-    if controls.iter().any(|c| {
-        let (Control::Approach(v) | Control::MeanPressure(v) | Control::Force(v) | Control::CentralGap(v)) =
-            *c;
-        !v.is_finite()
-    }) {
-        bail!("the sweep path has a non-finite value");
-    }
+    let controls = path.controls()?;
     let built = case.build()?;
     let problem = &built.problem;
     for w in &problem.warnings {
@@ -220,13 +147,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         }
         None => None,
     };
-    let max_step = path.max_step.or(problem.adhesive().then(|| problem.law.range()));
-    if let Some(h) = max_step
-        && !(h.is_finite() && h > 0.0)
-    {
-        bail!("--max-step must be a positive length [m], got {h}");
-    }
-    solver::count_substeps(&controls, max_step)?;
+    let max_step = path.max_step(problem, &controls)?;
     case.validate_settings(problem.adhesive())?;
     let settings = case.settings();
     let reuse = match (args.resume, args.overwrite) {
@@ -450,12 +371,6 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         out,
     )
 }
-
-/// The memory a step of a sweep keeps until the end [bytes]: its control, its report and its
-/// row of the summary (the report's residual history aside).
-const STEP_BYTES: f64 = (std::mem::size_of::<Control>()
-    + std::mem::size_of::<SweepPoint>()
-    + std::mem::size_of::<CyclePoint>()) as f64;
 
 /// Whether two resolved cases (TOML) are the same apart from their output directory, which
 /// may be spelt differently or moved between a sweep and its resumption.

@@ -1,8 +1,14 @@
-//! The contact case shared by `solve` and `sweep`: geometry, material, adhesion and solver
-//! settings, from flags and/or a TOML case file, and the problem it builds.
+//! A contact case by its keys: geometry, material, adhesion and solver settings, and what a
+//! single solve prescribes or the path a sweep follows, from a TOML case file, the command
+//! line's flags (feature `clap`: each key a `--flag`, its doc comment the help text) or the
+//! Python package's keywords, layered in that order, and the library problem it builds.
+//! Every key is in SI units, stated in brackets where it is defined.
+// The doc comments of the keys are also the command's help text: units stand in brackets.
+#![allow(rustdoc::broken_intra_doc_links)]
+
+pub mod memory;
 
 use anyhow::{Context, Result, bail};
-use clap::{Args, ValueEnum};
 use ljadhesion::{
     AdhesionLaw, DugdaleLaw, ExponentialLaw, LennardJones, LineLaw, NoAdhesion, PointLaw, SurfaceEnergyLaw,
     SurfaceLaw,
@@ -10,14 +16,16 @@ use ljadhesion::{
 use ndarray::Array2;
 use serde::{Deserialize, Serialize, de::DeserializeOwned};
 use serde_json::Value;
+use solver::Control;
 use solver::geometry::SphereProfile;
 use solver::{ContactOptions, ContactProblem, Method, Settings, Shape};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use surfgen::io::{self, ReadOptions};
-use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec};
+use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfError, SurfaceSpec};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "snake_case")]
 pub enum DomainKind {
     /// The pattern repeats (rough surfaces): spectral kernel.
@@ -26,7 +34,8 @@ pub enum DomainKind {
     Free,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "snake_case")]
 pub enum LawKind {
     /// No adhesion.
@@ -46,7 +55,8 @@ pub enum LawKind {
     Dugdale,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum OuterKind {
     /// `energy` for the point, surface-energy and exponential laws, `newton` for the line and surface laws
@@ -86,95 +96,96 @@ impl OuterKind {
 
 /// A contact case: every flag is also a key of the TOML case file (`--config`), with the same
 /// name in snake_case. Flags override the file.
-#[derive(Args, Debug, Default, Clone, Serialize, Deserialize)]
+#[derive(Debug, Default, Clone, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
 #[serde(default, deny_unknown_fields)]
 pub struct Case {
     /// Rough surface file (.npy + sidecar, .txt, .xyz, .gsf): heights [m], peaks towards the
     /// counterface. With --sphere-radius the roughness sits on the sphere.
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub surface: Option<PathBuf>,
     /// Generate the roughness instead of reading it: RMS height Rq [m].
-    #[arg(long, conflicts_with = "surface")]
+    #[cfg_attr(feature = "clap", arg(long, conflicts_with = "surface"))]
     pub rms_height: Option<f64>,
     /// Generate the roughness instead of reading it: RMS gradient [-].
-    #[arg(long, conflicts_with_all = ["surface", "rms_height"])]
+    #[cfg_attr(feature = "clap", arg(long, conflicts_with_all = ["surface", "rms_height"]))]
     pub rms_gradient: Option<f64>,
     /// Generated roughness: Hurst exponent H [-] (default 0.8).
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub hurst: Option<f64>,
     /// Generated roughness: roll-off wavelength [m] (default: a quarter of the box).
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub rolloff_wavelength: Option<f64>,
     /// Generated roughness: short-wavelength cut-off [m] (default: four cells).
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub cutoff_wavelength: Option<f64>,
     /// Generated roughness: random seed (default 1); a seed fixes the surface bit for bit.
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub seed: Option<u64>,
     /// Box side [m]: for a bare surface file, a generated surface or a smooth sphere's grid.
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub length: Option<f64>,
     /// Box size along y [m] (default: square cells).
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub length_y: Option<f64>,
     /// Metres per unit in the surface file.
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub unit: Option<f64>,
     /// Radius R of a rigid sphere [m], centred on the grid.
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub sphere_radius: Option<f64>,
     /// Amplitude A of a rigid wave A cos(2 pi x / L) [m] (half its peak-to-valley height),
     /// one wavelength across the box along x, crest centred: Westergaard's and Johnson's
     /// (1995) wavy contact (periodic; `roughcontact theory wavy` gives their curves). With
     /// roughness, the roughness sits on the wave.
-    #[arg(long, conflicts_with = "sphere_radius")]
+    #[cfg_attr(feature = "clap", arg(long, conflicts_with = "sphere_radius"))]
     pub wave_amplitude: Option<f64>,
     /// Use the exact spherical profile instead of the paraboloid r^2/(2R).
-    #[arg(long, num_args = 0..=1, default_missing_value = "true")]
+    #[cfg_attr(feature = "clap", arg(long, num_args = 0..=1, default_missing_value = "true"))]
     pub exact_sphere: Option<bool>,
     /// Grid points per side (default 256); must match a surface file.
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub n: Option<usize>,
     /// Grid points along y, when not --n (a wave needs a few: its problem is one-dimensional).
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub ny: Option<usize>,
     /// Periodic or free boundaries (default: periodic for a rough flat, free with a sphere).
-    #[arg(long, value_enum)]
+    #[cfg_attr(feature = "clap", arg(long, value_enum))]
     pub domain: Option<DomainKind>,
     /// Composite modulus E* [Pa].
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub modulus: Option<f64>,
     /// Adhesive law (default: surface when --work-of-adhesion is given, none otherwise).
-    #[arg(long, value_enum)]
+    #[cfg_attr(feature = "clap", arg(long, value_enum))]
     pub law: Option<LawKind>,
     /// Work of adhesion w0 [J/m^2].
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub work_of_adhesion: Option<f64>,
     /// Lennard-Jones equilibrium separation z0 [m] (surface, line, point laws).
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub z0: Option<f64>,
     /// Range of the exponential or Dugdale law [m] (Dugdale default: 0.974 z0 if --z0 given).
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub range: Option<f64>,
     /// Adhesive solver: auto (the default: energy, newton or flow where they are the tested
     /// choice, else accelerated), dual-loop, accelerated, energy, newton or flow.
-    #[arg(long, value_enum)]
+    #[cfg_attr(feature = "clap", arg(long, value_enum))]
     pub solver: Option<OuterKind>,
     /// Convergence tolerance: without adhesion the scale-free gap residual (default 1e-8, at
     /// least 1e-13); with adhesion, in units of the law's range [-] (default 1e-6, the paper's
     /// criterion), for dual-loop and accelerated the outer residual (a mean gap error: loads
     /// to ~2e-4 of the peak at the default, 1e-8 gives ~1e-6), for energy, newton and flow the
     /// worst cell's force imbalance times its compliance.
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub tolerance: Option<f64>,
     /// Iteration limit: conjugate-gradient iterations without adhesion (default 10000); with
     /// it (default 20000) outer iterations, descent iterations (energy), Newton steps or flow
     /// steps (flow: thousands a solve on coarse rough grids, more at the smallest loads).
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub max_iterations: Option<usize>,
     /// Output directory (default: run/solve for solve, run/sweep for sweep); one that holds
     /// another run is refused unless --overwrite (or, for a sweep, --resume).
-    #[arg(long)]
+    #[cfg_attr(feature = "clap", arg(long))]
     pub out: Option<PathBuf>,
 }
 
@@ -207,13 +218,46 @@ where
     A: Default + Serialize + DeserializeOwned,
     B: Default + Serialize + DeserializeOwned,
 {
+    let file = match text {
+        Some((name, text)) => {
+            let table: toml::Table = toml::from_str(text).with_context(|| format!("parsing {name}"))?;
+            Some((name, table))
+        }
+        None => None,
+    };
+    let mut flags = toml::Table::try_from(a)?;
+    flags.extend(toml::Table::try_from(b)?);
+    if let Some((key, x)) = non_finite(&flags) {
+        bail!("--{} must be a finite number, got {x}", key.replace('_', "-"));
+    }
+    split(file, flags)
+}
+
+/// Reads a case given as one table of keys (the Python package's keywords, a study's run) into
+/// two option structs, each key going to the struct that has it; `name` says where the keys came
+/// from in messages. Unknown keys, values of the wrong type and non-finite numbers are refused,
+/// naming the key.
+pub fn from_table<A, B>(name: &str, table: toml::Table) -> Result<(A, B)>
+where
+    A: Default + Serialize + DeserializeOwned,
+    B: Default + Serialize + DeserializeOwned,
+{
+    split(Some((name, table)), toml::Table::new())
+}
+
+/// `file`'s keys sorted into the two structs, with `flags` (already sorted by name) laid over.
+fn split<A, B>(file: Option<(&str, toml::Table)>, flags: toml::Table) -> Result<(A, B)>
+where
+    A: Default + Serialize + DeserializeOwned,
+    B: Default + Serialize + DeserializeOwned,
+{
+    let (ka, kb) = (keys::<A>(), keys::<B>());
     let (mut ta, mut tb) = (toml::Table::new(), toml::Table::new());
-    if let Some((name, text)) = text {
-        let table: toml::Table = toml::from_str(text).with_context(|| format!("parsing {name}"))?;
+    let source = file.as_ref().map_or("the flags", |(name, _)| *name).to_string();
+    if let Some((name, table)) = file {
         if let Some((key, x)) = non_finite(&table) {
             bail!("{name}: `{key}` must be a finite number, got {x}");
         }
-        let (ka, kb) = (keys::<A>(), keys::<B>());
         for (k, v) in table {
             if ka.contains(&k) {
                 ta.insert(k, v);
@@ -227,16 +271,13 @@ where
             }
         }
     }
-    for (table, flags) in [
-        (&mut ta, toml::Table::try_from(a)?),
-        (&mut tb, toml::Table::try_from(b)?),
-    ] {
-        if let Some((key, x)) = non_finite(&flags) {
-            bail!("--{} must be a finite number, got {x}", key.replace('_', "-"));
+    for (k, v) in flags {
+        if ka.contains(&k) {
+            ta.insert(k, v);
+        } else {
+            tb.insert(k, v);
         }
-        table.extend(flags);
     }
-    let source = text.map_or("the flags".to_string(), |(name, _)| name.to_string());
     let a = ta
         .try_into()
         .with_context(|| format!("{source}: a key has a value of the wrong type"))?;
@@ -431,7 +472,7 @@ impl Case {
                 unit: self.unit.unwrap_or(1.0),
                 periodic: true,
             };
-            let s = io::read(path, &options).map_err(|e| crate::surface::naming("reading", path, e))?;
+            let s = io::read(path, &options).map_err(|e| naming("reading", path, e))?;
             let expected = (
                 self.n.unwrap_or(s.grid.nx),
                 self.ny.or(self.n).unwrap_or(s.grid.ny),
@@ -514,17 +555,165 @@ impl Case {
     }
 }
 
-/// `extra` (a JSON object) with the fields of `report` added: the summary's results.
-pub fn results(extra: Value, report: &impl Serialize) -> Result<Value> {
-    let (Value::Object(mut all), Value::Object(fields)) = (extra, serde_json::to_value(report)?) else {
-        bail!("a summary's results are JSON objects");
-    };
-    all.extend(fields);
-    Ok(Value::Object(all))
+/// A surface file's error, with the file named once: the reader's own errors already name it.
+pub fn naming(verb: &str, path: &Path, e: SurfError) -> anyhow::Error {
+    match e {
+        SurfError::Io { .. } | SurfError::Parse { .. } => e.into(),
+        _ => anyhow::Error::from(e).context(format!("{verb} {}", path.display())),
+    }
 }
 
-/// Runs `f` on the worker threads, so that the solvers' parallel passes do not each pay a
-/// hand-off from the main thread (which dominates on small grids).
-pub fn on_workers<R: Send>(f: impl FnOnce() -> R + Send) -> R {
-    rayon::scope(|_| f())
+/// What a single solve prescribes (keys of the case file like the others).
+#[derive(Debug, Default, Clone, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+#[serde(default, deny_unknown_fields)]
+pub struct SolveControl {
+    /// Load control: mean pressure over the box [Pa] (negative pulls, with adhesion).
+    #[cfg_attr(feature = "clap", arg(long, allow_hyphen_values = true))]
+    pub mean_pressure: Option<f64>,
+    /// Load control: total normal force [N] (negative pulls, with adhesion).
+    #[cfg_attr(feature = "clap", arg(long, allow_hyphen_values = true))]
+    pub load: Option<f64>,
+    /// Displacement control: approach from first touch [m], positive pushes together
+    /// (negative holds the bodies apart, with adhesion).
+    #[cfg_attr(feature = "clap", arg(long, allow_hyphen_values = true))]
+    pub approach: Option<f64>,
+    /// Displacement control by the mean gap over the box [m] (periodic domains, where the
+    /// mean displacement is zero: the approach is mean(initial gap) - mean gap).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub mean_gap: Option<f64>,
+}
+
+impl SolveControl {
+    /// The library's control for `problem`: exactly one key must be given.
+    pub fn control(&self, problem: &ContactProblem) -> Result<Control> {
+        Ok(
+            match (self.mean_pressure, self.load, self.approach, self.mean_gap) {
+                (Some(p), None, None, None) => Control::MeanPressure(p),
+                (None, Some(w), None, None) => Control::Force(w),
+                (None, None, Some(d), None) => Control::Approach(d),
+                (None, None, None, Some(g)) => {
+                    if !problem.domain().periodic {
+                        bail!(
+                            "--mean-gap needs a periodic domain (on a free one the mean displacement is not zero)"
+                        );
+                    }
+                    if !(g.is_finite() && g >= 0.0) {
+                        bail!("--mean-gap must be finite and >= 0 m, got {g}");
+                    }
+                    Control::Approach(problem.initial_gap.mean().unwrap_or(0.0) - g)
+                }
+                _ => bail!(
+                    "give exactly one of --mean-pressure [Pa], --load [N], --approach [m] or --mean-gap [m]"
+                ),
+            },
+        )
+    }
+}
+
+/// The path of a sweep (keys of the case file like the others).
+#[derive(Debug, Default, Clone, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+#[serde(default, deny_unknown_fields)]
+pub struct SweepPath {
+    /// Approach at the start and the end of the cycle [m] (negative: bodies apart).
+    #[cfg_attr(feature = "clap", arg(long, allow_hyphen_values = true))]
+    pub from: Option<f64>,
+    /// Turning point of the cycle [m].
+    #[cfg_attr(feature = "clap", arg(long, allow_hyphen_values = true))]
+    pub to: Option<f64>,
+    /// Steps from --from to --to; the way back takes as many again (default 20).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub steps: Option<usize>,
+    /// Explicit approaches [m], comma-separated, solved in this order.
+    #[cfg_attr(feature = "clap", arg(long, value_delimiter = ',', allow_hyphen_values = true, conflicts_with_all = ["from", "to", "steps"]))]
+    pub approaches: Option<Vec<f64>>,
+    /// Explicit mean pressures [Pa] (load control), comma-separated, in this order.
+    #[cfg_attr(feature = "clap", arg(long, value_delimiter = ',', allow_hyphen_values = true, conflicts_with_all = ["from", "to", "steps", "approaches"]))]
+    pub mean_pressures: Option<Vec<f64>>,
+    /// Explicit central gaps [m] (> 0), comma-separated: the approach follows, which traces the
+    /// unstable middle of a sphere's S-shaped curve.
+    #[cfg_attr(feature = "clap", arg(long, value_delimiter = ',', conflicts_with_all = ["from", "to", "steps", "approaches", "mean_pressures"]))]
+    pub central_gaps: Option<Vec<f64>>,
+    /// Largest change of approach or central gap between two solves [m]: a longer step is
+    /// split into substeps that are solved (their iterations count in curve.csv) but not
+    /// written, which keeps the sweep quasi-static [default: the adhesive law's range, z0 for
+    /// Lennard-Jones; no splitting without adhesion]. Load steps are never split.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub max_step: Option<f64>,
+    /// Start from a saved state instead of apart: a sweep's output directory (its last state),
+    /// its `state/`, or one of its `states/step-NNNN` (with --save-states), on the same grid.
+    /// To continue a cycle with another law, solver, tolerance or path.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "DIR"))]
+    pub start_from: Option<PathBuf>,
+}
+
+/// The memory a step of a sweep keeps until the end [bytes]: its control, its report and its
+/// row of the summary (the report's residual history aside).
+const STEP_BYTES: f64 = (std::mem::size_of::<Control>()
+    + std::mem::size_of::<solver::SweepPoint>()
+    + std::mem::size_of::<solver::CyclePoint>()) as f64;
+
+impl SweepPath {
+    /// Fills in the default number of steps of a cycle.
+    pub fn fill_defaults(&mut self) {
+        if self.approaches.is_none() && self.mean_pressures.is_none() && self.central_gaps.is_none() {
+            self.steps = self.steps.or(Some(20));
+        }
+    }
+
+    /// The controls of the path, in order: a cycle from `from` to `to` and back, or the
+    /// explicit list given.
+    pub fn controls(&self) -> Result<Vec<Control>> {
+        let controls: Vec<Control> = match (&self.approaches, &self.mean_pressures, &self.central_gaps) {
+            (Some(a), None, None) => a.iter().map(|&v| Control::Approach(v)).collect(),
+            (None, Some(p), None) => p.iter().map(|&v| Control::MeanPressure(v)).collect(),
+            (None, None, Some(g)) => g.iter().map(|&v| Control::CentralGap(v)).collect(),
+            (None, None, None) => {
+                let (from, to) = match (self.from, self.to) {
+                    (Some(f), Some(t)) => (f, t),
+                    _ => bail!(
+                        "give the path: --from A --to B [m] (--steps N), or --approaches, --mean-pressures or \
+                         --central-gaps, or run a built-in case with --example"
+                    ),
+                };
+                let steps = self.steps.unwrap_or(20);
+                if steps == 0 {
+                    bail!("--steps must be at least 1 (steps from --from to --to; as many back)");
+                }
+                memory::check(
+                    &format!("a sweep of {} steps", 2 * steps as u64 + 1),
+                    (2.0 * steps as f64 + 1.0) * STEP_BYTES,
+                )?;
+                solver::approach_cycle(from, to, steps)
+            }
+            _ => bail!("give one path only"),
+        };
+        if controls.is_empty() {
+            bail!("the sweep path is empty");
+        }
+        if controls.iter().any(|c| {
+            let (Control::Approach(v)
+            | Control::MeanPressure(v)
+            | Control::Force(v)
+            | Control::CentralGap(v)) = *c;
+            !v.is_finite()
+        }) {
+            bail!("the sweep path has a non-finite value");
+        }
+        Ok(controls)
+    }
+
+    /// The largest step between two solves [m] on `problem` (`None`: no splitting), checked
+    /// against `controls`.
+    pub fn max_step(&self, problem: &ContactProblem, controls: &[Control]) -> Result<Option<f64>> {
+        let max_step = self.max_step.or(problem.adhesive().then(|| problem.law.range()));
+        if let Some(h) = max_step
+            && !(h.is_finite() && h > 0.0)
+        {
+            bail!("--max-step must be a positive length [m], got {h}");
+        }
+        solver::count_substeps(controls, max_step)?;
+        Ok(max_step)
+    }
 }
