@@ -57,7 +57,10 @@ pub fn solve(
         options,
         &mut state,
         warm.is_some(),
-        &mut |i, r| observer.iteration(0, i, r),
+        &mut |i, r| {
+            observer.iteration(0, i, r);
+            !observer.interrupted()
+        },
     )?;
     Ok((state, report))
 }
@@ -133,7 +136,7 @@ pub(crate) fn solve_in(
     options: &ContactOptions,
     state: &mut ContactState,
     warm: bool,
-    observer: &mut dyn FnMut(usize, f64),
+    observer: &mut dyn FnMut(usize, f64) -> bool,
 ) -> Result<ContactReport> {
     let op = scratch.op;
     let started = Instant::now();
@@ -315,7 +318,10 @@ pub(crate) fn solve_in(
             continue;
         }
         history.push(residual);
-        observer(iterations, residual);
+        if !observer(iterations, residual) {
+            termination = Termination::Interrupted;
+            break;
+        }
         if residual < options.tolerance {
             termination = Termination::Converged;
             break;

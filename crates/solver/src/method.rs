@@ -218,6 +218,12 @@ pub trait Observer {
     /// the method's iteration count within the solve, and its residual.
     fn iteration(&mut self, _step: usize, _iteration: usize, _residual: f64) {}
 
+    /// Asked after every iteration: `true` stops the solve where it stands, reported as
+    /// [`crate::Termination::Interrupted`], and a sweep after that step (a user's Ctrl-C).
+    fn interrupted(&mut self) -> bool {
+        false
+    }
+
     /// After every step of a sweep, with its point and state; `false` stops the sweep.
     fn step(&mut self, _index: usize, _point: &SweepPoint, _state: &AdhesiveState) -> bool {
         true

@@ -88,6 +88,10 @@ impl Observer for Tracker<'_> {
         self.inner.iteration(step, iteration, residual);
     }
 
+    fn interrupted(&mut self) -> bool {
+        self.inner.interrupted()
+    }
+
     fn step(&mut self, k: usize, point: &SweepPoint, state: &AdhesiveState) -> bool {
         let go_on = self.inner.step(k, point, state);
         let load = point.report.load;

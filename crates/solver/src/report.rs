@@ -15,6 +15,8 @@ pub enum Termination {
     /// equilibrium in contact exists (the surfaces have pulled off). The fields are the last
     /// iterate.
     PulledOff,
+    /// The observer asked the solve to stop (a user's Ctrl-C): the fields are the last iterate.
+    Interrupted,
 }
 
 impl std::fmt::Display for Termination {
@@ -25,6 +27,7 @@ impl std::fmt::Display for Termination {
             Termination::MaxIterations => "stopped at the iteration limit (not converged)",
             Termination::NoContact => "no contact (nothing to solve)",
             Termination::PulledOff => "pulled off (no equilibrium in contact at this load)",
+            Termination::Interrupted => "interrupted (not converged)",
         })
     }
 }

@@ -7,6 +7,7 @@ use crate::error::{Result, SolverError, invalid};
 use crate::method::{Observer, Settings};
 use crate::options::Control;
 use crate::problem::ContactProblem;
+use crate::report::Termination;
 
 /// The direction of a sweep step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -171,7 +172,8 @@ impl ContactProblem {
                     };
                     let used = if retries == 0 { settings } else { &limited };
                     let (next, report) = crate::adhesive::solve(problem, sub, used, from, &mut |i, r| {
-                        observer.iteration(k, i, r)
+                        observer.iteration(k, i, r);
+                        !observer.interrupted()
                     })?;
                     budget = budget.saturating_sub(report.iterations.count());
                     match &mut spent {
@@ -192,7 +194,8 @@ impl ContactProblem {
                 let (next, report) = solve(control, &current)?;
                 // Halve the substeps of a step that did not converge, from the state before it.
                 let length = previous.and_then(|p| retried_length(p, control)).unwrap_or(0.0);
-                if report.converged() || retries == RETRIES || length <= 0.0 {
+                let interrupted = report.termination == Termination::Interrupted;
+                if report.converged() || interrupted || retries == RETRIES || length <= 0.0 {
                     break (next, report, between, unconverged_substeps);
                 }
                 retries += 1;
@@ -211,7 +214,8 @@ impl ContactProblem {
                 unconverged_substeps,
                 retries,
             };
-            let go_on = observer.step(k, &point, &next);
+            let go_on =
+                observer.step(k, &point, &next) && point.report.termination != Termination::Interrupted;
             points.push(point);
             state = Some(next);
             previous = Some(control);

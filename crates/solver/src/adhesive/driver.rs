@@ -13,7 +13,7 @@ const PROGRESS: f64 = 0.9;
 pub(super) struct Driver<'a> {
     tolerance: f64,
     max_iterations: usize,
-    observer: &'a mut dyn FnMut(usize, f64),
+    observer: &'a mut dyn FnMut(usize, f64) -> bool,
     history: Vec<f64>,
     best: f64,
     improved_at: usize,
@@ -24,7 +24,11 @@ pub(super) struct Driver<'a> {
 
 impl<'a> Driver<'a> {
     /// A solve that started at `started`, under `settings`' tolerance and iteration limit.
-    pub fn new(settings: &Settings, observer: &'a mut dyn FnMut(usize, f64), started: Instant) -> Self {
+    pub fn new(
+        settings: &Settings,
+        observer: &'a mut dyn FnMut(usize, f64) -> bool,
+        started: Instant,
+    ) -> Self {
         Driver {
             tolerance: settings.tolerance,
             max_iterations: settings.max_iterations,
@@ -38,11 +42,14 @@ impl<'a> Driver<'a> {
     }
 
     /// Records iteration `k`'s residual and shows it to the observer; whether to stop: the
-    /// residual is below the tolerance and the method `accepts` the iterate (converged), or
-    /// `k` is the iteration limit.
+    /// residual is below the tolerance and the method `accepts` the iterate (converged), the
+    /// observer asks to stop (interrupted), or `k` is the iteration limit.
     pub fn stop(&mut self, k: usize, residual: f64, accepts: bool) -> bool {
         self.history.push(residual);
-        (self.observer)(k, residual);
+        if !(self.observer)(k, residual) {
+            self.termination = Termination::Interrupted;
+            return true;
+        }
         if residual < self.tolerance && accepts {
             self.termination = Termination::Converged;
             return true;

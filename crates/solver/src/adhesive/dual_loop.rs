@@ -44,7 +44,7 @@ impl AdhesiveMethod for DualLoop {
     fn solve(
         &self,
         job: &Job,
-        observer: &mut dyn FnMut(usize, f64),
+        observer: &mut dyn FnMut(usize, f64) -> bool,
     ) -> Result<(AdhesiveState, AdhesiveReport)> {
         solve(job, self.accelerated, observer)
     }
@@ -53,7 +53,7 @@ impl AdhesiveMethod for DualLoop {
 fn solve(
     job: &Job,
     accelerated: bool,
-    observer: &mut dyn FnMut(usize, f64),
+    observer: &mut dyn FnMut(usize, f64) -> bool,
 ) -> Result<(AdhesiveState, AdhesiveReport)> {
     let (op, law, g0, settings) = (job.op, job.law, job.g0, job.settings);
     let (control, start) = (job.control, job.start);
@@ -149,7 +149,7 @@ fn solve(
             &inner_options,
             &mut contact,
             warm,
-            &mut |_, _| {},
+            &mut |_, _| true,
         )?;
         warm = true;
         calls += report.operator_calls;

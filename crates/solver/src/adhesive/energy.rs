@@ -42,7 +42,7 @@ impl AdhesiveMethod for EnergyDescent {
     fn solve(
         &self,
         job: &Job,
-        observer: &mut dyn FnMut(usize, f64),
+        observer: &mut dyn FnMut(usize, f64) -> bool,
     ) -> Result<(AdhesiveState, AdhesiveReport)> {
         solve(job, potential(job)?, observer)
     }
@@ -70,7 +70,7 @@ fn potential<'a>(job: &Job<'a>) -> Result<Energy<'a>> {
 pub(super) fn solve<'a>(
     job: &Job<'a>,
     potential: Energy<'a>,
-    observer: &mut dyn FnMut(usize, f64),
+    observer: &mut dyn FnMut(usize, f64) -> bool,
 ) -> Result<(AdhesiveState, AdhesiveReport)> {
     let started = Instant::now();
     let Job { law, settings, .. } = *job;

@@ -74,7 +74,7 @@ impl AdhesiveMethod for Flow {
     fn solve(
         &self,
         job: &Job,
-        observer: &mut dyn FnMut(usize, f64),
+        observer: &mut dyn FnMut(usize, f64) -> bool,
     ) -> Result<(AdhesiveState, AdhesiveReport)> {
         solve(job, energy(job)?, observer)
     }
@@ -97,7 +97,7 @@ fn energy<'a>(job: &Job<'a>) -> Result<Energy<'a>> {
 fn solve<'a>(
     job: &Job<'a>,
     energy: Energy<'a>,
-    observer: &mut dyn FnMut(usize, f64),
+    observer: &mut dyn FnMut(usize, f64) -> bool,
 ) -> Result<(AdhesiveState, AdhesiveReport)> {
     let started = Instant::now();
     let Job { law, settings, .. } = *job;

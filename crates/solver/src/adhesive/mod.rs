@@ -276,7 +276,7 @@ pub(crate) trait AdhesiveMethod {
     fn solve(
         &self,
         job: &Job,
-        observer: &mut dyn FnMut(usize, f64),
+        observer: &mut dyn FnMut(usize, f64) -> bool,
     ) -> Result<(AdhesiveState, AdhesiveReport)>;
 }
 
@@ -296,7 +296,7 @@ pub(crate) fn solve(
     control: Control,
     settings: &Settings,
     start: Start,
-    observer: &mut dyn FnMut(usize, f64),
+    observer: &mut dyn FnMut(usize, f64) -> bool,
 ) -> Result<(AdhesiveState, AdhesiveReport)> {
     let op = problem.operator.as_ref();
     let shape = op.domain().shape();

@@ -286,14 +286,14 @@ impl AdhesiveMethod for Newton {
     fn solve(
         &self,
         job: &Job,
-        observer: &mut dyn FnMut(usize, f64),
+        observer: &mut dyn FnMut(usize, f64) -> bool,
     ) -> Result<(AdhesiveState, AdhesiveReport)> {
         solve(job, observer)
     }
 }
 
 /// Solves under approach control (periodic or free) with any law; see the module docs.
-fn solve(job: &Job, observer: &mut dyn FnMut(usize, f64)) -> Result<(AdhesiveState, AdhesiveReport)> {
+fn solve(job: &Job, observer: &mut dyn FnMut(usize, f64) -> bool) -> Result<(AdhesiveState, AdhesiveReport)> {
     let started = Instant::now();
     // A law without a local energy but with a field energy (surface-energy) or a flat one
     // (line, surface) can have its state predicted by descending that energy when Newton
@@ -346,7 +346,7 @@ fn solve(job: &Job, observer: &mut dyn FnMut(usize, f64)) -> Result<(AdhesiveSta
 fn iterate(
     job: &Job,
     give_up: bool,
-    observer: &mut dyn FnMut(usize, f64),
+    observer: &mut dyn FnMut(usize, f64) -> bool,
 ) -> Result<(AdhesiveState, AdhesiveReport)> {
     let started = Instant::now();
     let domain = *job.op.domain();
