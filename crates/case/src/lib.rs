@@ -21,8 +21,8 @@ use solver::geometry::SphereProfile;
 use solver::{ContactOptions, ContactProblem, Method, Settings, Shape};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use surfgen::io::{self, ReadOptions};
-use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfError, SurfaceSpec};
+use surfgen::io::{self, ReadOptions, Surface};
+use surfgen::{Amplitudes, Anisotropy, Generated, Grid, Normalization, Psd, SurfError, SurfaceSpec};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
@@ -439,6 +439,12 @@ impl Case {
 
     /// Builds the problem; call [`Case::fill_defaults`] first.
     pub fn build(&self) -> Result<Built> {
+        self.build_on(None)
+    }
+
+    /// Builds the problem on `roughness` (a surface in memory) instead of the `surface` file;
+    /// call [`Case::fill_defaults`] first.
+    pub fn build_on(&self, roughness: Option<Surface>) -> Result<Built> {
         let e_star = self.modulus.context(
             "the composite modulus is required: --modulus E* [Pa] (or modulus = ... in the case file)",
         )?;
@@ -465,14 +471,35 @@ impl Case {
             .periodic(periodic);
         let mut heights = None;
         let size;
-        if let Some(path) = &self.surface {
-            let options = ReadOptions {
-                length_x: self.length,
-                length_y: self.length_y,
-                unit: self.unit.unwrap_or(1.0),
-                periodic: true,
-            };
-            let s = io::read(path, &options).map_err(|e| naming("reading", path, e))?;
+        let roughness = match (roughness, &self.surface) {
+            (Some(_), Some(path)) => bail!(
+                "give the roughness once: a surface in memory or the file {}",
+                path.display()
+            ),
+            (Some(s), None) => {
+                for (key, given) in [
+                    ("length", self.length.is_some()),
+                    ("length_y", self.length_y.is_some()),
+                    ("unit", self.unit.is_some()),
+                ] {
+                    if given {
+                        bail!("`{key}` applies to a surface file; a surface in memory carries its own size");
+                    }
+                }
+                Some(s)
+            }
+            (None, Some(path)) => {
+                let options = ReadOptions {
+                    length_x: self.length,
+                    length_y: self.length_y,
+                    unit: self.unit.unwrap_or(1.0),
+                    periodic: true,
+                };
+                Some(io::read(path, &options).map_err(|e| naming("reading", path, e))?)
+            }
+            (None, None) => None,
+        };
+        if let Some(s) = roughness {
             let expected = (
                 self.n.unwrap_or(s.grid.nx),
                 self.ny.or(self.n).unwrap_or(s.grid.ny),
@@ -715,5 +742,166 @@ impl SweepPath {
         }
         solver::count_substeps(controls, max_step)?;
         Ok(max_step)
+    }
+}
+
+/// A generated self-affine surface by its keys (`roughcontact generate`'s flags, the Python
+/// package's `generate` keywords).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+#[serde(default, deny_unknown_fields)]
+pub struct Generation {
+    /// Grid points per side (square grid); overridden by --nx/--ny.
+    #[cfg_attr(feature = "clap", arg(long, default_value_t = 1024))]
+    pub n: usize,
+    /// Grid points along x.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub nx: Option<usize>,
+    /// Grid points along y.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub ny: Option<usize>,
+    /// Side of the square periodic box [m]; overridden by --length-x/--length-y.
+    #[cfg_attr(feature = "clap", arg(long, default_value_t = 1e-4))]
+    pub length: f64,
+    /// Box size along x [m].
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub length_x: Option<f64>,
+    /// Box size along y [m].
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub length_y: Option<f64>,
+    /// Hurst exponent H in (0, 1) (fractal dimension 3 - H).
+    #[cfg_attr(feature = "clap", arg(long, default_value_t = 0.8))]
+    pub hurst: f64,
+    /// Roll-off wavelength lambda_r [m]: the spectrum is flat at longer wavelengths.
+    #[cfg_attr(feature = "clap", arg(long, default_value_t = 2e-5))]
+    pub rolloff: f64,
+    /// Short-wavelength cut-off lambda_s [m] (default: 4 grid spacings, the shortest that
+    /// finite differences resolve to a few per cent).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub cutoff: Option<f64>,
+    /// Long-wavelength cut-off lambda_L [m]: no roughness at longer wavelengths.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub long_cutoff: Option<f64>,
+    /// Scale to this RMS height Rq [m].
+    #[cfg_attr(feature = "clap", arg(long, group = "scale"))]
+    pub rms_height: Option<f64>,
+    /// Scale to this RMS gradient sqrt(<|grad h|^2>) [-] (the default, 1, when no scale is given).
+    #[cfg_attr(feature = "clap", arg(long, group = "scale"))]
+    pub rms_gradient: Option<f64>,
+    /// Scale to this peak-to-valley height [m].
+    #[cfg_attr(feature = "clap", arg(long, group = "scale"))]
+    pub peak_to_valley: Option<f64>,
+    /// Scale to this PSD plateau C0 [m^4] (Persson's convention: <h^2> = integral d^2q C(q)).
+    #[cfg_attr(feature = "clap", arg(long, group = "scale"))]
+    pub prefactor: Option<f64>,
+    /// Random (Rayleigh) amplitudes, a Gaussian random field; default: exact amplitudes, random phases.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub rayleigh: bool,
+    /// Anisotropy: correlation lengths along --angle are this many times those across it (1 = isotropic).
+    #[cfg_attr(feature = "clap", arg(long, default_value_t = 1.0))]
+    pub anisotropy: f64,
+    /// Direction of the longer correlation, from the x axis [degrees].
+    #[cfg_attr(feature = "clap", arg(long, default_value_t = 0.0))]
+    pub angle: f64,
+    /// Random seed: the same seed gives the same surface, bit for bit.
+    #[cfg_attr(feature = "clap", arg(long, default_value_t = 0))]
+    pub seed: u64,
+}
+
+impl Default for Generation {
+    /// The command line's defaults.
+    fn default() -> Self {
+        Generation {
+            n: 1024,
+            nx: None,
+            ny: None,
+            length: 1e-4,
+            length_x: None,
+            length_y: None,
+            hurst: 0.8,
+            rolloff: 2e-5,
+            cutoff: None,
+            long_cutoff: None,
+            rms_height: None,
+            rms_gradient: None,
+            peak_to_valley: None,
+            prefactor: None,
+            rayleigh: false,
+            anisotropy: 1.0,
+            angle: 0.0,
+            seed: 0,
+        }
+    }
+}
+
+impl Generation {
+    /// The generator's specification: at most one scale (RMS gradient 1 when none is given).
+    pub fn spec(&self) -> Result<SurfaceSpec> {
+        let (nx, ny) = (self.nx.unwrap_or(self.n), self.ny.unwrap_or(self.n));
+        let grid = Grid::new(
+            nx,
+            ny,
+            self.length_x.unwrap_or(self.length),
+            self.length_y.unwrap_or(self.length),
+        )?;
+        let scales = [
+            self.rms_height,
+            self.rms_gradient,
+            self.peak_to_valley,
+            self.prefactor,
+        ];
+        let normalization = match scales {
+            [None, None, None, None] => Normalization::RmsGradient(1.0),
+            [Some(v), None, None, None] => Normalization::RmsHeight(v),
+            [None, Some(v), None, None] => Normalization::RmsGradient(v),
+            [None, None, Some(v), None] => Normalization::PeakToValley(v),
+            [None, None, None, Some(v)] => Normalization::Prefactor(v),
+            _ => bail!(
+                "give one scale: rms_height [m], rms_gradient [-], peak_to_valley [m] or prefactor [m^4]"
+            ),
+        };
+        Ok(SurfaceSpec {
+            grid,
+            psd: Psd {
+                hurst: self.hurst,
+                rolloff_wavelength: self.rolloff,
+                cutoff_wavelength: self.cutoff.unwrap_or(4.0 * grid.dx().max(grid.dy())),
+                long_cutoff_wavelength: self.long_cutoff,
+                anisotropy: Anisotropy {
+                    ratio: self.anisotropy,
+                    angle: self.angle.to_radians(),
+                },
+            },
+            normalization,
+            amplitudes: if self.rayleigh {
+                Amplitudes::Rayleigh
+            } else {
+                Amplitudes::Exact
+            },
+            seed: self.seed,
+        })
+    }
+
+    /// The surface, with the specification it was made from (after checking that the machine
+    /// can hold it).
+    pub fn generate(&self) -> Result<(SurfaceSpec, Generated)> {
+        let spec = self.spec()?;
+        let (nx, ny) = (spec.grid.nx, spec.grid.ny);
+        memory::check(
+            &format!("a {nx} x {ny} surface"),
+            surfgen::generate::memory_estimate(nx, ny),
+        )?;
+        let cutoff = spec.psd.cutoff_wavelength;
+        let generated = surfgen::generate(&spec).map_err(|e| match (self.cutoff, &e) {
+            (None, SurfError::InvalidParameter { name, .. }) if *name == "cutoff_wavelength" => {
+                anyhow::anyhow!(
+                    "a {nx} x {ny} grid is too coarse for the default cut-off wavelength (4 grid spacings, \
+                 {cutoff:e} m): no wavevector of the grid is in the spectrum's band; give more points (--n) \
+                 or --cutoff and --rolloff [m]"
+                )
+            }
+            _ => e.into(),
+        })?;
+        Ok((spec, generated))
     }
 }

@@ -2,73 +2,18 @@
 
 use crate::plot::{self, Chart, Curve, Mark, PALETTE};
 use anyhow::{Context, Result, bail};
+use case::Generation;
 use clap::Args;
 use serde::Serialize;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use surfgen::io::{self, ReadOptions};
-use surfgen::{
-    Amplitudes, Analysis, Anisotropy, Grid, Metadata, Normalization, Psd, Statistics, SurfError, Surface,
-    SurfaceSpec,
-};
+use surfgen::{Analysis, Metadata, Statistics, Surface};
 
 #[derive(Args, Debug)]
 pub struct GenerateArgs {
-    /// Grid points per side (square grid); overridden by --nx/--ny.
-    #[arg(long, default_value_t = 1024)]
-    n: usize,
-    /// Grid points along x.
-    #[arg(long)]
-    nx: Option<usize>,
-    /// Grid points along y.
-    #[arg(long)]
-    ny: Option<usize>,
-    /// Side of the square periodic box [m]; overridden by --length-x/--length-y.
-    #[arg(long, default_value_t = 1e-4)]
-    length: f64,
-    /// Box size along x [m].
-    #[arg(long)]
-    length_x: Option<f64>,
-    /// Box size along y [m].
-    #[arg(long)]
-    length_y: Option<f64>,
-    /// Hurst exponent H in (0, 1) (fractal dimension 3 - H).
-    #[arg(long, default_value_t = 0.8)]
-    hurst: f64,
-    /// Roll-off wavelength lambda_r [m]: the spectrum is flat at longer wavelengths.
-    #[arg(long, default_value_t = 2e-5)]
-    rolloff: f64,
-    /// Short-wavelength cut-off lambda_s [m] (default: 4 grid spacings, the shortest that
-    /// finite differences resolve to a few per cent).
-    #[arg(long)]
-    cutoff: Option<f64>,
-    /// Long-wavelength cut-off lambda_L [m]: no roughness at longer wavelengths.
-    #[arg(long)]
-    long_cutoff: Option<f64>,
-    /// Scale to this RMS height Rq [m].
-    #[arg(long, group = "scale")]
-    rms_height: Option<f64>,
-    /// Scale to this RMS gradient sqrt(<|grad h|^2>) [-] (the default, 1, when no scale is given).
-    #[arg(long, group = "scale")]
-    rms_gradient: Option<f64>,
-    /// Scale to this peak-to-valley height [m].
-    #[arg(long, group = "scale")]
-    peak_to_valley: Option<f64>,
-    /// Scale to this PSD plateau C0 [m^4] (Persson's convention: <h^2> = integral d^2q C(q)).
-    #[arg(long, group = "scale")]
-    prefactor: Option<f64>,
-    /// Random (Rayleigh) amplitudes, a Gaussian random field; default: exact amplitudes, random phases.
-    #[arg(long)]
-    rayleigh: bool,
-    /// Anisotropy: correlation lengths along --angle are this many times those across it (1 = isotropic).
-    #[arg(long, default_value_t = 1.0)]
-    anisotropy: f64,
-    /// Direction of the longer correlation, from the x axis [degrees].
-    #[arg(long, default_value_t = 0.0)]
-    angle: f64,
-    /// Random seed: the same seed gives the same surface, bit for bit.
-    #[arg(long, default_value_t = 0)]
-    seed: u64,
+    #[command(flatten)]
+    surface: Generation,
     /// Output surface file: .npy (with .json sidecar), .txt, .xyz or .gsf.
     #[arg(short, long, default_value = "surface.npy")]
     output: PathBuf,
@@ -228,53 +173,8 @@ fn draw_height_map(path: &Path, surface: &Surface, title: &str) -> Result<()> {
 }
 
 pub fn generate(a: GenerateArgs) -> Result<()> {
-    let (nx, ny) = (a.nx.unwrap_or(a.n), a.ny.unwrap_or(a.n));
-    let grid = Grid::new(
-        nx,
-        ny,
-        a.length_x.unwrap_or(a.length),
-        a.length_y.unwrap_or(a.length),
-    )?;
-    let cutoff = a.cutoff.unwrap_or(4.0 * grid.dx().max(grid.dy()));
-    let normalization = match (a.rms_height, a.rms_gradient, a.peak_to_valley, a.prefactor) {
-        (Some(v), ..) => Normalization::RmsHeight(v),
-        (_, Some(v), ..) => Normalization::RmsGradient(v),
-        (_, _, Some(v), _) => Normalization::PeakToValley(v),
-        (.., Some(v)) => Normalization::Prefactor(v),
-        _ => Normalization::RmsGradient(1.0),
-    };
-    let spec = SurfaceSpec {
-        grid,
-        psd: Psd {
-            hurst: a.hurst,
-            rolloff_wavelength: a.rolloff,
-            cutoff_wavelength: cutoff,
-            long_cutoff_wavelength: a.long_cutoff,
-            anisotropy: Anisotropy {
-                ratio: a.anisotropy,
-                angle: a.angle.to_radians(),
-            },
-        },
-        normalization,
-        amplitudes: if a.rayleigh {
-            Amplitudes::Rayleigh
-        } else {
-            Amplitudes::Exact
-        },
-        seed: a.seed,
-    };
-    case::memory::check(
-        &format!("a {nx} x {ny} surface"),
-        surfgen::generate::memory_estimate(nx, ny),
-    )?;
-    let generated = surfgen::generate(&spec).map_err(|e| match (a.cutoff, &e) {
-        (None, SurfError::InvalidParameter { name, .. }) if *name == "cutoff_wavelength" => anyhow::anyhow!(
-            "a {nx} x {ny} grid is too coarse for the default cut-off wavelength (4 grid spacings, \
-             {cutoff:e} m): no wavevector of the grid is in the spectrum's band; give more points (--n) \
-             or --cutoff and --rolloff [m]"
-        ),
-        _ => e.into(),
-    })?;
+    let (spec, generated) = a.surface.generate()?;
+    let (grid, nx, ny) = (spec.grid, spec.grid.nx, spec.grid.ny);
     for w in &generated.warnings {
         eprintln!("warning: {w}");
     }
@@ -292,7 +192,10 @@ pub fn generate(a: GenerateArgs) -> Result<()> {
                 surfgen::stats::statistics_with(surface.heights.view(), &generated.analysis, true, None);
             if !a.no_png {
                 let png = a.output.with_extension("png");
-                let title = format!("H = {}, seed {}, {} x {}", a.hurst, a.seed, nx, ny);
+                let title = format!(
+                    "H = {}, seed {}, {} x {}",
+                    a.surface.hurst, a.surface.seed, nx, ny
+                );
                 draw_height_map(&png, &surface, &title)?;
             }
             Ok(statistics)
