@@ -34,12 +34,12 @@ fn py_error(e: anyhow::Error) -> PyErr {
     }
     let message = keywords(&message);
     for cause in e.chain() {
-        let io = cause
-            .downcast_ref::<std::io::Error>()
-            .or_else(|| match cause.downcast_ref::<surfgen::SurfError>() {
+        let io = cause.downcast_ref::<std::io::Error>().or_else(|| {
+            match cause.downcast_ref::<surfgen::SurfError>() {
                 Some(surfgen::SurfError::Io { source, .. }) => Some(source),
                 _ => None,
-            });
+            }
+        });
         if let Some(io) = io {
             return match io.kind() {
                 std::io::ErrorKind::NotFound => PyFileNotFoundError::new_err(message),
@@ -141,12 +141,20 @@ fn table(keys: &Bound<'_, PyDict>) -> PyResult<toml::Table> {
 }
 
 /// A surface from a numpy array (any layout: read through its strides) and its sides [m].
-fn surface(heights: PyReadonlyArray2<'_, f64>, length_x: f64, length_y: f64, periodic: bool) -> PyResult<Surface> {
+fn surface(
+    heights: PyReadonlyArray2<'_, f64>,
+    length_x: f64,
+    length_y: f64,
+    periodic: bool,
+) -> PyResult<Surface> {
     let h = heights.as_array().to_owned();
     let (ny, nx) = h.dim();
     let grid = Grid::new(nx, ny, length_x, length_y).py()?;
     Surface::new(h, grid, periodic).py()
 }
+
+/// A result's named fields, for a dict on the Python side.
+type Fields<'py> = Vec<(String, Bound<'py, PyArray2<f64>>)>;
 
 fn array<'py>(py: Python<'py>, a: Array2<f64>) -> Bound<'py, PyArray2<f64>> {
     a.into_pyarray(py)
@@ -278,7 +286,7 @@ fn solve<'py>(
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
     cancel: &Cancel,
-) -> PyResult<(String, Vec<(String, Bound<'py, PyArray2<f64>>)>)> {
+) -> PyResult<(String, Fields<'py>)> {
     let (case, control, built): (Case, SolveControl, _) = built("the keywords", keys, roughness)?;
     let problem = &built.problem;
     let control = control.control(problem).py()?;
@@ -306,7 +314,8 @@ fn solve<'py>(
                 Ok((summary, adhesive_fields(state)))
             } else {
                 let options = case.contact_options();
-                let (state, report) = problem.solve_without_adhesion(control, &options, None, &mut observer)?;
+                let (state, report) =
+                    problem.solve_without_adhesion(control, &options, None, &mut observer)?;
                 let summary = serde_json::json!({
                     "law": "none",
                     "converged": report.converged(),
@@ -365,7 +374,7 @@ fn sweep<'py>(
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
     cancel: &Cancel,
-) -> PyResult<(String, Vec<(String, Bound<'py, PyArray2<f64>>)>)> {
+) -> PyResult<(String, Fields<'py>)> {
     let (case, mut path, built): (Case, SweepPath, _) = built("the keywords", keys, roughness)?;
     if path.start_from.is_some() {
         return Err(PyValueError::new_err(
@@ -452,7 +461,10 @@ struct NoKeys {}
 /// Generates a surface from its keys: heights [m] (ny, nx), sides [m], the specification and
 /// the generator's warnings as JSON.
 #[pyfunction]
-fn generate<'py>(py: Python<'py>, keys: &Bound<'py, PyDict>) -> PyResult<(Bound<'py, PyArray2<f64>>, f64, f64, String)> {
+fn generate<'py>(
+    py: Python<'py>,
+    keys: &Bound<'py, PyDict>,
+) -> PyResult<(Bound<'py, PyArray2<f64>>, f64, f64, String)> {
     let (generation, NoKeys {}): (Generation, _) = case::from_table("the keywords", table(keys)?).py()?;
     let (spec, generated) = py.detach(|| generation.generate()).py()?;
     let info = serde_json::json!({

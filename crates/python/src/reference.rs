@@ -12,7 +12,9 @@ fn positive(name: &str, v: f64) -> PyResult<f64> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
-        Err(PyValueError::new_err(format!("{name} must be finite and > 0, got {v}")))
+        Err(PyValueError::new_err(format!(
+            "{name} must be finite and > 0, got {v}"
+        )))
     }
 }
 
@@ -37,12 +39,23 @@ fn hertz(approach: Vec<f64>, radius: f64, modulus: f64) -> PyResult<(Vec<f64>, V
     Ok((
         map(&approach, |d| theory::hertz::load_of_approach(d, r, e)),
         a.clone(),
-        map(&a, |a| if a > 0.0 { theory::hertz::pressure(0.0, a, r, e) } else { 0.0 }),
+        map(&a, |a| {
+            if a > 0.0 {
+                theory::hertz::pressure(0.0, a, r, e)
+            } else {
+                0.0
+            }
+        }),
     ))
 }
 
 #[pyfunction]
-fn jkr(contact_radius: Vec<f64>, radius: f64, work_of_adhesion: f64, modulus: f64) -> PyResult<(Vec<f64>, Vec<f64>)> {
+fn jkr(
+    contact_radius: Vec<f64>,
+    radius: f64,
+    work_of_adhesion: f64,
+    modulus: f64,
+) -> PyResult<(Vec<f64>, Vec<f64>)> {
     let (r, w, e) = (
         positive("radius", radius)?,
         positive("work_of_adhesion", work_of_adhesion)?,
@@ -56,7 +69,10 @@ fn jkr(contact_radius: Vec<f64>, radius: f64, work_of_adhesion: f64, modulus: f6
 
 #[pyfunction]
 fn jkr_pull_off(radius: f64, work_of_adhesion: f64) -> PyResult<(f64, f64)> {
-    let (r, w) = (positive("radius", radius)?, positive("work_of_adhesion", work_of_adhesion)?);
+    let (r, w) = (
+        positive("radius", radius)?,
+        positive("work_of_adhesion", work_of_adhesion)?,
+    );
     Ok((
         theory::jkr_dmt::jkr_pull_off_load_control(r, w),
         theory::jkr_dmt::jkr_pull_off_displacement_control(r, w),
@@ -64,7 +80,12 @@ fn jkr_pull_off(radius: f64, work_of_adhesion: f64) -> PyResult<(f64, f64)> {
 }
 
 #[pyfunction]
-fn dmt(contact_radius: Vec<f64>, radius: f64, work_of_adhesion: f64, modulus: f64) -> PyResult<(Vec<f64>, f64)> {
+fn dmt(
+    contact_radius: Vec<f64>,
+    radius: f64,
+    work_of_adhesion: f64,
+    modulus: f64,
+) -> PyResult<(Vec<f64>, f64)> {
     let (r, w, e) = (
         positive("radius", radius)?,
         positive("work_of_adhesion", work_of_adhesion)?,
@@ -79,10 +100,17 @@ fn dmt(contact_radius: Vec<f64>, radius: f64, work_of_adhesion: f64, modulus: f6
 /// Maugis-Dugdale at Tabor parameter `tabor` (lambda = 1.157 mu): contact radius A, load P,
 /// approach D in Maugis' units, and the pull-offs.
 #[pyfunction]
-fn maugis_dugdale<'py>(py: Python<'py>, tabor: f64, points: usize, max_radius: f64) -> PyResult<Bound<'py, PyDict>> {
+fn maugis_dugdale<'py>(
+    py: Python<'py>,
+    tabor: f64,
+    points: usize,
+    max_radius: f64,
+) -> PyResult<Bound<'py, PyDict>> {
     let model = MaugisDugdale::new(theory::maugis_parameter_of_tabor(positive("tabor", tabor)?));
     if points < 2 {
-        return Err(PyValueError::new_err(format!("points must be at least 2, got {points}")));
+        return Err(PyValueError::new_err(format!(
+            "points must be at least 2, got {points}"
+        )));
     }
     let curve = model.curve_to_radius(points, positive("max_radius", max_radius)?);
     let d = PyDict::new(py);
@@ -91,7 +119,10 @@ fn maugis_dugdale<'py>(py: Python<'py>, tabor: f64, points: usize, max_radius: f
     d.set_item("load", curve.iter().map(|p| p.load).collect::<Vec<_>>())?;
     d.set_item("approach", curve.iter().map(|p| p.approach).collect::<Vec<_>>())?;
     d.set_item("pull_off_load_control", model.pull_off_load_control())?;
-    d.set_item("pull_off_displacement_control", model.pull_off_displacement_control())?;
+    d.set_item(
+        "pull_off_displacement_control",
+        model.pull_off_displacement_control(),
+    )?;
     Ok(d)
 }
 
@@ -106,7 +137,8 @@ fn greenwood<'py>(
     ring_width: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     positive("tabor", tabor)?;
-    if !(start > 1.0 && resolution > 0.0 && ring_width > 0.0 && ring_width < 1.0 && max_approach.is_finite()) {
+    if !(start > 1.0 && resolution > 0.0 && ring_width > 0.0 && ring_width < 1.0 && max_approach.is_finite())
+    {
         return Err(PyValueError::new_err(
             "need start > 1, resolution > 0, 0 < ring_width < 1 and a finite max_approach",
         ));
@@ -162,7 +194,12 @@ fn johnson_parameter(
 }
 
 #[pyfunction]
-fn ciavarella(rms_height: f64, modulus: f64, longest_wavelength: f64, work_of_adhesion: f64) -> PyResult<(f64, bool)> {
+fn ciavarella(
+    rms_height: f64,
+    modulus: f64,
+    longest_wavelength: f64,
+    work_of_adhesion: f64,
+) -> PyResult<(f64, bool)> {
     let args = (
         positive("rms_height", rms_height)?,
         positive("modulus", modulus)?,
@@ -197,7 +234,10 @@ fn wave<'py>(
         e_star: positive("modulus", modulus)?,
         work_of_adhesion,
     };
-    if let Some(a) = half_width.iter().find(|a| !(**a >= 0.0 && **a < w.wavelength / 2.0)) {
+    if let Some(a) = half_width
+        .iter()
+        .find(|a| !(**a >= 0.0 && **a < w.wavelength / 2.0))
+    {
         return Err(PyValueError::new_err(format!(
             "a half-width must lie in [0, wavelength/2), got {a}"
         )));

@@ -1,0 +1,182 @@
+"""Errors with the library's messages, surfaces, the progress callable, Ctrl-C, threads."""
+
+import _thread
+import concurrent.futures
+import threading
+import time
+import warnings
+
+import numpy as np
+import pytest
+
+import roughcontact as rc
+from roughcontact import theory
+
+# Tabor parameter 1.36; the box's edge at an undeformed gap of 11 z0 (no warning).
+SPHERE = dict(sphere_radius=1e-6, n=64, length=3e-7, modulus=1e9, work_of_adhesion=0.05, z0=1e-9)
+
+
+def test_errors_carry_the_library_messages(tmp_path):
+    with pytest.raises(ValueError, match=r"unknown key `bogus`; the keys are approach, "):
+        rc.solve(modulus=1e9, bogus=1)
+    with pytest.raises(ValueError, match="give exactly one of mean_pressure \\[Pa\\], load \\[N\\]"):
+        rc.solve(**SPHERE)
+    with pytest.raises(ValueError, match="the composite modulus is required"):
+        rc.solve(sphere_radius=1e-6, length=1e-7, approach=1e-9)
+    with pytest.raises(ValueError, match="a key has a value of the wrong type"):
+        rc.solve(**dict(SPHERE, n="many"), approach=1e-9)
+    with pytest.raises(ValueError, match="`length` must be a finite number, got NaN"):
+        rc.solve(**dict(SPHERE, length=float("nan")), approach=1e-9)
+    with pytest.raises(ValueError, match="`out` is the command line's"):
+        rc.solve(**SPHERE, approach=1e-9, out="somewhere")
+    with pytest.raises(FileNotFoundError, match="No such file"):
+        rc.read(tmp_path / "missing.npy", length=1.0)
+    with pytest.raises(ValueError, match="give one scale"):
+        rc.generate(n=16, rms_height=1e-6, rms_gradient=1.0)
+    with pytest.raises(ValueError, match="threads must be at least 1"):
+        rc.solve(**SPHERE, approach=1e-9, threads=0)
+
+
+def test_generate_is_reproducible_and_scaled():
+    a = rc.generate(n=64, length=1e-4, rms_height=1e-6, seed=7)
+    b = rc.generate(n=64, length=1e-4, rms_height=1e-6, seed=np.int64(7))
+    assert np.array_equal(a.heights, b.heights)
+    assert not np.array_equal(a.heights, rc.generate(n=64, length=1e-4, rms_height=1e-6, seed=8).heights)
+    assert abs(np.sqrt(np.mean((a.heights - a.heights.mean()) ** 2)) / 1e-6 - 1) < 1e-12
+    stats = a.statistics()
+    assert abs(stats["rms_height"] / 1e-6 - 1) < 1e-12
+    psd = a.psd()
+    # Persson's convention: <h^2> = integral d^2q C(q) = 2 pi integral q C(q) dq.
+    q, c = psd["q"], psd["psd"]
+    assert q.shape == c.shape and np.all(q > 0)
+
+
+@pytest.mark.parametrize("suffix", [".npy", ".txt", ".xyz", ".gsf"])
+def test_write_then_read(tmp_path, suffix):
+    a = rc.generate(n=32, nx=32, ny=16, length_x=2e-5, length_y=1e-5, rolloff=5e-6, rms_height=1e-7, seed=1)
+    path = tmp_path / f"surface{suffix}"
+    a.write(path)
+    b = rc.read(path, length=2e-5) if suffix == ".txt" else rc.read(path)
+    assert b.shape == (16, 32) and b.physical_sizes == pytest.approx(a.physical_sizes, rel=1e-12)
+    tolerance = 0 if suffix in (".npy", ".gsf") else 1e-15
+    if suffix == ".gsf":
+        np.testing.assert_allclose(b.heights, a.heights.astype(np.float32), rtol=0, atol=0)
+    else:
+        np.testing.assert_allclose(b.heights, a.heights, rtol=tolerance, atol=0)
+
+
+def test_from_toml(tmp_path):
+    (tmp_path / "case.toml").write_text(
+        'sphere_radius = 1e-6\nn = 64\nlength = 3e-7\nmodulus = 1e9\nwork_of_adhesion = 0.05\nz0 = 1e-9\n'
+    )
+    a = rc.solve(tmp_path / "case.toml", approach=1e-9)
+    b = rc.solve(**rc.from_toml(tmp_path / "case.toml"), approach=1e-9)
+    c = rc.solve(SPHERE, approach=1e-9)
+    assert a.load == b.load == c.load
+
+
+def test_progress_sees_every_iteration_and_every_step():
+    seen = []
+    result = rc.sweep(**SPHERE, approaches=[-2e-9, 0.0, 1e-9], progress=seen.append)
+    iterations = [s for s in seen if "iteration" in s]
+    steps = [s for s in seen if s.get("done")]
+    assert [s["step"] for s in steps] == [0, 1, 2]
+    assert [s["load"] for s in steps] == list(result.curve["load"])
+    assert len(iterations) >= sum(result.curve["iterations"])
+
+
+def test_an_exception_in_progress_stops_the_solve():
+    calls = []
+
+    def stop(info):
+        calls.append(info)
+        if len(calls) == 3:
+            raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough"):
+        rc.solve(**SPHERE, approach=1e-9, tolerance=1e-14, progress=stop)
+    assert len(calls) == 3
+
+
+def test_ctrl_c_stops_a_long_solve_cleanly():
+    """KeyboardInterrupt in the calling thread cancels the sweep where it stands."""
+    timer = []
+
+    def arm(info):
+        # Ctrl-C 0.2 s after the solve has started.
+        if not timer:
+            timer.append(threading.Timer(0.2, _thread.interrupt_main))
+            timer[0].start()
+
+    path = list(np.linspace(-2e-9, 1e-9, 5000))
+    started = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        rc.sweep(**SPHERE, approaches=path, progress=arm)
+    assert time.perf_counter() - started < 10
+    # Nothing is left running: a new solve converges as ever.
+    assert rc.solve(**SPHERE, approach=1e-9).converged
+
+
+def test_an_unconverged_solve_warns_and_says_so():
+    with pytest.warns(rc.ConvergenceWarning, match="did not converge"):
+        solution = rc.solve(**SPHERE, approach=1e-9, max_iterations=2)
+    assert not solution.converged and "iteration limit" in solution.termination
+
+
+def test_two_solves_run_side_by_side_in_two_threads():
+    """The GIL is released while solving: two one-thread solves in two Python threads take
+    little longer than one on two cores."""
+    surface = rc.generate(n=1024, length=1e-4, rms_gradient=1.0, rolloff=2e-5, seed=1)
+    keys = dict(surface=surface, modulus=25e6, mean_pressure=0.01 * 25e6, threads=1)
+
+    def timed(runs):
+        best = float("inf")
+        for _ in range(3):
+            started = time.perf_counter()
+            with concurrent.futures.ThreadPoolExecutor(runs) as pool:
+                results = list(pool.map(lambda _: rc.solve(**keys), range(runs)))
+            best = min(best, time.perf_counter() - started)
+        return best, results
+
+    one, _ = timed(1)
+    two, (a, b) = timed(2)
+    print(f"one solve {one:.3f} s, two side by side {two:.3f} s ({two / one:.2f}x)")
+    assert np.array_equal(a.pressure, b.pressure)
+    assert two < 1.6 * one
+
+
+def test_threads_do_not_change_the_result():
+    a = rc.solve(**SPHERE, approach=1e-9, threads=1)
+    b = rc.solve(**SPHERE, approach=1e-9, threads=2)
+    assert all(np.array_equal(a.fields[k], b.fields[k]) for k in a.fields)
+
+
+def test_theory_against_closed_forms():
+    r, w0, e = 1e-6, 0.05, 1e9
+    pull = theory.jkr_pull_off(r, w0)
+    assert pull["load_control"] == pytest.approx(-1.5 * np.pi * r * w0, rel=1e-12)
+    assert theory.dmt_pull_off(r, w0) == pytest.approx(-2 * np.pi * r * w0, rel=1e-12)
+    h = theory.hertz(np.array([[1e-9, 4e-9]]), r, e)
+    assert h["load"].shape == (1, 2)
+    assert h["load"][0, 1] / h["load"][0, 0] == pytest.approx(8.0, rel=1e-12)  # P ~ delta^(3/2)
+    # Maugis-Dugdale tends to JKR at large Tabor parameters, to DMT at small ones.
+    assert theory.maugis_dugdale(100.0)["pull_off_load_control"] == pytest.approx(-1.5, abs=0.02)
+    assert theory.maugis_dugdale(0.01)["pull_off_load_control"] == pytest.approx(-2.0, abs=0.02)
+    g = theory.greenwood(1.0, max_approach=1.0, resolution=0.05, ring_width=0.05)
+    assert g["load"].shape == g["approach"].shape and g["pull_off_load_control"] < 0
+    small = np.array([1e-4])
+    assert theory.persson_area(small)[0] / small[0] == pytest.approx(np.sqrt(8 / np.pi), rel=1e-6)
+    assert theory.muser_area(small, k=2.0)[0] / small[0] == pytest.approx(2.0, rel=1e-6)
+    assert theory.ciavarella(1e-9, 1e9, 1e-4, 0.05)["sticky"]
+    wave = theory.wave(np.linspace(0, 0.4, 5), amplitude=0.01, wavelength=1.0, modulus=1e9)
+    assert wave["westergaard"][0] == 0 and wave["johnson_alpha"] == 0
+    assert theory.tabor_parameter(1e-6, 0.05, 1e9, 1e-9) == pytest.approx((1e-6 * 0.05**2 / (1e18 * 1e-27)) ** (1 / 3))
+    with pytest.raises(ValueError, match="radius must be finite and > 0"):
+        theory.hertz([1e-9], -1.0, e)
+
+
+def test_warnings_of_the_problem_reach_python():
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        rc.solve(**dict(SPHERE, n=32, length=1.2e-7), approach=1e-9)
+    assert any("adhesive range" in str(w.message) for w in caught)

@@ -1,0 +1,84 @@
+"""Numpy arrays in any layout are accepted (with the same result) or refused clearly."""
+
+import numpy as np
+import pytest
+
+import roughcontact as rc
+
+KEYS = dict(modulus=25e6, mean_pressure=2e5)
+
+
+@pytest.fixture(scope="module")
+def surface():
+    return rc.generate(n=64, length=1e-4, rms_gradient=1.0, rolloff=2e-5, seed=2)
+
+
+@pytest.fixture(scope="module")
+def reference(surface):
+    return rc.solve(surface=surface, **KEYS)
+
+
+def same(a, b):
+    return all(np.array_equal(a.fields[k], b.fields[k]) for k in a.fields)
+
+
+def test_fortran_order(surface, reference):
+    h = np.asfortranarray(surface.heights)
+    assert not h.flags.c_contiguous
+    assert same(rc.solve(surface=rc.Topography(h, surface.length_x), **KEYS), reference)
+
+
+def test_strided_and_reversed_views(surface, reference):
+    big = np.zeros((128, 128))
+    big[::2, ::2] = surface.heights
+    view = big[::2, ::2]
+    assert not view.flags.c_contiguous
+    assert same(rc.solve(surface=rc.Topography(view, surface.length_x), **KEYS), reference)
+    flipped = np.ascontiguousarray(surface.heights[::-1, ::-1])[::-1, ::-1]
+    assert flipped.strides[0] < 0
+    assert same(rc.solve(surface=rc.Topography(flipped, surface.length_x), **KEYS), reference)
+
+
+def test_float32_and_integers_are_converted_exactly(surface):
+    h32 = surface.heights.astype(np.float32)
+    a = rc.solve(surface=rc.Topography(h32, surface.length_x), **KEYS)
+    b = rc.solve(surface=rc.Topography(h32.astype(np.float64), surface.length_x), **KEYS)
+    assert same(a, b)
+    t = rc.Topography(np.arange(12, dtype=np.int32).reshape(3, 4), 4.0)
+    assert t.heights.dtype == np.float64 and t.shape == (3, 4) and t.dy == 1.0
+
+
+@pytest.mark.parametrize(
+    "heights, message",
+    [
+        (np.zeros((4, 4), dtype=complex), "real numbers"),
+        (np.zeros((4, 4), dtype=bool), "real numbers"),
+        (np.zeros((2, 4, 4)), "2-D array"),
+        (np.zeros(16), "2-D array"),
+        (np.full((4, 4), np.nan), "finite"),
+        ([["a", "b"], ["c", "d"]], "real numbers"),
+    ],
+)
+def test_bad_arrays_are_refused(heights, message):
+    with pytest.raises(ValueError, match=message):
+        rc.Topography(heights, 1e-4)
+
+
+def test_a_bad_box_is_refused():
+    with pytest.raises(ValueError, match="sides must be finite and > 0"):
+        rc.Topography(np.zeros((4, 4)), -1.0)
+
+
+def test_surfacetopography_layout():
+    """SurfaceTopography indexes heights [x, y]; a Topography holds (ny, nx)."""
+
+    class Like:
+        physical_sizes = (2.0, 1.0)
+        is_periodic = True
+
+        def heights(self):
+            return np.arange(8.0).reshape(4, 2)  # nx = 4, ny = 2
+
+    t = rc.Topography.from_surfacetopography(Like())
+    assert t.shape == (2, 4) and t.physical_sizes == (2.0, 1.0) and t.dx == t.dy == 0.5
+    assert t.heights[1, 3] == Like().heights()[3, 1]
