@@ -82,3 +82,14 @@ def test_surfacetopography_layout():
     t = rc.Topography.from_surfacetopography(Like())
     assert t.shape == (2, 4) and t.physical_sizes == (2.0, 1.0) and t.dx == t.dy == 0.5
     assert t.heights[1, 3] == Like().heights()[3, 1]
+
+
+def test_a_surfacetopography_topography():
+    """A real SurfaceTopography topography (CI installs it) round-trips with its layout."""
+    st = pytest.importorskip("SurfaceTopography")
+    ours = rc.generate(n=32, nx=32, ny=16, length_x=2e-5, length_y=1e-5, rolloff=5e-6, rms_height=1e-7, seed=1)
+    theirs = st.Topography(ours.heights.T, physical_sizes=ours.physical_sizes, periodic=True)
+    assert theirs.nb_grid_pts == (32, 16)
+    back = rc.Topography.from_surfacetopography(theirs)
+    assert np.array_equal(back.heights, ours.heights) and back.physical_sizes == ours.physical_sizes
+    assert theirs.rms_height_from_area() == pytest.approx(ours.statistics()["rms_height"], rel=1e-12)
