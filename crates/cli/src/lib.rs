@@ -8,6 +8,34 @@ pub mod bench;
 pub mod plot;
 pub mod run;
 pub mod solve;
+pub mod study;
 pub mod surface;
 pub mod sweep;
 pub mod theory_cmd;
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+static QUIET: AtomicBool = AtomicBool::new(false);
+
+/// Silences the reports, warnings and progress of `solve` and `sweep` (a study's runs, whose
+/// summaries say all of it).
+pub fn set_quiet(quiet: bool) {
+    QUIET.store(quiet, Ordering::Relaxed);
+}
+
+/// Whether the reports are silenced.
+pub fn quiet() -> bool {
+    QUIET.load(Ordering::Relaxed)
+}
+
+/// `println!` unless [`quiet`].
+#[macro_export]
+macro_rules! say {
+    ($($t:tt)*) => { if !$crate::quiet() { println!($($t)*) } };
+}
+
+/// `eprintln!` unless [`quiet`].
+#[macro_export]
+macro_rules! note {
+    ($($t:tt)*) => { if !$crate::quiet() { eprintln!($($t)*) } };
+}

@@ -1,7 +1,7 @@
 //! `roughcontact`: the command-line tool. The only place that uses clap and anyhow.
 
 use clap::{Parser, Subcommand};
-use roughcontact::{bench, solve, surface, sweep, theory_cmd};
+use roughcontact::{bench, solve, study, surface, sweep, theory_cmd};
 use std::process::ExitCode;
 
 /// Deterministic contact mechanics of rough surfaces with adhesion.
@@ -35,6 +35,10 @@ enum Command {
     /// continuation: load-approach curve, pull-off, jumps and hysteresis.
     #[command(allow_hyphen_values = true)]
     Sweep(sweep::SweepArgs),
+    /// A parameter study: a base case and axes to vary (seeds, Tabor parameters, any case key),
+    /// each run a solve or a sweep in its own directory, run side by side, resumable, merged
+    /// into one table (study.csv) with a mean and standard error per group.
+    Study(study::StudyArgs),
     /// Time the non-adhesive solver on one self-affine problem at several grid sizes.
     Bench(bench::BenchArgs),
     /// Reference curves (Maugis-Dugdale, JKR, DMT, Greenwood's Lennard-Jones sphere) as CSV,
@@ -64,6 +68,7 @@ fn main() -> ExitCode {
         Command::Psd(args) => surface::psd(args),
         Command::Solve(args) => solve::solve(args),
         Command::Sweep(args) => sweep::sweep(args),
+        Command::Study(args) => study::study(args, cli.threads),
         Command::Bench(args) => bench::bench(args),
         Command::Theory(args) => theory_cmd::theory(args),
     };

@@ -2,6 +2,7 @@
 
 use crate::plot;
 use crate::run::{Reuse, RunDir, on_workers, results};
+use crate::{note, say};
 use anyhow::{Context, Result, bail};
 use case::{Built, Case, SolveControl, beside, layered, to_toml};
 use clap::Args;
@@ -61,14 +62,14 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     );
     case.fill_defaults("run/solve");
     if args.print_config {
-        println!("{}", to_toml(&case, &control)?);
+        say!("{}", to_toml(&case, &control)?);
         return Ok(());
     }
     let built = case.build()?;
     let problem = &built.problem;
     let control = control.control(problem)?;
     for w in &problem.warnings {
-        eprintln!("warning: {w}");
+        note!("warning: {w}");
     }
     case.validate_settings(problem.adhesive())?;
     if !problem.adhesive() {
@@ -91,7 +92,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     progress.finish();
     let edge = problem.edge_warning(&state.gap, &state.pressure);
     if let Some(w) = &edge {
-        eprintln!("warning: {w}");
+        note!("warning: {w}");
     }
     let domain = problem.domain();
     run.write_field("pressure", &state.pressure)?;
@@ -161,7 +162,7 @@ pub fn finish(converged: bool, msg: String, keep_going: bool, out: &Path) -> Res
     if converged {
         Ok(())
     } else if keep_going {
-        eprintln!("warning: {msg}; results written anyway");
+        note!("warning: {msg}; results written anyway");
         Ok(())
     } else {
         bail!(
@@ -180,8 +181,12 @@ struct Progress {
 
 impl Progress {
     fn new() -> Progress {
-        let bar = ProgressBar::new_spinner()
-            .with_style(ProgressStyle::with_template("{spinner} {elapsed} {msg}").expect("valid template"));
+        let bar = if crate::quiet() {
+            ProgressBar::hidden()
+        } else {
+            ProgressBar::new_spinner()
+        }
+        .with_style(ProgressStyle::with_template("{spinner} {elapsed} {msg}").expect("valid template"));
         Progress {
             bar,
             quiet_since: Instant::now(),
@@ -197,7 +202,7 @@ impl Observer for Progress {
     fn iteration(&mut self, _step: usize, iteration: usize, residual: f64) {
         if self.bar.is_hidden() {
             if self.quiet_since.elapsed().as_secs() >= 60 {
-                eprintln!("iteration {iteration}, residual {residual:.3e}");
+                note!("iteration {iteration}, residual {residual:.3e}");
                 self.quiet_since = Instant::now();
             }
         } else if iteration.is_multiple_of(10) {
@@ -237,7 +242,7 @@ fn solve_adhesive(
     progress.finish();
     let edge = problem.edge_warning(&state.contact.gap, &state.contact.pressure);
     if let Some(w) = &edge {
-        eprintln!("warning: {w}");
+        note!("warning: {w}");
     }
     let domain = problem.domain();
     run.write_adhesive_fields(&state)?;
@@ -265,21 +270,21 @@ fn solve_adhesive(
             report.contact_area_fraction,
         )?;
     }
-    println!("load                     {:.6e} N", report.load);
-    println!("mean pressure            {:.6e} Pa", report.mean_pressure);
-    println!("approach                 {:.6e} m", report.approach);
-    println!("contact area fraction    {:.6}", report.contact_area_fraction);
-    println!("attractive area fraction {:.6}", report.attractive_area_fraction);
-    println!("attached area fraction   {:.6}", report.attached_area_fraction);
-    println!(
+    say!("load                     {:.6e} N", report.load);
+    say!("mean pressure            {:.6e} Pa", report.mean_pressure);
+    say!("approach                 {:.6e} m", report.approach);
+    say!("contact area fraction    {:.6}", report.contact_area_fraction);
+    say!("attractive area fraction {:.6}", report.attractive_area_fraction);
+    say!("attached area fraction   {:.6}", report.attached_area_fraction);
+    say!(
         "iterations               {} ({}), residual {:.2e}, {}",
         counts(&report.iterations),
         report.method,
         report.residual,
         report.termination
     );
-    println!("wall time                {:.3} s", report.wall_time_s);
-    println!("wrote {}/summary.json and the fields as .npy", out.display());
+    say!("wall time                {:.3} s", report.wall_time_s);
+    say!("wrote {}/summary.json and the fields as .npy", out.display());
     finish(
         report.converged(),
         format!(
@@ -297,18 +302,21 @@ fn solve_adhesive(
 }
 
 fn print_summary(out: &Path, r: &solver::ContactReport) {
-    println!("load                   {:.6e} N", r.load);
-    println!("mean pressure          {:.6e} Pa", r.mean_pressure);
-    println!("approach               {:.6e} m", r.approach);
-    println!("contact area fraction  {:.6}", r.contact_area_fraction);
-    println!("contact clusters       {}", r.clusters);
-    println!("max pressure           {:.6e} Pa", r.max_pressure);
-    println!(
+    say!("load                   {:.6e} N", r.load);
+    say!("mean pressure          {:.6e} Pa", r.mean_pressure);
+    say!("approach               {:.6e} m", r.approach);
+    say!("contact area fraction  {:.6}", r.contact_area_fraction);
+    say!("contact clusters       {}", r.clusters);
+    say!("max pressure           {:.6e} Pa", r.max_pressure);
+    say!(
         "iterations             {} ({} operator calls), residual {:.2e}, {}",
-        r.iterations, r.operator_calls, r.residual, r.termination
+        r.iterations,
+        r.operator_calls,
+        r.residual,
+        r.termination
     );
-    println!("wall time              {:.3} s", r.wall_time_s);
-    println!(
+    say!("wall time              {:.3} s", r.wall_time_s);
+    say!(
         "wrote {}/summary.json, pressure.npy, gap.npy, displacement.npy",
         out.display()
     );

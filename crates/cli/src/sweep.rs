@@ -4,6 +4,7 @@
 use crate::plot::{self, Chart, Curve, Mark, PALETTE};
 use crate::run::{CurveWriter, Reuse, RunDir, on_workers, read_state, results};
 use crate::solve::finish;
+use crate::{note, say};
 use anyhow::{Context, Result, bail};
 use case::{Case, SweepPath, beside, layered, to_toml};
 use clap::{Args, ValueEnum};
@@ -121,14 +122,14 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     path.fill_defaults();
     let resolved = to_toml(&case, &path)?;
     if args.print_config {
-        println!("{resolved}");
+        say!("{resolved}");
         return Ok(());
     }
     let controls = path.controls()?;
     let built = case.build()?;
     let problem = &built.problem;
     for w in &problem.warnings {
-        eprintln!("warning: {w}");
+        note!("warning: {w}");
     }
     // Read and check a --start-from state before anything is written, so that a wrong one leaves
     // the output directory as it was.
@@ -178,14 +179,14 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         if let Some(last) = rows.last() {
             start = Some(run.resume_state(rows.len() - 1, last.approach)?);
         }
-        eprintln!("resuming after {} of {} steps", rows.len(), controls.len());
+        note!("resuming after {} of {} steps", rows.len(), controls.len());
     } else {
         run.write_case(&resolved)?;
         run.start_curve()?;
     }
     // A sweep from a saved state (also one resumed before its first step finished).
     if let (None, Some((dir, state))) = (&start, saved) {
-        eprintln!(
+        note!(
             "starting from {} (approach {:e} m)",
             dir.display(),
             state.contact.approach
@@ -196,13 +197,18 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
 
     let split = solver::count_substeps(&controls[done.saturating_sub(1)..], max_step)?;
     if split > 0 {
-        eprintln!(
+        note!(
             "note: {split} substeps are solved between the path's steps (none longer than {:.3e} m, \
              to stay quasi-static); a larger --max-step is faster but may jump between branches",
             max_step.unwrap_or(f64::NAN)
         );
     }
-    let bar = ProgressBar::new(controls.len() as u64).with_style(
+    let bar = if crate::quiet() {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(controls.len() as u64)
+    }
+    .with_style(
         ProgressStyle::with_template("{bar:30} {pos}/{len} steps, {elapsed} elapsed, ~{eta} left  {msg}")
             .expect("valid template"),
     );
@@ -289,24 +295,24 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     if !args.no_png && cycle.len() > 1 {
         plot_cycle(&out.join("load_approach.png"), &cycle, &summary)?;
     }
-    println!("steps                 {}", cycle.len());
+    say!("steps                 {}", cycle.len());
     if let Some(w) = summary.pull_off_force {
-        println!(
+        say!(
             "pull-off force        {w:.6e} N at approach {:.4e} m",
             summary.pull_off_approach.unwrap_or(f64::NAN)
         );
         // A sphere's pull-off in its natural unit, beside Maugis-Dugdale's at its Tabor parameter.
         if let (Some(r), Some(w0), None) = (case.sphere_radius, case.work_of_adhesion, wave) {
             let unit = std::f64::consts::PI * r * w0;
-            print!("                      = {:.4} pi R w0", w / unit);
+            let mut line = format!("                      = {:.4} pi R w0", w / unit);
             if let Some(mu) = tabor {
                 let md = theory::maugis::MaugisDugdale::new(theory::maugis_parameter_of_tabor(mu));
-                print!(
+                line += &format!(
                     " (Maugis-Dugdale's least load at lambda = 1.157 mu: {:.4})",
                     md.pull_off_load_control()
                 );
             }
-            println!();
+            say!("{line}");
         }
     }
     // A smooth sphere without adhesion: the deepest step against Hertz.
@@ -319,7 +325,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         && deep.approach > 0.0
     {
         let hertz = theory::hertz::load_of_approach(deep.approach, r, problem.e_star());
-        println!(
+        say!(
             "Hertz at the deepest approach ({:.4e} m): {hertz:.6e} N; solved {:.6e} N ({:+.2} %)",
             deep.approach,
             deep.load,
@@ -328,10 +334,10 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     }
     // Under load control the contact area is the result: a line a step.
     if matches!(controls[0], Control::MeanPressure(_)) {
-        println!("mean pressure [Pa]  contact area  attached area  branch");
+        say!("mean pressure [Pa]  contact area  attached area  branch");
         let area = domain.cell_area() * (domain.nx * domain.ny) as f64;
         for p in &cycle {
-            println!(
+            say!(
                 "{:>18.4e}  {:>12.6}  {:>13.6}  {}",
                 p.load / area,
                 p.contact_area_fraction,
@@ -341,25 +347,25 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         }
     }
     if let Some(a) = summary.jump_in_approach {
-        println!("jump in at approach   {a:.4e} m");
+        say!("jump in at approach   {a:.4e} m");
     }
     if let Some(a) = summary.jump_out_approach {
-        println!("jump out at approach  {a:.4e} m");
+        say!("jump out at approach  {a:.4e} m");
     }
     if let Some(w) = summary.hysteresis_energy {
-        println!("hysteresis energy     {w:.6e} J (lost around the closed part of the cycle)");
+        say!("hysteresis energy     {w:.6e} J (lost around the closed part of the cycle)");
     }
     if let Some(mu) = tabor {
-        println!("Tabor parameter       {mu:.4}");
+        say!("Tabor parameter       {mu:.4}");
     }
     if let (Some(w), Some(p)) = (wave, pull_off_pressure) {
-        println!(
+        say!(
             "pull-off pressure     {p:.6e} Pa; Johnson's JKR wave (alpha {:.4}): {:.6e} Pa",
             w.johnson_alpha(),
             w.jkr_pull_off().0
         );
     }
-    println!("wrote {}/curve.csv, summary.json", out.display());
+    say!("wrote {}/curve.csv, summary.json", out.display());
     let failed = cycle.iter().filter(|p| !p.converged).count();
     finish(
         summary.all_converged,
@@ -498,7 +504,7 @@ impl Observer for StepWriter<'_> {
     fn iteration(&mut self, k: usize, iteration: usize, residual: f64) {
         // Without a terminal, where the running solve stands once a minute.
         if self.bar.is_hidden() && self.quiet_since.elapsed().as_secs() >= 60 {
-            eprintln!(
+            note!(
                 "step {}/{}: iteration {iteration}, residual {residual:.2e}",
                 self.done + k + 1,
                 self.steps
@@ -521,7 +527,7 @@ impl Observer for StepWriter<'_> {
                 .edge_warning(&state.contact.gap, &state.contact.pressure)
         {
             let w = format!("from step {} on, {w}", self.done + k);
-            self.bar.suspend(|| eprintln!("warning: {w}"));
+            self.bar.suspend(|| note!("warning: {w}"));
             self.edge = Some(w);
         }
         let saved = self
@@ -531,7 +537,7 @@ impl Observer for StepWriter<'_> {
         let message = format!("last: approach {:.4e} m, load {:.4e} N", r.approach, r.load);
         if self.bar.is_hidden() {
             // No terminal (a background run, a log file): a plain line a step instead.
-            eprintln!(
+            note!(
                 "step {}/{}: approach {:.4e} m, load {:.4e} N, {}, {:.1} s",
                 self.done + k + 1,
                 self.steps,

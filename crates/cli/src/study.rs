@@ -1,0 +1,631 @@
+//! `study`: a base case and axes to vary, expanded into runs (each a `solve` or a `sweep` in a
+//! run directory of its own, named by its parameters), run side by side and resumed where they
+//! stopped, their summaries merged into one table with a summary of each group.
+
+use crate::solve::{self, SolveArgs};
+use crate::sweep::{self, SweepArgs};
+use anyhow::{Context, Result, bail};
+use clap::{Args, Parser};
+use indicatif::{ProgressBar, ProgressStyle};
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+#[derive(Args, Debug)]
+pub struct StudyArgs {
+    /// Study file (TOML): `command` ("solve" or "sweep"), the base case as a `[case]` table of
+    /// case keys (or `case = "FILE"`), the axes as an `[axes]` table of lists (`seed = [1, 2]`),
+    /// and `combine` ("product", the default: every combination; or "zip": the lists side by side).
+    study: PathBuf,
+    /// Study directory: runs/ and the merged tables [default: the study file without its
+    /// extension].
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Runs side by side on this machine, each with its share of the cores (or --threads each).
+    #[arg(long, default_value_t = 1)]
+    jobs: usize,
+    /// Only this shard of the runs, I/N (1 <= I <= N): run k belongs to shard (k mod N) + 1.
+    /// For job arrays (Slurm); `--merge` then combines the shards' runs.
+    #[arg(long, value_name = "I/N")]
+    shard: Option<String>,
+    /// Run nothing: merge the finished runs into the tables (after sharded runs).
+    #[arg(long)]
+    merge: bool,
+    /// Summarise over this axis: each group of runs equal in the other axes gets the mean,
+    /// standard error and count of every number in study-groups.csv [default: the first axis
+    /// named `seed`, if any].
+    #[arg(long, value_name = "AXIS")]
+    group_over: Option<String>,
+    /// List the runs and their directories, and exit.
+    #[arg(long)]
+    dry_run: bool,
+}
+
+/// One run of a study: its index in the expansion, its axis values and its directory name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Run {
+    pub index: usize,
+    pub values: Vec<(String, toml::Value)>,
+    pub name: String,
+}
+
+/// A study file, read.
+#[derive(Debug)]
+pub struct Study {
+    pub command: String,
+    pub case: toml::Table,
+    pub axes: Vec<(String, Vec<toml::Value>)>,
+    pub runs: Vec<Run>,
+}
+
+/// A value as it appears in a run's name and in the table: TOML's own spelling (strings
+/// unquoted).
+fn spelt(v: &toml::Value) -> String {
+    match v {
+        toml::Value::String(s) => s.clone(),
+        // Rust's shortest round-trip digits, with an exponent for the very small or large.
+        toml::Value::Float(x) if *x != 0.0 && !(1e-3..1e6).contains(&x.abs()) => format!("{x:e}"),
+        toml::Value::Float(x) => format!("{x:?}"),
+        other => other.to_string(),
+    }
+}
+
+/// A run directory's name from its values: `key=value` joined by `_`, any character that a
+/// file name should not hold replaced by `-`.
+fn run_name(values: &[(String, toml::Value)]) -> String {
+    let name = values
+        .iter()
+        .map(|(k, v)| format!("{k}={}", spelt(v)))
+        .collect::<Vec<_>>()
+        .join("_");
+    let clean: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "=._+-".contains(c) {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect();
+    if clean.is_empty() { "base".into() } else { clean }
+}
+
+impl Study {
+    /// Reads a study file; paths in its case are taken relative to the file's folder.
+    pub fn read(path: &Path) -> Result<Study> {
+        let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+        Study::parse(&text, path)
+    }
+
+    fn parse(text: &str, path: &Path) -> Result<Study> {
+        let name = path.display();
+        let mut table: toml::Table = toml::from_str(text).with_context(|| format!("parsing {name}"))?;
+        let dir = path.parent().unwrap_or(Path::new(""));
+        let command = match table.remove("command") {
+            Some(toml::Value::String(c)) if c == "solve" || c == "sweep" => c,
+            Some(other) => bail!("{name}: `command` is \"solve\" or \"sweep\", got {other}"),
+            None => bail!("{name}: say what each run is: command = \"solve\" or \"sweep\""),
+        };
+        let mut case = match table.remove("case") {
+            Some(toml::Value::Table(t)) => t,
+            Some(toml::Value::String(file)) => {
+                let file = dir.join(file);
+                let text =
+                    std::fs::read_to_string(&file).with_context(|| format!("reading {}", file.display()))?;
+                let mut t: toml::Table =
+                    toml::from_str(&text).with_context(|| format!("parsing {}", file.display()))?;
+                beside(&mut t, file.parent().unwrap_or(Path::new("")));
+                t
+            }
+            Some(other) => bail!("{name}: `case` is a table of case keys or a case file's path, got {other}"),
+            None => toml::Table::new(),
+        };
+        beside(&mut case, dir);
+        let zip = match table.remove("combine") {
+            None => false,
+            Some(toml::Value::String(c)) if c == "product" => false,
+            Some(toml::Value::String(c)) if c == "zip" => true,
+            Some(other) => bail!("{name}: `combine` is \"product\" or \"zip\", got {other}"),
+        };
+        let axes: Vec<(String, Vec<toml::Value>)> = match table.remove("axes") {
+            Some(toml::Value::Table(t)) => t
+                .into_iter()
+                .map(|(k, v)| match v {
+                    toml::Value::Array(values) if !values.is_empty() => Ok((k, values)),
+                    other => bail!("{name}: axis `{k}` must be a non-empty list of values, got {other}"),
+                })
+                .collect::<Result<_>>()?,
+            Some(other) => bail!("{name}: `axes` is a table of lists, got {other}"),
+            None => Vec::new(),
+        };
+        if let Some(k) = table.keys().next() {
+            bail!("{name}: unknown key `{k}`; a study has command, case, axes and combine");
+        }
+        for (k, _) in &axes {
+            if k == "out" {
+                bail!("{name}: `out` cannot be an axis: each run has its own directory");
+            }
+        }
+        let runs = expand(&axes, zip).with_context(|| format!("{name}: the axes"))?;
+        Ok(Study {
+            command,
+            case,
+            axes,
+            runs,
+        })
+    }
+
+    /// A run's case file: the base case, the run's values, its output directory.
+    fn run_case(&self, run: &Run, out: &Path) -> Result<String> {
+        let mut t = self.case.clone();
+        for (k, v) in &run.values {
+            t.insert(k.clone(), v.clone());
+        }
+        t.insert("out".into(), toml::Value::String(out.display().to_string()));
+        Ok(toml::to_string(&t)?)
+    }
+}
+
+/// Case keys that name files, made absolute against the folder of the file that gave them.
+fn beside(case: &mut toml::Table, dir: &Path) {
+    for key in ["surface", "start_from"] {
+        if let Some(toml::Value::String(p)) = case.get_mut(key)
+            && Path::new(p).is_relative()
+        {
+            *p = dir.join(&*p).display().to_string();
+        }
+    }
+}
+
+/// The runs of the axes (in alphabetical order): every combination, the last axis varying
+/// fastest (product), or the lists side by side (zip; they must be equally long).
+fn expand(axes: &[(String, Vec<toml::Value>)], zip: bool) -> Result<Vec<Run>> {
+    let combos: Vec<Vec<(String, toml::Value)>> = if zip {
+        let len = axes.first().map_or(1, |(_, v)| v.len());
+        if let Some((k, v)) = axes.iter().find(|(_, v)| v.len() != len) {
+            bail!(
+                "combine = \"zip\" needs lists of one length: `{k}` has {}, not {len}",
+                v.len()
+            );
+        }
+        (0..len)
+            .map(|i| axes.iter().map(|(k, v)| (k.clone(), v[i].clone())).collect())
+            .collect()
+    } else {
+        let mut combos = vec![Vec::new()];
+        for (k, values) in axes {
+            combos = combos
+                .into_iter()
+                .flat_map(|c| {
+                    values.iter().map(move |v| {
+                        let mut c = c.clone();
+                        c.push((k.clone(), v.clone()));
+                        c
+                    })
+                })
+                .collect();
+        }
+        combos
+    };
+    let runs: Vec<Run> = combos
+        .into_iter()
+        .enumerate()
+        .map(|(index, values)| Run {
+            index,
+            name: run_name(&values),
+            values,
+        })
+        .collect();
+    let mut names: Vec<&str> = runs.iter().map(|r| r.name.as_str()).collect();
+    names.sort();
+    if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
+        bail!(
+            "two runs would share the directory {}: an axis repeats a value",
+            w[0]
+        );
+    }
+    Ok(runs)
+}
+
+/// `I/N` with 1 <= I <= N.
+fn parse_shard(s: &str) -> Result<(usize, usize)> {
+    let parsed = s
+        .split_once('/')
+        .and_then(|(i, n)| Some((i.trim().parse::<usize>().ok()?, n.trim().parse::<usize>().ok()?)));
+    match parsed {
+        Some((i, n)) if n >= 1 && (1..=n).contains(&i) => Ok((i, n)),
+        _ => bail!("--shard is I/N with 1 <= I <= N (e.g. 2/8), got {s}"),
+    }
+}
+
+/// What became of a run.
+enum Outcome {
+    Done,
+    Failed(String),
+}
+
+/// Runs one run in `dir` on a pool of `threads` threads: resumes a half-finished sweep, skips a
+/// finished run, and turns an error into [`Outcome::Failed`] (written to `error.txt`).
+fn execute(study: &Study, run: &Run, dir: &Path, threads: usize) -> Outcome {
+    let outcome = (|| -> Result<()> {
+        if dir.join("summary.json").exists() {
+            return Ok(());
+        }
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        let _ = std::fs::remove_file(dir.join("error.txt"));
+        let config = dir.join("run.toml");
+        std::fs::write(&config, study.run_case(run, dir)?)
+            .with_context(|| format!("writing {}", config.display()))?;
+        let config = config.display().to_string();
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
+        pool.install(|| {
+            if study.command == "sweep" {
+                let again = if dir.join("curve.csv").exists() {
+                    "--resume"
+                } else {
+                    "--overwrite"
+                };
+                let args = ["sweep", "--config", &config, again, "--keep-going", "--no-png"];
+                sweep::sweep(Wrapped::<SweepArgs>::try_parse_from(args)?.args)
+            } else {
+                let args = [
+                    "solve",
+                    "--config",
+                    &config,
+                    "--overwrite",
+                    "--keep-going",
+                    "--no-png",
+                ];
+                solve::solve(Wrapped::<SolveArgs>::try_parse_from(args)?.args)
+            }
+        })
+    })();
+    match outcome {
+        Ok(()) => Outcome::Done,
+        Err(e) => {
+            let message = format!("{e:#}");
+            let _ =
+                std::fs::create_dir_all(dir).and_then(|_| std::fs::write(dir.join("error.txt"), &message));
+            Outcome::Failed(message)
+        }
+    }
+}
+
+/// A command's arguments parsed as the command line would.
+#[derive(Parser)]
+struct Wrapped<A: Args> {
+    #[command(flatten)]
+    args: A,
+}
+
+pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
+    let study = Study::read(&a.study)?;
+    let root = a.out.clone().unwrap_or_else(|| a.study.with_extension(""));
+    let runs_dir = root.join("runs");
+    if a.dry_run {
+        for r in &study.runs {
+            println!("{}", runs_dir.join(&r.name).display());
+        }
+        return Ok(());
+    }
+    if a.jobs == 0 {
+        bail!("--jobs must be at least 1");
+    }
+    let group_over = match &a.group_over {
+        Some(g) if !study.axes.iter().any(|(k, _)| k == g) => {
+            bail!(
+                "--group-over {g}: the study has no such axis (its axes: {})",
+                axis_names(&study)
+            )
+        }
+        Some(g) => Some(g.clone()),
+        None => study
+            .axes
+            .iter()
+            .find(|(k, _)| k == "seed")
+            .map(|(k, _)| k.clone()),
+    };
+    let (shard, shards) = match &a.shard {
+        Some(s) => parse_shard(s)?,
+        None => (1, 1),
+    };
+    if !a.merge {
+        let mine: Vec<&Run> = study
+            .runs
+            .iter()
+            .filter(|r| r.index % shards == shard - 1)
+            .collect();
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let threads = threads.unwrap_or((cores / a.jobs).max(1));
+        run_all(&study, &mine, &runs_dir, a.jobs, threads);
+    }
+    let (rows, failed, missing) = merge(&study, &runs_dir)?;
+    let table = root.join("study.csv");
+    std::fs::write(&table, &rows).with_context(|| format!("writing {}", table.display()))?;
+    if let Some(g) = &group_over {
+        let groups = group(&rows, &study, g)?;
+        let path = root.join("study-groups.csv");
+        std::fs::write(&path, groups).with_context(|| format!("writing {}", path.display()))?;
+    }
+    println!(
+        "{} runs: {} finished, {failed} failed, {missing} not run; wrote {}{}",
+        study.runs.len(),
+        study.runs.len() - failed - missing,
+        table.display(),
+        group_over.map_or(String::new(), |g| format!(" and study-groups.csv (over {g})"))
+    );
+    Ok(())
+}
+
+fn axis_names(study: &Study) -> String {
+    study
+        .axes
+        .iter()
+        .map(|(k, _)| k.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Runs `runs`, `jobs` at a time, each on `threads` threads, with one progress bar.
+fn run_all(study: &Study, runs: &[&Run], runs_dir: &Path, jobs: usize, threads: usize) {
+    crate::set_quiet(true);
+    let bar = ProgressBar::new(runs.len() as u64).with_style(
+        ProgressStyle::with_template("{bar:30} {pos}/{len} runs, {elapsed} elapsed, ~{eta} left  {msg}")
+            .expect("valid template"),
+    );
+    let next = AtomicUsize::new(0);
+    let failures = Mutex::new(Vec::new());
+    std::thread::scope(|s| {
+        for _ in 0..jobs.min(runs.len()) {
+            s.spawn(|| {
+                loop {
+                    let k = next.fetch_add(1, Ordering::SeqCst);
+                    let Some(run) = runs.get(k) else { break };
+                    let outcome = execute(study, run, &runs_dir.join(&run.name), threads);
+                    if let Outcome::Failed(e) = outcome {
+                        bar.suspend(|| eprintln!("run {} failed: {e}", run.name));
+                        failures.lock().expect("not poisoned").push(run.index);
+                    }
+                    bar.set_message(format!("last: {}", run.name));
+                    bar.inc(1);
+                }
+            });
+        }
+    });
+    bar.finish_and_clear();
+    crate::set_quiet(false);
+}
+
+/// The finished runs' summaries as one table (study.csv: a row a run in the study's order,
+/// its axis values, its status and error, and every number, flag and word of the top level of
+/// its summary.json except wall times, so that the table does not depend on how the runs were
+/// spread); with the counts of failed and missing runs.
+fn merge(study: &Study, runs_dir: &Path) -> Result<(String, usize, usize)> {
+    let mut rows: Vec<(String, Option<String>, BTreeMap<String, String>)> = Vec::new();
+    let (mut failed, mut missing) = (0, 0);
+    let mut columns = std::collections::BTreeSet::new();
+    for run in &study.runs {
+        let dir = runs_dir.join(&run.name);
+        let summary = dir.join("summary.json");
+        let mut fields = BTreeMap::new();
+        let (status, error) = if let Ok(text) = std::fs::read_to_string(&summary) {
+            let value: Value =
+                serde_json::from_str(&text).with_context(|| format!("reading {}", summary.display()))?;
+            if let Value::Object(m) = value {
+                for (k, v) in m {
+                    let cell = match v {
+                        Value::Number(x) => x.to_string(),
+                        Value::Bool(b) => b.to_string(),
+                        Value::String(s) => s,
+                        _ => continue,
+                    };
+                    if k.ends_with("wall_time_s") {
+                        continue;
+                    }
+                    columns.insert(k.clone());
+                    fields.insert(k, cell);
+                }
+            }
+            ("finished".to_string(), None)
+        } else if let Ok(e) = std::fs::read_to_string(dir.join("error.txt")) {
+            failed += 1;
+            ("failed".to_string(), Some(e))
+        } else {
+            missing += 1;
+            ("not run".to_string(), None)
+        };
+        rows.push((status, error, fields));
+    }
+    let mut csv = String::from("run");
+    for (k, _) in &study.axes {
+        csv += &format!(",{k}");
+    }
+    csv += ",status,error";
+    for c in &columns {
+        csv += &format!(",{c}");
+    }
+    csv.push('\n');
+    for (run, (status, error, fields)) in study.runs.iter().zip(rows) {
+        csv += &quote(&run.name);
+        for (_, v) in &run.values {
+            csv += &format!(",{}", quote(&spelt(v)));
+        }
+        csv += &format!(",{status},{}", quote(error.as_deref().unwrap_or("")));
+        for c in &columns {
+            csv += &format!(",{}", quote(fields.get(c).map_or("", String::as_str)));
+        }
+        csv.push('\n');
+    }
+    Ok((csv, failed, missing))
+}
+
+/// A CSV cell, quoted when it holds a comma, a quote or a line break.
+fn quote(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+/// A CSV line split into cells (the quoting of [`quote`]).
+fn cells(line: &str) -> Vec<String> {
+    let (mut out, mut cell, mut quoted, mut chars) =
+        (Vec::new(), String::new(), false, line.chars().peekable());
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                cell.push('"');
+                chars.next();
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => out.push(std::mem::take(&mut cell)),
+            _ => cell.push(c),
+        }
+    }
+    out.push(cell);
+    out
+}
+
+/// study-groups.csv: the finished runs grouped by every axis but `over`, and for every
+/// numeric column its mean, standard error (sample standard deviation over sqrt(count)) and
+/// count over the group.
+fn group(table: &str, study: &Study, over: &str) -> Result<String> {
+    let mut lines = table.lines();
+    let header = cells(lines.next().context("an empty table")?);
+    let rows: Vec<Vec<String>> = lines.map(cells).collect();
+    let keys: Vec<usize> = study
+        .axes
+        .iter()
+        .filter(|(k, _)| k != over)
+        .map(|(k, _)| header.iter().position(|h| h == k).expect("an axis column"))
+        .collect();
+    let first_result = header
+        .iter()
+        .position(|h| h == "error")
+        .expect("the error column")
+        + 1;
+    let finished: Vec<&Vec<String>> = rows
+        .iter()
+        .filter(|r| r[first_result - 2] == "finished")
+        .collect();
+    let numeric: Vec<usize> = (first_result..header.len())
+        .filter(|&c| {
+            finished.iter().any(|r| !r[c].is_empty())
+                && finished
+                    .iter()
+                    .all(|r| r[c].is_empty() || r[c].parse::<f64>().is_ok())
+        })
+        .collect();
+    let mut groups: Vec<(Vec<String>, Vec<&Vec<String>>)> = Vec::new();
+    for r in &finished {
+        let key: Vec<String> = keys.iter().map(|&k| r[k].clone()).collect();
+        match groups.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, members)) => members.push(r),
+            None => groups.push((key, vec![r])),
+        }
+    }
+    let mut csv = keys.iter().map(|&k| header[k].clone()).collect::<Vec<_>>();
+    csv.push("runs".into());
+    for &c in &numeric {
+        csv.extend([
+            format!("{}_mean", header[c]),
+            format!("{}_stderr", header[c]),
+            format!("{}_count", header[c]),
+        ]);
+    }
+    let mut out = csv.join(",") + "\n";
+    for (key, members) in groups {
+        let mut line: Vec<String> = key.iter().map(|k| quote(k)).collect();
+        line.push(members.len().to_string());
+        for &c in &numeric {
+            let xs: Vec<f64> = members.iter().filter_map(|r| r[c].parse::<f64>().ok()).collect();
+            let n = xs.len() as f64;
+            let mean = xs.iter().sum::<f64>() / n;
+            let stderr = if xs.len() > 1 {
+                (xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt() / n.sqrt()
+            } else {
+                f64::NAN
+            };
+            line.extend([format!("{mean:e}"), format!("{stderr:e}"), xs.len().to_string()]);
+        }
+        out += &(line.join(",") + "\n");
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn study(text: &str) -> Result<Study> {
+        Study::parse(text, Path::new("/studies/s.toml"))
+    }
+
+    #[test]
+    fn axes_expand_into_named_runs() {
+        let s = study(
+            "command = \"sweep\"\ncase = { modulus = 1e9, surface = \"a.npy\" }\n[axes]\nseed = [1, 2]\nlaw = [\"point\", \"surface\"]\n",
+        )
+        .unwrap();
+        let names: Vec<&str> = s.runs.iter().map(|r| r.name.as_str()).collect();
+        // The axes in alphabetical order, the last varying fastest.
+        let expected = [
+            "law=point_seed=1",
+            "law=point_seed=2",
+            "law=surface_seed=1",
+            "law=surface_seed=2",
+        ];
+        assert_eq!(names, expected);
+        assert_eq!(s.case["surface"].as_str(), Some("/studies/a.npy"));
+        let zipped =
+            study("command = \"solve\"\ncombine = \"zip\"\n[axes]\nseed = [1, 2]\nz0 = [1e-9, 2e-9]\n")
+                .unwrap();
+        assert_eq!(zipped.runs.len(), 2);
+        assert_eq!(zipped.runs[1].name, "seed=2_z0=2e-9");
+    }
+
+    #[test]
+    fn bad_studies_are_refused() {
+        for (text, message) in [
+            ("[axes]\nseed = [1]\n", "command = \"solve\" or \"sweep\""),
+            ("command = \"run\"\n", "`command` is"),
+            ("command = \"solve\"\n[axes]\nseed = 1\n", "non-empty list"),
+            ("command = \"solve\"\n[axes]\nseed = []\n", "non-empty list"),
+            (
+                "command = \"solve\"\ncombine = \"zip\"\n[axes]\nseed = [1, 2]\nz0 = [1.0]\n",
+                "one length",
+            ),
+            (
+                "command = \"solve\"\n[axes]\nseed = [1, 1]\n",
+                "share the directory",
+            ),
+            ("command = \"solve\"\nbogus = 1\n", "unknown key `bogus`"),
+        ] {
+            let e = format!("{:#}", study(text).unwrap_err());
+            assert!(e.contains(message), "{text}: {e}");
+        }
+        assert!(parse_shard("0/2").is_err() && parse_shard("3/2").is_err() && parse_shard("x").is_err());
+        assert_eq!(parse_shard("2/3").unwrap(), (2, 3));
+    }
+
+    #[test]
+    fn groups_have_means_and_standard_errors() {
+        let s = study("command = \"solve\"\n[axes]\nmu = [1, 2]\nseed = [1, 2, 3]\n").unwrap();
+        let table = "run,mu,seed,status,error,load,law\n\
+                     a,1,1,finished,,1.0,x\na,1,2,finished,,2.0,x\na,1,3,finished,,3.0,x\n\
+                     b,2,1,finished,,5.0,x\nb,2,2,failed,\"bad, input\",,\nb,2,3,finished,,7.0,x\n";
+        let g = group(table, &s, "seed").unwrap();
+        let lines: Vec<&str> = g.lines().collect();
+        assert_eq!(lines[0], "mu,runs,load_mean,load_stderr,load_count");
+        let one: Vec<&str> = lines[1].split(',').collect();
+        assert_eq!([one[0], one[1], one[2], one[4]], ["1", "3", "2e0", "3"]);
+        let stderr: f64 = one[3].parse().unwrap();
+        assert!((stderr - (1.0f64 / 3.0).sqrt()).abs() < 1e-15, "{stderr}");
+        assert_eq!(lines[2], "2,2,6e0,1e0,2");
+        assert_eq!(cells("a,\"b, \"\"c\"\"\",d"), ["a", "b, \"c\"", "d"]);
+    }
+}
