@@ -10,7 +10,6 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 #[derive(Args, Debug)]
@@ -248,41 +247,19 @@ enum Outcome {
 }
 
 /// Runs one run in `dir` on a pool of `threads` threads: resumes a half-finished sweep, skips a
-/// finished run, and turns an error into [`Outcome::Failed`] (written to `error.txt`).
+/// finished run, and turns an error (or a panic) into [`Outcome::Failed`] (written to
+/// `error.txt`), so that no run takes the study down.
 fn execute(study: &Study, run: &Run, dir: &Path, threads: usize) -> Outcome {
-    let outcome = (|| -> Result<()> {
-        if dir.join("summary.json").exists() {
-            return Ok(());
-        }
-        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-        let _ = std::fs::remove_file(dir.join("error.txt"));
-        let config = dir.join("run.toml");
-        std::fs::write(&config, study.run_case(run, dir)?)
-            .with_context(|| format!("writing {}", config.display()))?;
-        let config = config.display().to_string();
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
-        pool.install(|| {
-            if study.command == "sweep" {
-                let again = if dir.join("curve.csv").exists() {
-                    "--resume"
-                } else {
-                    "--overwrite"
-                };
-                let args = ["sweep", "--config", &config, again, "--keep-going", "--no-png"];
-                sweep::sweep(Wrapped::<SweepArgs>::try_parse_from(args)?.args)
-            } else {
-                let args = [
-                    "solve",
-                    "--config",
-                    &config,
-                    "--overwrite",
-                    "--keep-going",
-                    "--no-png",
-                ];
-                solve::solve(Wrapped::<SolveArgs>::try_parse_from(args)?.args)
-            }
-        })
-    })();
+    let attempt =
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| attempt(study, run, dir, threads)));
+    let outcome = attempt.unwrap_or_else(|panic| {
+        let what = panic
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_default();
+        Err(anyhow::anyhow!("the run panicked: {what}"))
+    });
     match outcome {
         Ok(()) => Outcome::Done,
         Err(e) => {
@@ -292,6 +269,40 @@ fn execute(study: &Study, run: &Run, dir: &Path, threads: usize) -> Outcome {
             Outcome::Failed(message)
         }
     }
+}
+
+fn attempt(study: &Study, run: &Run, dir: &Path, threads: usize) -> Result<()> {
+    if dir.join("summary.json").exists() {
+        return Ok(());
+    }
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let _ = std::fs::remove_file(dir.join("error.txt"));
+    let config = dir.join("run.toml");
+    std::fs::write(&config, study.run_case(run, dir)?)
+        .with_context(|| format!("writing {}", config.display()))?;
+    let config = config.display().to_string();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
+    pool.install(|| {
+        if study.command == "sweep" {
+            let again = if dir.join("curve.csv").exists() {
+                "--resume"
+            } else {
+                "--overwrite"
+            };
+            let args = ["sweep", "--config", &config, again, "--keep-going", "--no-png"];
+            sweep::sweep(Wrapped::<SweepArgs>::try_parse_from(args)?.args)
+        } else {
+            let args = [
+                "solve",
+                "--config",
+                &config,
+                "--overwrite",
+                "--keep-going",
+                "--no-png",
+            ];
+            solve::solve(Wrapped::<SolveArgs>::try_parse_from(args)?.args)
+        }
+    })
 }
 
 /// A command's arguments parsed as the command line would.
@@ -339,8 +350,37 @@ pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
             .filter(|r| r.index % shards == shard - 1)
             .collect();
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-        let threads = threads.unwrap_or((cores / a.jobs).max(1));
-        run_all(&study, &mine, &runs_dir, a.jobs, threads);
+        #[cfg(feature = "mpi")]
+        if let Some(ranks) = ranks::Ranks::start() {
+            if a.jobs != 1 {
+                bail!("under mpirun each rank runs one run at a time: start more ranks instead of --jobs");
+            }
+            // The cores of a machine shared among the ranks on it (Open MPI and MPICH say how many).
+            let local = ["OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS"]
+                .iter()
+                .find_map(|v| std::env::var(v).ok()?.parse::<usize>().ok())
+                .unwrap_or(1);
+            let threads = threads.unwrap_or((cores / local).max(1));
+            if !ranks.share(&study, &mine, &runs_dir, threads) {
+                return Ok(()); // a worker rank: rank 0 merges
+            }
+        } else {
+            run_all(
+                &study,
+                &mine,
+                &runs_dir,
+                a.jobs,
+                threads.unwrap_or((cores / a.jobs).max(1)),
+            );
+        }
+        #[cfg(not(feature = "mpi"))]
+        run_all(
+            &study,
+            &mine,
+            &runs_dir,
+            a.jobs,
+            threads.unwrap_or((cores / a.jobs).max(1)),
+        );
     }
     let (rows, failed, missing) = merge(&study, &runs_dir)?;
     let table = root.join("study.csv");
@@ -377,7 +417,6 @@ fn run_all(study: &Study, runs: &[&Run], runs_dir: &Path, jobs: usize, threads: 
             .expect("valid template"),
     );
     let next = AtomicUsize::new(0);
-    let failures = Mutex::new(Vec::new());
     std::thread::scope(|s| {
         for _ in 0..jobs.min(runs.len()) {
             s.spawn(|| {
@@ -387,7 +426,6 @@ fn run_all(study: &Study, runs: &[&Run], runs_dir: &Path, jobs: usize, threads: 
                     let outcome = execute(study, run, &runs_dir.join(&run.name), threads);
                     if let Outcome::Failed(e) = outcome {
                         bar.suspend(|| eprintln!("run {} failed: {e}", run.name));
-                        failures.lock().expect("not poisoned").push(run.index);
                     }
                     bar.set_message(format!("last: {}", run.name));
                     bar.inc(1);
@@ -627,5 +665,110 @@ mod tests {
         assert!((stderr - (1.0f64 / 3.0).sqrt()).abs() < 1e-15, "{stderr}");
         assert_eq!(lines[2], "2,2,6e0,1e0,2");
         assert_eq!(cells("a,\"b, \"\"c\"\"\",d"), ["a", "b, \"c\"", "d"]);
+    }
+}
+
+/// MPI ranks sharing a study's runs (feature `mpi`, under `mpirun -n K`): rank 0 hands out
+/// the runs one at a time to whichever rank asks (its own included) and merges at the end; a
+/// rank asks again when its run is done.
+#[cfg(feature = "mpi")]
+mod ranks {
+    use super::{Outcome, Run, Study, execute};
+    use mpi::traits::*;
+    use std::path::Path;
+    use std::sync::mpsc;
+    use std::time::Duration;
+
+    const ASK: i32 = 1;
+    const GIVE: i32 = 2;
+    /// The answer that there is nothing left.
+    const DONE: u64 = u64::MAX;
+
+    pub struct Ranks {
+        _universe: mpi::environment::Universe,
+        world: mpi::topology::SimpleCommunicator,
+    }
+
+    impl Ranks {
+        /// MPI, when this process is one of several ranks (`None` alone: the study runs as
+        /// on one machine).
+        pub fn start() -> Option<Ranks> {
+            let universe = mpi::initialize()?;
+            let world = universe.world();
+            (world.size() > 1).then_some(Ranks {
+                _universe: universe,
+                world,
+            })
+        }
+
+        /// Runs `runs` across the ranks, `threads` threads each; whether this is rank 0 (which
+        /// then merges).
+        pub fn share(&self, study: &Study, runs: &[&Run], runs_dir: &Path, threads: usize) -> bool {
+            crate::set_quiet(true);
+            let root = self.world.process_at_rank(0);
+            if self.world.rank() != 0 {
+                loop {
+                    root.send_with_tag(&0u64, ASK);
+                    let (k, _) = root.receive_with_tag::<u64>(GIVE);
+                    if k == DONE {
+                        return false;
+                    }
+                    let run = runs[k as usize];
+                    if let Outcome::Failed(e) = execute(study, run, &runs_dir.join(&run.name), threads) {
+                        eprintln!("run {} failed: {e}", run.name);
+                    }
+                }
+            }
+            // Rank 0: its own runs on a thread that never calls MPI; this one answers the others.
+            let mut next = 0usize;
+            let mut hand_out = || {
+                let k = next;
+                next += 1;
+                (k < runs.len()).then_some(k)
+            };
+            let (give, take) = mpsc::channel::<Option<usize>>();
+            let (finished, done) = mpsc::channel::<()>();
+            std::thread::scope(|s| {
+                s.spawn(move || {
+                    while let Ok(Some(k)) = take.recv() {
+                        let run = runs[k];
+                        if let Outcome::Failed(e) = execute(study, run, &runs_dir.join(&run.name), threads) {
+                            eprintln!("run {} failed: {e}", run.name);
+                        }
+                        if finished.send(()).is_err() {
+                            break;
+                        }
+                    }
+                });
+                let (mut busy, mut local_done, mut others) = (false, false, self.world.size() - 1);
+                while others > 0 || !local_done || busy {
+                    let mut idle = true;
+                    if !busy && !local_done {
+                        let k = hand_out();
+                        local_done = k.is_none();
+                        busy = k.is_some();
+                        let _ = give.send(k);
+                        idle = false;
+                    }
+                    if busy && done.try_recv().is_ok() {
+                        busy = false;
+                        idle = false;
+                    }
+                    if let Some(status) = self.world.any_process().immediate_probe_with_tag(ASK) {
+                        let from = self.world.process_at_rank(status.source_rank());
+                        let _ = from.receive_with_tag::<u64>(ASK);
+                        let k = hand_out().map_or(DONE, |k| k as u64);
+                        others -= usize::from(k == DONE) as i32;
+                        from.send_with_tag(&k, GIVE);
+                        idle = false;
+                    }
+                    if idle {
+                        std::thread::sleep(Duration::from_millis(2));
+                    }
+                }
+            });
+            crate::set_quiet(false);
+            true
+        }
     }
 }

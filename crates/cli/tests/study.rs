@@ -161,3 +161,33 @@ fn bad_study_arguments_are_refused() {
             .ends_with("study/runs/seed=1_work_of_adhesion=0.05")
     );
 }
+
+/// Under the `mpi` feature (Open MPI installed): `mpirun -n 2` hands the runs to two ranks and
+/// gives the serial table.
+#[cfg(feature = "mpi")]
+#[test]
+fn mpirun_gives_the_serial_table() {
+    let serial = fresh("study-mpi-serial");
+    study(&serial, &[]);
+    let ranks = fresh("study-mpi");
+    let file = ranks.join("study.toml");
+    let o = Command::new("mpirun")
+        .args([
+            "--allow-run-as-root",
+            "--oversubscribe",
+            "-n",
+            "2",
+            env!("CARGO_BIN_EXE_roughcontact"),
+        ])
+        .args(["study", file.to_str().unwrap()])
+        .output()
+        .expect("mpirun runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        said.matches("9 runs: 6 finished, 3 failed").count(),
+        1,
+        "rank 0 alone merges: {said}"
+    );
+    assert_eq!(tables(&ranks), tables(&serial));
+}
