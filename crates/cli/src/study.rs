@@ -350,37 +350,42 @@ pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
             .filter(|r| r.index % shards == shard - 1)
             .collect();
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        // Under mpirun, whether this is rank 0 (which merges); alone, None.
         #[cfg(feature = "mpi")]
-        if let Some(ranks) = ranks::Ranks::start() {
-            if a.jobs != 1 {
-                bail!("under mpirun each rank runs one run at a time: start more ranks instead of --jobs");
+        let ranked = match ranks::Ranks::start() {
+            Some(ranks) => {
+                if a.jobs != 1 {
+                    bail!(
+                        "under mpirun each rank runs one run at a time: start more ranks instead of --jobs"
+                    );
+                }
+                // The cores of a machine shared among the ranks on it (Open MPI and MPICH say how many).
+                let local = ["OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS"]
+                    .iter()
+                    .find_map(|v| std::env::var(v).ok()?.parse::<usize>().ok())
+                    .unwrap_or(1);
+                Some(ranks.share(
+                    &study,
+                    &mine,
+                    &runs_dir,
+                    threads.unwrap_or((cores / local).max(1)),
+                ))
             }
-            // The cores of a machine shared among the ranks on it (Open MPI and MPICH say how many).
-            let local = ["OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS"]
-                .iter()
-                .find_map(|v| std::env::var(v).ok()?.parse::<usize>().ok())
-                .unwrap_or(1);
-            let threads = threads.unwrap_or((cores / local).max(1));
-            if !ranks.share(&study, &mine, &runs_dir, threads) {
-                return Ok(()); // a worker rank: rank 0 merges
-            }
-        } else {
-            run_all(
+            None => None,
+        };
+        #[cfg(not(feature = "mpi"))]
+        let ranked: Option<bool> = None;
+        match ranked {
+            Some(false) => return Ok(()),
+            Some(true) => {}
+            None => run_all(
                 &study,
                 &mine,
                 &runs_dir,
                 a.jobs,
                 threads.unwrap_or((cores / a.jobs).max(1)),
-            );
+            ),
         }
-        #[cfg(not(feature = "mpi"))]
-        run_all(
-            &study,
-            &mine,
-            &runs_dir,
-            a.jobs,
-            threads.unwrap_or((cores / a.jobs).max(1)),
-        );
     }
     let (rows, failed, missing) = merge(&study, &runs_dir)?;
     let table = root.join("study.csv");
