@@ -14,7 +14,7 @@ use surfgen::{Analysis, Metadata, Statistics, Surface};
 pub struct GenerateArgs {
     #[command(flatten)]
     surface: Generation,
-    /// Output surface file: .npy (with .json sidecar), .txt, .xyz or .gsf.
+    /// Output surface file: .npy (with .json sidecar), .txt, .xyz, .gsf, .x3p, .sdf or .nc.
     #[arg(short, long, default_value = "surface.npy")]
     output: PathBuf,
     /// Do not draw the PNG height map.
@@ -28,7 +28,7 @@ pub struct GenerateArgs {
 /// Where a surface comes from, for commands that read one.
 #[derive(Args, Debug)]
 pub struct SurfaceFile {
-    /// Surface file: .npy (+ .json sidecar), .txt/.dat/.asc/.csv, .xyz/.xyh or .gsf.
+    /// Surface file: .npy (+ .json sidecar), .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf or .nc.
     file: PathBuf,
     /// Box size along x [m], for files that do not carry it (bare .npy, plain matrix).
     #[arg(long)]

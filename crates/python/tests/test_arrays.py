@@ -1,11 +1,14 @@
 """Numpy arrays in any layout are accepted (with the same result) or refused clearly."""
 
+import pathlib
+
 import numpy as np
 import pytest
 
 import roughcontact as rc
 
 KEYS = dict(modulus=25e6, mean_pressure=2e5)
+ROOT = pathlib.Path(__file__).resolve().parents[3]
 
 
 @pytest.fixture(scope="module")
@@ -93,3 +96,22 @@ def test_a_surfacetopography_topography():
     back = rc.Topography.from_surfacetopography(theirs)
     assert np.array_equal(back.heights, ours.heights) and back.physical_sizes == ours.physical_sizes
     assert theirs.rms_height_from_area() == pytest.approx(ours.statistics()["rms_height"], rel=1e-12)
+
+
+@pytest.mark.parametrize("suffix", [".x3p", ".nc"])
+def test_surfacetopography_reads_our_files_with_their_size(tmp_path, suffix):
+    """Files for contact.engineering: SurfaceTopography (CI installs it) reads our X3P and
+    NetCDF with the right grid, size and heights."""
+    st = pytest.importorskip("SurfaceTopography")
+    ours = rc.generate(n=32, nx=32, ny=16, length_x=2e-5, length_y=1e-5, rolloff=5e-6, rms_height=1e-7, seed=1)
+    path = tmp_path / f"surface{suffix}"
+    ours.write(path)
+    theirs = st.read_topography(str(path))
+    assert theirs.unit == "m" and theirs.nb_grid_pts == (32, 16)
+    assert tuple(theirs.physical_sizes) == pytest.approx((2e-5, 1e-5), rel=1e-15)
+    assert np.array_equal(theirs.heights().T, ours.heights)
+    # And ours reads the sample files as SurfaceTopography does, the right way round.
+    sample = ROOT / "data" / "topography-samples" / f"{'x3p-2.x3p' if suffix == '.x3p' else 'nc-1.nc'}"
+    a, b = rc.read(sample), st.read_topography(str(sample))
+    scale = {"m": 1.0, "nm": 1e-9}[b.unit]
+    np.testing.assert_allclose(a.heights, b.heights().T * scale, rtol=1e-12, atol=0)

@@ -69,7 +69,7 @@ fn seeds(dir: &std::path::Path) -> Vec<(&'static str, Vec<u8>)> {
     let grid = Grid::new(6, 5, 1e-5, 1e-5).unwrap();
     let heights = ndarray::Array2::from_shape_fn((5, 6), |(j, i)| 1e-7 * ((i * 7 + j * 3) % 5) as f64);
     let surface = Surface::new(heights, grid, true).unwrap();
-    ["npy", "txt", "xyz", "gsf"]
+    ["npy", "txt", "xyz", "gsf", "x3p", "sdf", "nc"]
         .into_iter()
         .map(|ext| {
             let p = dir.join(format!("seed.{ext}"));

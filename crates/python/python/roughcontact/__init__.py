@@ -131,7 +131,8 @@ class Topography:
 
     def write(self, path: PathLike) -> None:
         """Writes the surface in the format of the path's extension: ``.npy`` (with a
-        ``.json`` sidecar holding the box), ``.txt``, ``.xyz`` or ``.gsf``."""
+        ``.json`` sidecar holding the box), ``.txt``, ``.xyz``, ``.gsf``, ``.x3p``, ``.sdf`` or
+        ``.nc`` (X3P and NetCDF are what contact.engineering reads back with the box)."""
         _native.write(os.fspath(path), self.heights, self.length_x, self.length_y, self.periodic)
 
     def __repr__(self) -> str:
@@ -178,7 +179,8 @@ def read(
     unit: float = 1.0,
     periodic: bool = True,
 ) -> Topography:
-    """Reads a surface file (``.npy`` with its sidecar, text matrix, ``.xyz``, ``.gsf``).
+    """Reads a surface file (``.npy`` with its sidecar, text matrix, ``.xyz``, ``.gsf``,
+    ``.x3p``, ``.sdf``, ``.nc``).
     ``length``/``length_y`` [m] give the box of files that do not carry it; ``unit`` is the
     metres per file unit; ``periodic`` applies to files without metadata."""
     heights, lx, ly, is_periodic = _native.read(os.fspath(path), length, length_y, float(unit), bool(periodic))

@@ -2,24 +2,13 @@
 //! `Gwyddion Simple Field 1.0`, NUL-padded to a multiple of 4 bytes (1 to 4 NULs), then
 //! `XRes * YRes` little-endian f32 heights, row by row.
 
-use super::{ReadOptions, Surface};
+use super::{ReadOptions, Surface, length_unit};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
 use std::path::Path;
 
 const MAGIC: &str = "Gwyddion Simple Field 1.0\n";
-
-fn unit_factor(unit: &str) -> Option<f64> {
-    Some(match unit.trim() {
-        "" | "m" => 1.0,
-        "mm" => 1e-3,
-        "um" | "µm" => 1e-6,
-        "nm" => 1e-9,
-        "pm" => 1e-12,
-        _ => return None,
-    })
-}
 
 pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
     let bytes = std::fs::read(path).map_err(|e| SurfError::io(path, e))?;
@@ -56,8 +45,8 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
             "YRes" => yres = Some(value.parse::<usize>().map_err(|_| bad("YRes"))?),
             "XReal" => xreal = Some(value.parse::<f64>().map_err(|_| bad("XReal"))?),
             "YReal" => yreal = Some(value.parse::<f64>().map_err(|_| bad("YReal"))?),
-            "XYUnits" => xy_unit = unit_factor(value).ok_or_else(|| bad("XYUnits"))?,
-            "ZUnits" => z_unit = unit_factor(value).ok_or_else(|| bad("ZUnits"))?,
+            "XYUnits" => xy_unit = length_unit(value).ok_or_else(|| bad("XYUnits"))?,
+            "ZUnits" => z_unit = length_unit(value).ok_or_else(|| bad("ZUnits"))?,
             _ => {}
         }
     }

@@ -6,13 +6,19 @@
 //! | `.txt`, `.dat`, `.asc`, `.csv` | plain-text matrix, one row of heights per line | a `# length_x=.. length_y=..` comment written by us, else [`ReadOptions`] |
 //! | `.xyz`, `.xyh` | `x y h` triples, one per line, rows separated by blank lines (the contact-mechanics challenge's format) | the coordinates |
 //! | `.gsf` | Gwyddion Simple Field (heights as f32) | the header |
+//! | `.x3p` | ISO 25178-72 XML 3D surface profile (zip: `main.xml` + binary heights) | the x and y increments |
+//! | `.sdf` | ISO 25178-71 Surface Data File (text, or binary i16/i32/f64) | `Xscale`, `Yscale` |
+//! | `.nc` | NetCDF-3 as contact.engineering writes it (`heights(x, y)`) | the `length` of `x` and `y` |
 //!
 //! Heights and lengths are in metres; [`ReadOptions::unit`] converts files written in other
 //! units. Readers check everything (shape, finiteness, ragged rows) and return an error naming
 //! the file and line rather than a partial surface.
 
 mod gsf;
+mod netcdf;
 mod npy;
+mod sdf;
+mod x3p;
 
 pub use npy::write_array as write_npy;
 mod text;
@@ -131,6 +137,25 @@ pub enum Format {
     Matrix,
     Xyh,
     Gsf,
+    X3p,
+    Sdf,
+    NetCdf,
+}
+
+/// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
+/// `nm`, `pm`, `Å`, ...).
+pub(crate) fn length_unit(name: &str) -> Option<f64> {
+    Some(match name.trim() {
+        "" | "m" => 1.0,
+        "dm" => 1e-1,
+        "cm" => 1e-2,
+        "mm" => 1e-3,
+        "um" | "µm" | "μm" | "micrometer" | "micrometre" => 1e-6,
+        "nm" => 1e-9,
+        "Å" | "A" | "angstrom" => 1e-10,
+        "pm" => 1e-12,
+        _ => return None,
+    })
 }
 
 impl Format {
@@ -146,17 +171,20 @@ impl Format {
             "txt" | "dat" | "asc" | "csv" => Ok(Format::Matrix),
             "xyz" | "xyh" => Ok(Format::Xyh),
             "gsf" => Ok(Format::Gsf),
+            "x3p" => Ok(Format::X3p),
+            "sdf" => Ok(Format::Sdf),
+            "nc" => Ok(Format::NetCdf),
             "" => Err(SurfError::parse(
                 path,
                 None,
                 "the file name has no extension, which names the format: give one of .npy, \
-                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf",
+                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc",
             )),
             _ => Err(SurfError::parse(
                 path,
                 None,
                 format!(
-                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf)"
+                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc)"
                 ),
             )),
         }
@@ -185,6 +213,9 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
         Format::Matrix => text::read_matrix(path, options)?,
         Format::Xyh => text::read_xyh(path, options)?,
         Format::Gsf => gsf::read(path, options)?,
+        Format::X3p => x3p::read(path, options)?,
+        Format::Sdf => sdf::read(path, options)?,
+        Format::NetCdf => netcdf::read(path, options)?,
     };
     check_finite(surface.heights.view())?;
     Ok(surface)
@@ -199,6 +230,9 @@ pub fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Res
         Format::Matrix => text::write_matrix(surface, path),
         Format::Xyh => text::write_xyh(surface, path),
         Format::Gsf => gsf::write(surface, path),
+        Format::X3p => x3p::write(surface, path),
+        Format::Sdf => sdf::write(surface, path),
+        Format::NetCdf => netcdf::write(surface, path),
     }
 }
 

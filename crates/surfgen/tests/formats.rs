@@ -1,0 +1,176 @@
+//! The instrument formats (X3P, SDF, NetCDF-3) on real files against what an independent reader
+//! (SurfaceTopography 1.27) gets from them, round trips, and bad files refused clearly.
+
+use ndarray::Array2;
+use serde_json::Value;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use surfgen::io::{self, ReadOptions};
+use surfgen::{Grid, Surface};
+
+fn samples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/topography-samples")
+}
+
+fn unit(name: &str) -> f64 {
+    match name {
+        "m" => 1.0,
+        "mm" => 1e-3,
+        "µm" => 1e-6,
+        "nm" => 1e-9,
+        other => panic!("unit {other}"),
+    }
+}
+
+#[test]
+fn sample_files_read_as_surfacetopography_reads_them() {
+    let readings: Value =
+        serde_json::from_str(&std::fs::read_to_string(samples().join("readings.json")).unwrap()).unwrap();
+    for name in ["x3p-2.x3p", "sdf-1.sdf", "nc-1.nc"] {
+        let r = &readings[name];
+        let s = io::read(&samples().join(name), &ReadOptions::default()).unwrap();
+        let u = unit(r["unit"].as_str().unwrap());
+        let (nx, ny) = (
+            r["nb_grid_pts"][0].as_u64().unwrap() as usize,
+            r["nb_grid_pts"][1].as_u64().unwrap() as usize,
+        );
+        assert_eq!((s.grid.nx, s.grid.ny), (nx, ny), "{name}");
+        let close = |ours: f64, theirs: f64, what: &str| {
+            let scale = theirs.abs().max(r["rms_height"].as_f64().unwrap() * u);
+            assert!(
+                (ours - theirs).abs() <= 1e-6 * scale,
+                "{name}: {what} {ours:e} against {theirs:e}"
+            );
+        };
+        close(
+            s.grid.length_x,
+            r["physical_sizes"][0].as_f64().unwrap() * u,
+            "length x",
+        );
+        close(
+            s.grid.length_y,
+            r["physical_sizes"][1].as_f64().unwrap() * u,
+            "length y",
+        );
+        let n = s.heights.len() as f64;
+        let mean = s.heights.sum() / n;
+        let rms = (s.heights.iter().map(|h| (h - mean).powi(2)).sum::<f64>() / n).sqrt();
+        close(mean, r["mean"].as_f64().unwrap() * u, "mean height");
+        close(rms, r["rms_height"].as_f64().unwrap() * u, "RMS height");
+        let (min, max) = s
+            .heights
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(a, b), &h| (a.min(h), b.max(h)));
+        close(min, r["min"].as_f64().unwrap() * u, "min");
+        close(max, r["max"].as_f64().unwrap() * u, "max");
+        println!(
+            "{name}: {nx} x {ny}, {:e} x {:e} m, Rq {rms:e} m: as SurfaceTopography",
+            s.grid.length_x, s.grid.length_y
+        );
+    }
+}
+
+fn surface() -> Surface {
+    // Not square, not periodic-looking, heights spanning decades: orientation and digits show.
+    let grid = Grid::new(7, 4, 3.5e-6, 1.2e-6).unwrap();
+    let h = Array2::from_shape_fn((4, 7), |(j, i)| {
+        1e-7 * (i as f64 + 0.1 * j as f64).sin() + 1e-12 * (i * j) as f64
+    });
+    Surface::new(h, grid, false).unwrap()
+}
+
+#[test]
+fn x3p_sdf_and_netcdf_read_back_what_was_written() {
+    let dir = std::env::temp_dir().join(format!("surfgen-formats-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let s = surface();
+    for ext in ["x3p", "sdf", "nc"] {
+        let path = dir.join(format!("surface.{ext}"));
+        io::write(&s, &path, None).unwrap();
+        let back = io::read(&path, &ReadOptions::default()).unwrap();
+        assert_eq!(back.heights, s.heights, ".{ext}: heights");
+        assert_eq!((back.grid.nx, back.grid.ny), (7, 4), ".{ext}");
+        for (a, b) in [(back.grid.length_x, 3.5e-6), (back.grid.length_y, 1.2e-6)] {
+            assert!((a / b - 1.0).abs() < 1e-15, ".{ext}: size {a:e} against {b:e}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A zip archive of the named entries (deflated).
+fn zip_of(path: &Path, entries: &[(&str, &[u8])]) {
+    let mut zip = zip::ZipWriter::new(std::fs::File::create(path).unwrap());
+    let options =
+        zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    for (name, bytes) in entries {
+        zip.start_file(*name, options).unwrap();
+        zip.write_all(bytes).unwrap();
+    }
+    zip.finish().unwrap();
+}
+
+fn main_xml(nx: usize, ny: usize) -> String {
+    format!(
+        "<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\"><Record1><FeatureType>SUR</FeatureType><Axes>\
+         <CX><AxisType>I</AxisType><Increment>1e-6</Increment></CX><CY><AxisType>I</AxisType><Increment>1e-6</Increment></CY>\
+         <CZ><AxisType>A</AxisType><DataType>D</DataType></CZ></Axes></Record1><Record3><MatrixDimension>\
+         <SizeX>{nx}</SizeX><SizeY>{ny}</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataLink>\
+         <PointDataLink>bindata/data.bin</PointDataLink></DataLink></Record3></p:ISO5436_2>"
+    )
+}
+
+#[test]
+fn bad_files_are_refused_with_a_reason() {
+    let dir = std::env::temp_dir().join(format!("surfgen-bad-formats-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let refused = |name: &str, bytes: Option<&[u8]>, reason: &str| {
+        let path = dir.join(name);
+        if let Some(b) = bytes {
+            std::fs::write(&path, b).unwrap();
+        }
+        let e = io::read(&path, &ReadOptions::default()).unwrap_err().to_string();
+        assert!(e.contains(reason), "{name}: {e}");
+    };
+    // Wrong magic, truncated, a header claiming more data than the file holds.
+    refused("magic.x3p", Some(b"PK not really a zip"), "not an X3P file");
+    refused("magic.sdf", Some(b"ISO-1.0\n*\n"), "aISO-1.0 or bISO-1.0");
+    refused("magic.nc", Some(b"CDX\x01junk"), "not a NetCDF-3 file");
+    let sample = std::fs::read(samples().join("x3p-2.x3p")).unwrap();
+    refused("cut.x3p", Some(&sample[..sample.len() / 2]), "");
+    let sdf = std::fs::read_to_string(samples().join("sdf-1.sdf")).unwrap();
+    refused(
+        "more.sdf",
+        Some(sdf.replace("NumProfiles = 4", "NumProfiles = 5").as_bytes()),
+        "declared",
+    );
+    refused(
+        "huge.sdf",
+        Some(sdf.replace("NumPoints = 7", "NumPoints = 99999999").as_bytes()),
+        "cannot fit",
+    );
+    let binary = b"bISO-1.0\nNumPoints = 4\nNumProfiles = 4\nXscale = 1\nYscale = 1\nZscale = 1\nDataType = 7\n*\n\0\0";
+    refused("short.sdf", Some(binary), "need 128 data bytes, found 2");
+    let nc = std::fs::read(samples().join("nc-1.nc")).unwrap();
+    refused("cut.nc", Some(&nc[..nc.len() - 100]), "");
+    // An X3P whose main.xml claims more points than its data holds, and a zip bomb: data that
+    // inflates far beyond what main.xml declares.
+    let small = vec![0u8; 10 * 10 * 8];
+    zip_of(
+        &dir.join("claims.x3p"),
+        &[
+            ("main.xml", main_xml(1000, 1000).as_bytes()),
+            ("bindata/data.bin", &small),
+        ],
+    );
+    refused("claims.x3p", None, "need 8000000 bytes");
+    let bomb = vec![0u8; 64 << 20];
+    zip_of(
+        &dir.join("bomb.x3p"),
+        &[
+            ("main.xml", main_xml(10, 10).as_bytes()),
+            ("bindata/data.bin", &bomb),
+        ],
+    );
+    refused("bomb.x3p", None, "need 800 bytes");
+    std::fs::remove_dir_all(&dir).ok();
+}
