@@ -1,4 +1,4 @@
-//! The instrument formats (X3P, SDF, NetCDF-3) on real files against what an independent reader
+//! The instrument formats (X3P, SDF, NetCDF-3, Gwyddion's text export) on real files against what an independent reader
 //! (SurfaceTopography 1.27) gets from them, round trips, and bad files refused clearly.
 
 use ndarray::Array2;
@@ -26,7 +26,7 @@ fn unit(name: &str) -> f64 {
 fn sample_files_read_as_surfacetopography_reads_them() {
     let readings: Value =
         serde_json::from_str(&std::fs::read_to_string(samples().join("readings.json")).unwrap()).unwrap();
-    for name in ["x3p-2.x3p", "sdf-1.sdf", "nc-1.nc"] {
+    for name in ["x3p-2.x3p", "sdf-1.sdf", "nc-1.nc", "matrix-3.txt"] {
         let r = &readings[name];
         let s = io::read(&samples().join(name), &ReadOptions::default()).unwrap();
         let u = unit(r["unit"].as_str().unwrap());

@@ -3,7 +3,7 @@
 //! | extension | format | spacing from |
 //! |---|---|---|
 //! | `.npy` | NumPy f64 array `(ny, nx)` + JSON sidecar `<stem>.json` ([`Metadata`]) | the sidecar, else [`ReadOptions`] |
-//! | `.txt`, `.dat`, `.asc`, `.csv` | plain-text matrix, one row of heights per line | a `# length_x=.. length_y=..` comment written by us, else [`ReadOptions`] |
+//! | `.txt`, `.dat`, `.asc`, `.csv` | plain-text matrix, one row of heights per line | a `# length_x=.. length_y=..` comment written by us, or Gwyddion's export header (`# Width: 10.00 µm`, `# Height:`, `# Value units:`), else [`ReadOptions`] |
 //! | `.xyz`, `.xyh` | `x y h` triples, one per line, rows separated by blank lines (the contact-mechanics challenge's format) | the coordinates |
 //! | `.gsf` | Gwyddion Simple Field (heights as f32) | the header |
 //! | `.x3p` | ISO 25178-72 XML 3D surface profile (zip: `main.xml` + binary heights) | the x and y increments |

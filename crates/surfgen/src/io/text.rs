@@ -1,6 +1,6 @@
 //! Plain-text formats: a height matrix, and `x y h` triples.
 
-use super::{ReadOptions, Surface};
+use super::{ReadOptions, Surface, length_unit};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -42,10 +42,29 @@ pub(super) fn read_matrix(path: &Path, options: &ReadOptions) -> Result<Surface>
     let mut rows: Vec<f64> = Vec::new();
     let (mut nx, mut ny) = (0usize, 0usize);
     let mut opts = *options;
+    // Gwyddion's text export says `# Width: 10.00 µm`, `# Height: ...`, `# Value units: m`.
+    let mut z_unit = 1.0;
     for item in lines(path)? {
         let (no, line) = item?;
         let t = line.trim();
         if let Some(comment) = t.strip_prefix('#') {
+            let quantity = |v: &str| -> Result<f64> {
+                let (x, unit) = v.trim().split_once(' ').unwrap_or((v.trim(), "m"));
+                let factor = length_unit(unit).ok_or_else(|| {
+                    SurfError::parse(path, Some(no), format!("unknown length unit '{unit}'"))
+                })?;
+                Ok(number(path, no, x)? * factor)
+            };
+            let c = comment.trim();
+            if let Some(v) = c.strip_prefix("Width:") {
+                opts.length_x = Some(quantity(v)?);
+            } else if let Some(v) = c.strip_prefix("Height:") {
+                opts.length_y = Some(quantity(v)?);
+            } else if let Some(v) = c.strip_prefix("Value units:") {
+                z_unit = length_unit(v).ok_or_else(|| {
+                    SurfError::parse(path, Some(no), format!("unknown height unit '{}'", v.trim()))
+                })?;
+            }
             if let Some(v) = header_value(comment, "length_x") {
                 opts.length_x = Some(number(path, no, &v)? / options.unit);
             }
@@ -88,7 +107,7 @@ pub(super) fn read_matrix(path: &Path, options: &ReadOptions) -> Result<Surface>
     }
     let grid = opts.grid_for(path, ny, nx)?;
     let grid = Grid::new(nx, ny, grid.length_x * options.unit, grid.length_y * options.unit)?;
-    let heights = Array2::from_shape_vec((ny, nx), rows).expect("counted") * options.unit;
+    let heights = Array2::from_shape_vec((ny, nx), rows).expect("counted") * (z_unit * options.unit);
     Surface::new(heights, grid, opts.periodic)
 }
 
