@@ -69,14 +69,24 @@ fn seeds(dir: &std::path::Path) -> Vec<(&'static str, Vec<u8>)> {
     let grid = Grid::new(6, 5, 1e-5, 1e-5).unwrap();
     let heights = ndarray::Array2::from_shape_fn((5, 6), |(j, i)| 1e-7 * ((i * 7 + j * 3) % 5) as f64);
     let surface = Surface::new(heights, grid, true).unwrap();
-    ["npy", "txt", "xyz", "gsf", "x3p", "sdf", "nc"]
+    let mut seeds: Vec<(&'static str, Vec<u8>)> = ["npy", "txt", "xyz", "gsf", "x3p", "sdf", "nc"]
         .into_iter()
         .map(|ext| {
             let p = dir.join(format!("seed.{ext}"));
             io::write(&surface, &p, None).unwrap();
             (ext, std::fs::read(&p).unwrap())
         })
-        .collect()
+        .collect();
+    // TrueMap is read only: a 3 x 2 file by hand.
+    let mut tmd = b"Binary TrueMap Data File v2.0\r\n\0a comment\r\n\0".to_vec();
+    for v in [3u32, 2] {
+        tmd.extend(v.to_le_bytes());
+    }
+    for v in [1.5f32, 1.0, 0.0, 0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6] {
+        tmd.extend(v.to_le_bytes());
+    }
+    seeds.push(("tmd", tmd));
+    seeds
 }
 
 /// One arbitrary input made from a valid file: random bytes, bytes flipped, cut, repeated, or

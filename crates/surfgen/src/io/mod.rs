@@ -9,6 +9,7 @@
 //! | `.x3p` | ISO 25178-72 XML 3D surface profile (zip: `main.xml` + binary heights) | the x and y increments |
 //! | `.sdf` | ISO 25178-71 Surface Data File (text, or binary i16/i32/f64) | `Xscale`, `Yscale` |
 //! | `.nc` | NetCDF-3 as contact.engineering writes it (`heights(x, y)`) | the `length` of `x` and `y` |
+//! | `.tmd` | TrueMap / TrueSurf binary (read only) | the header |
 //!
 //! Heights and lengths are in metres; [`ReadOptions::unit`] converts files written in other
 //! units. Readers check everything (shape, finiteness, ragged rows) and return an error naming
@@ -18,6 +19,7 @@ mod gsf;
 mod netcdf;
 mod npy;
 mod sdf;
+mod tmd;
 mod x3p;
 
 pub use npy::write_array as write_npy;
@@ -140,6 +142,7 @@ pub enum Format {
     X3p,
     Sdf,
     NetCdf,
+    Tmd,
 }
 
 /// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
@@ -174,17 +177,18 @@ impl Format {
             "x3p" => Ok(Format::X3p),
             "sdf" => Ok(Format::Sdf),
             "nc" => Ok(Format::NetCdf),
+            "tmd" => Ok(Format::Tmd),
             "" => Err(SurfError::parse(
                 path,
                 None,
                 "the file name has no extension, which names the format: give one of .npy, \
-                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc",
+                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd",
             )),
             _ => Err(SurfError::parse(
                 path,
                 None,
                 format!(
-                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc)"
+                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd)"
                 ),
             )),
         }
@@ -216,6 +220,7 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
         Format::X3p => x3p::read(path, options)?,
         Format::Sdf => sdf::read(path, options)?,
         Format::NetCdf => netcdf::read(path, options)?,
+        Format::Tmd => tmd::read(path, options)?,
     };
     check_finite(surface.heights.view())?;
     Ok(surface)
@@ -233,6 +238,11 @@ pub fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Res
         Format::X3p => x3p::write(surface, path),
         Format::Sdf => sdf::write(surface, path),
         Format::NetCdf => netcdf::write(surface, path),
+        Format::Tmd => Err(SurfError::parse(
+            path,
+            None,
+            "TrueMap files are read, not written: write .x3p, .sdf or .nc for other tools",
+        )),
     }
 }
 
