@@ -26,7 +26,14 @@ fn unit(name: &str) -> f64 {
 fn sample_files_read_as_surfacetopography_reads_them() {
     let readings: Value =
         serde_json::from_str(&std::fs::read_to_string(samples().join("readings.json")).unwrap()).unwrap();
-    for name in ["x3p-2.x3p", "sdf-1.sdf", "nc-1.nc", "matrix-3.txt", "tmd-1.tmd"] {
+    for name in [
+        "x3p-2.x3p",
+        "sdf-1.sdf",
+        "nc-1.nc",
+        "matrix-3.txt",
+        "tmd-1.tmd",
+        "mi-1.mi",
+    ] {
         let r = &readings[name];
         let s = io::read(&samples().join(name), &ReadOptions::default()).unwrap();
         let u = unit(r["unit"].as_str().unwrap());

@@ -86,6 +86,15 @@ fn seeds(dir: &std::path::Path) -> Vec<(&'static str, Vec<u8>)> {
         tmd.extend(v.to_le_bytes());
     }
     seeds.push(("tmd", tmd));
+    // A PicoView image by hand: 3 x 2 pixels, one height channel, 16 bits.
+    let mut mi =
+        b"fileType      Image\nxPixels       3\nyPixels       2\nxLength       1e-6\nyLength       1e-6\n\
+bufferLabel   Topography\nbufferRange   1.5\nbufferUnit    um\ndata          BINARY\n"
+            .to_vec();
+    for v in [1i16, -2, 300, 4000, -5000, 6] {
+        mi.extend(v.to_le_bytes());
+    }
+    seeds.push(("mi", mi));
     seeds
 }
 

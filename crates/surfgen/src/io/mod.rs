@@ -10,12 +10,14 @@
 //! | `.sdf` | ISO 25178-71 Surface Data File (text, or binary i16/i32/f64) | `Xscale`, `Yscale` |
 //! | `.nc` | NetCDF-3 as contact.engineering writes it (`heights(x, y)`) | the `length` of `x` and `y` |
 //! | `.tmd` | TrueMap / TrueSurf binary (read only) | the header |
+//! | `.mi` | Molecular Imaging / Agilent PicoView image, its height channel (read only) | the header |
 //!
 //! Heights and lengths are in metres; [`ReadOptions::unit`] converts files written in other
 //! units. Readers check everything (shape, finiteness, ragged rows) and return an error naming
 //! the file and line rather than a partial surface.
 
 mod gsf;
+mod mi;
 mod netcdf;
 mod npy;
 mod sdf;
@@ -143,6 +145,7 @@ pub enum Format {
     Sdf,
     NetCdf,
     Tmd,
+    Mi,
 }
 
 /// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
@@ -178,17 +181,18 @@ impl Format {
             "sdf" => Ok(Format::Sdf),
             "nc" => Ok(Format::NetCdf),
             "tmd" => Ok(Format::Tmd),
+            "mi" => Ok(Format::Mi),
             "" => Err(SurfError::parse(
                 path,
                 None,
                 "the file name has no extension, which names the format: give one of .npy, \
-                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd",
+                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi",
             )),
             _ => Err(SurfError::parse(
                 path,
                 None,
                 format!(
-                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd)"
+                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi)"
                 ),
             )),
         }
@@ -221,6 +225,7 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
         Format::Sdf => sdf::read(path, options)?,
         Format::NetCdf => netcdf::read(path, options)?,
         Format::Tmd => tmd::read(path, options)?,
+        Format::Mi => mi::read(path, options)?,
     };
     check_finite(surface.heights.view())?;
     Ok(surface)
@@ -238,10 +243,10 @@ pub fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Res
         Format::X3p => x3p::write(surface, path),
         Format::Sdf => sdf::write(surface, path),
         Format::NetCdf => netcdf::write(surface, path),
-        Format::Tmd => Err(SurfError::parse(
+        Format::Tmd | Format::Mi => Err(SurfError::parse(
             path,
             None,
-            "TrueMap files are read, not written: write .x3p, .sdf or .nc for other tools",
+            "instruments' own formats are read, not written: write .x3p, .sdf or .nc for other tools",
         )),
     }
 }
