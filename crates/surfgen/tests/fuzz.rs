@@ -95,6 +95,16 @@ bufferLabel   Topography\nbufferRange   1.5\nbufferUnit    um\ndata          BIN
         mi.extend(v.to_le_bytes());
     }
     seeds.push(("mi", mi));
+    // A Nanosurf file by hand: a force channel, then a 3 x 2 height channel, 16 bits.
+    let mut nid = b"[DataSet]\nGroupCount=1\nGr0-Count=2\nGr0-Ch0=DataSet-0:0\nGr0-Ch1=DataSet-0:1\n\
+[DataSet-0:0]\nPoints=3\nLines=2\nDim2Unit=N\nSaveBits=16\n\
+[DataSet-0:1]\nPoints=3\nLines=2\nDim0Range=1e-6\nDim0Unit=m\nDim1Range=1e-6\nDim1Unit=m\n\
+Dim2Min=-1e-7\nDim2Range=2e-7\nDim2Unit=m\nSaveBits=16\nSaveSign=Signed\n#!"
+        .to_vec();
+    for v in [0i16, 1, 2, 3, 4, 5, 10, -20, 300, 4000, -5000, 6] {
+        nid.extend(v.to_le_bytes());
+    }
+    seeds.push(("nid", nid));
     seeds
 }
 

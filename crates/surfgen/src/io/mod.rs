@@ -11,6 +11,7 @@
 //! | `.nc` | NetCDF-3 as contact.engineering writes it (`heights(x, y)`) | the `length` of `x` and `y` |
 //! | `.tmd` | TrueMap / TrueSurf binary (read only) | the header |
 //! | `.mi` | Molecular Imaging / Agilent PicoView image, its height channel (read only) | the header |
+//! | `.nid` | Nanosurf, its first height channel (read only) | the channel's ranges |
 //!
 //! Heights and lengths are in metres; [`ReadOptions::unit`] converts files written in other
 //! units. Readers check everything (shape, finiteness, ragged rows) and return an error naming
@@ -19,6 +20,7 @@
 mod gsf;
 mod mi;
 mod netcdf;
+mod nid;
 mod npy;
 mod sdf;
 mod tmd;
@@ -146,6 +148,7 @@ pub enum Format {
     NetCdf,
     Tmd,
     Mi,
+    Nid,
 }
 
 /// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
@@ -182,17 +185,18 @@ impl Format {
             "nc" => Ok(Format::NetCdf),
             "tmd" => Ok(Format::Tmd),
             "mi" => Ok(Format::Mi),
+            "nid" => Ok(Format::Nid),
             "" => Err(SurfError::parse(
                 path,
                 None,
                 "the file name has no extension, which names the format: give one of .npy, \
-                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi",
+                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid",
             )),
             _ => Err(SurfError::parse(
                 path,
                 None,
                 format!(
-                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi)"
+                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid)"
                 ),
             )),
         }
@@ -226,6 +230,7 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
         Format::NetCdf => netcdf::read(path, options)?,
         Format::Tmd => tmd::read(path, options)?,
         Format::Mi => mi::read(path, options)?,
+        Format::Nid => nid::read(path, options)?,
     };
     check_finite(surface.heights.view())?;
     Ok(surface)
@@ -243,7 +248,7 @@ pub fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Res
         Format::X3p => x3p::write(surface, path),
         Format::Sdf => sdf::write(surface, path),
         Format::NetCdf => netcdf::write(surface, path),
-        Format::Tmd | Format::Mi => Err(SurfError::parse(
+        Format::Tmd | Format::Mi | Format::Nid => Err(SurfError::parse(
             path,
             None,
             "instruments' own formats are read, not written: write .x3p, .sdf or .nc for other tools",

@@ -1,0 +1,127 @@
+//! Nanosurf (`.nid`): an INI-style text header (`[Section]` and `Key=Value` lines) ended by
+//! `#!`, then the channels' binary data in the order the `[DataSet]` section lists them
+//! (`Gr0-Ch0=DataSet-0:0`, ..., group by group). A channel's section gives `Points` and
+//! `Lines`, the lateral ranges `Dim0Range`, `Dim1Range` [`Dim0Unit`], its quantity's `Dim2Min`,
+//! `Dim2Range` and `Dim2Unit`, and the storage (`SaveBits`, `SaveSign`, little-endian); a
+//! value is `Dim2Min + (raw - smallest raw) * Dim2Range / 2^bits`, rows stored from the
+//! image's top. The first channel in a length unit (the forward scan's height) is read.
+
+use super::{ReadOptions, Surface, length_unit};
+use crate::error::{Result, SurfError};
+use crate::grid::Grid;
+use ndarray::{Array2, s};
+use std::collections::HashMap;
+use std::path::Path;
+
+pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
+    let bytes = std::fs::read(path).map_err(|e| SurfError::io(path, e))?;
+    let bad = |m: String| SurfError::parse(path, None, m);
+    if !bytes.starts_with(b"[DataSet]") {
+        return Err(bad(
+            "not a Nanosurf file (it does not begin with [DataSet])".into()
+        ));
+    }
+    let end = bytes
+        .windows(2)
+        .position(|w| w == b"#!")
+        .ok_or_else(|| bad("the header is not ended by #!".into()))?;
+    let text = String::from_utf8_lossy(&bytes[..end]);
+    let mut sections: HashMap<String, HashMap<String, String>> = HashMap::new();
+    let mut current = String::new();
+    for line in text.lines() {
+        let line = line.trim();
+        if let Some(name) = line.strip_prefix('[').and_then(|l| l.strip_suffix(']')) {
+            current = name.to_string();
+        } else if let Some((k, v)) = line.split_once('=') {
+            sections
+                .entry(current.clone())
+                .or_default()
+                .insert(k.trim().to_string(), v.trim().to_string());
+        }
+    }
+    let set = sections
+        .get("DataSet")
+        .ok_or_else(|| bad("no [DataSet] section".into()))?;
+    let int = |map: &HashMap<String, String>, key: &str| -> Option<usize> { map.get(key)?.parse().ok() };
+    // The channels in stored order: group by group, channel numbers ascending.
+    let mut channels = Vec::new();
+    for g in 0..int(set, "GroupCount").unwrap_or(0).min(1000) {
+        for c in 0..int(set, &format!("Gr{g}-Count")).unwrap_or(0).min(1000) {
+            if let Some(name) = set.get(&format!("Gr{g}-Ch{c}")) {
+                channels.push(name.clone());
+            }
+        }
+    }
+    let data = &bytes[end + 2..];
+    let mut offset = 0usize;
+    for name in &channels {
+        let ch = sections
+            .get(name)
+            .ok_or_else(|| bad(format!("the channel [{name}] is not described")))?;
+        let (nx, ny) = (int(ch, "Points").unwrap_or(0), int(ch, "Lines").unwrap_or(0));
+        let bits = int(ch, "SaveBits").unwrap_or(32);
+        if !matches!(bits, 16 | 32) {
+            return Err(bad(format!("[{name}]: SaveBits {bits} (16 or 32 are read)")));
+        }
+        let size = nx
+            .checked_mul(ny)
+            .and_then(|n| n.checked_mul(bits / 8))
+            .filter(|&s| s <= data.len())
+            .ok_or_else(|| bad(format!("[{name}]: {nx} x {ny} points cannot fit in the file")))?;
+        let unit = ch.get("Dim2Unit").map(String::as_str).unwrap_or("");
+        if length_unit(unit).is_none() || unit.is_empty() {
+            offset += size;
+            continue;
+        }
+        let number = |key: &str| -> Result<f64> {
+            ch.get(key)
+                .and_then(|v| v.split_whitespace().next()?.parse::<f64>().ok())
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| bad(format!("[{name}] lacks a number {key}")))
+        };
+        let lateral = |key: &str| -> Result<f64> {
+            let unit = ch.get(key).map(String::as_str).unwrap_or("m");
+            length_unit(unit).ok_or_else(|| bad(format!("[{name}]: unknown unit {key} '{unit}'")))
+        };
+        let raw = data
+            .get(offset..offset + size)
+            .ok_or_else(|| bad(format!("[{name}]: the data end before this channel")))?;
+        let signed = ch.get("SaveSign").is_none_or(|s| s == "Signed");
+        let smallest = if signed {
+            -(2f64.powi(bits as i32 - 1))
+        } else {
+            0.0
+        };
+        let (min, range, z) = (
+            number("Dim2Min")?,
+            number("Dim2Range")?,
+            length_unit(unit).expect("checked"),
+        );
+        let scale = range / 2f64.powi(bits as i32);
+        let values: Vec<f64> = raw
+            .chunks_exact(bits / 8)
+            .map(|c| {
+                let v = match (bits, signed) {
+                    (16, true) => i16::from_le_bytes([c[0], c[1]]) as f64,
+                    (16, false) => u16::from_le_bytes([c[0], c[1]]) as f64,
+                    (_, true) => i32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64,
+                    (_, false) => u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64,
+                };
+                (min + (v - smallest) * scale) * z * options.unit
+            })
+            .collect();
+        // The first row stored is the image's top: ours is y = 0.
+        let heights = Array2::from_shape_vec((ny, nx), values)
+            .expect("counted")
+            .slice(s![..;-1, ..])
+            .to_owned();
+        let lx = number("Dim0Range")? * lateral("Dim0Unit")? * options.unit;
+        let ly = number("Dim1Range")? * lateral("Dim1Unit")? * options.unit;
+        let grid = Grid::new(nx, ny, lx, ly).map_err(|e| bad(e.to_string()))?;
+        return Surface::new(heights, grid, options.periodic);
+    }
+    Err(bad(format!(
+        "no channel in a length unit among {}",
+        channels.join(", ")
+    )))
+}
