@@ -186,6 +186,14 @@ struct Progress {
 }
 
 impl Progress {
+    fn new(callback: Option<Py<PyAny>>, cancel: &Cancel) -> Self {
+        Progress {
+            callback,
+            cancel: cancel.0.clone(),
+            error: None,
+        }
+    }
+
     fn call(&mut self, make: impl FnOnce(Python<'_>) -> PyResult<Bound<'_, PyDict>>) {
         let Some(callback) = &self.callback else {
             return;
@@ -294,11 +302,7 @@ fn solve<'py>(
     if !problem.adhesive() {
         control.validate_without_adhesion().py()?;
     }
-    let mut observer = Progress {
-        callback: progress,
-        cancel: cancel.0.clone(),
-        error: None,
-    };
+    let mut observer = Progress::new(progress, cancel);
     let adhesive = problem.adhesive();
     let outcome = py.detach(|| {
         on_pool(threads, || -> anyhow::Result<_> {
@@ -387,11 +391,7 @@ fn sweep<'py>(
     let max_step = path.max_step(problem, &controls).py()?;
     case.validate_settings(problem.adhesive()).py()?;
     let settings = case.settings();
-    let mut observer = Progress {
-        callback: progress,
-        cancel: cancel.0.clone(),
-        error: None,
-    };
+    let mut observer = Progress::new(progress, cancel);
     /// Keeps the last state of the sweep for the caller.
     struct Last<'a> {
         inner: &'a mut Progress,
