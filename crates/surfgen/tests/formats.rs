@@ -181,3 +181,50 @@ fn bad_files_are_refused_with_a_reason() {
     refused("bomb.x3p", None, "need 800 bytes");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A 3 x 2 Digital Surf surface made by hand (16 bits, spacings in mm, heights in µm).
+fn tiny_sur(special: i16, values: [i16; 6]) -> Vec<u8> {
+    let mut b = vec![0u8; 512];
+    b[..12].copy_from_slice(b"DIGITAL SURF");
+    let mut put = |o: usize, bytes: &[u8]| b[o..o + bytes.len()].copy_from_slice(bytes);
+    put(18, &2i16.to_le_bytes());
+    put(86, &special.to_le_bytes());
+    put(98, &16i16.to_le_bytes());
+    put(100, &(-100i32).to_le_bytes());
+    put(108, &3i32.to_le_bytes());
+    put(112, &2i32.to_le_bytes());
+    put(120, &0.5f32.to_le_bytes());
+    put(124, &0.25f32.to_le_bytes());
+    put(128, &0.001f32.to_le_bytes());
+    put(180, b"mm");
+    put(196, b"mm");
+    put(212, b"um");
+    for v in values {
+        b.extend(v.to_le_bytes());
+    }
+    b
+}
+
+#[test]
+fn digital_surf_reads_its_header_and_refuses_unmeasured_points() {
+    let dir = std::env::temp_dir().join(format!("surfgen-sur-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("tiny.sur");
+    std::fs::write(&path, tiny_sur(1, [1, 2, 3, -4, 5, 600])).unwrap();
+    let s = io::read(&path, &ReadOptions::default()).unwrap();
+    assert_eq!((s.grid.nx, s.grid.ny), (3, 2));
+    assert!((s.grid.length_x - 1.5e-3).abs() < 1e-15 && (s.grid.length_y - 0.5e-3).abs() < 1e-15);
+    let dz = 0.001f32 as f64 * 1e-6;
+    assert_eq!(s.heights[[1, 2]], 600.0 * dz);
+    assert_eq!(s.heights[[1, 0]], -4.0 * dz);
+    // Points marked unmeasured (below the smallest stored value) are refused, counted.
+    std::fs::write(&path, tiny_sur(1, [1, -102, 3, -4, -101, 600])).unwrap();
+    let e = io::read(&path, &ReadOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("2 of 6 points are not measured"), "{e}");
+    // The real sample holds 117 of them; SurfaceTopography masks them (readings.json).
+    let e = io::read(&samples().join("sur-2.sur"), &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("117 of 272492 points are not measured"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}

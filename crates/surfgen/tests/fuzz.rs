@@ -105,6 +105,25 @@ Dim2Min=-1e-7\nDim2Range=2e-7\nDim2Unit=m\nSaveBits=16\nSaveSign=Signed\n#!"
         nid.extend(v.to_le_bytes());
     }
     seeds.push(("nid", nid));
+    // A Digital Surf surface by hand: the 512-byte header, 3 x 2 points of 16 bits.
+    let mut sur = vec![0u8; 512];
+    sur[..12].copy_from_slice(b"DIGITAL SURF");
+    for (o, v) in [(18, 2i16), (98, 16)] {
+        sur[o..o + 2].copy_from_slice(&v.to_le_bytes());
+    }
+    for (o, v) in [(108, 3i32), (112, 2)] {
+        sur[o..o + 4].copy_from_slice(&v.to_le_bytes());
+    }
+    for (o, v) in [(120, 0.5f32), (124, 0.5), (128, 0.01)] {
+        sur[o..o + 4].copy_from_slice(&v.to_le_bytes());
+    }
+    for o in [180, 196, 212] {
+        sur[o..o + 2].copy_from_slice(b"um");
+    }
+    for v in [1i16, 2, 3, 4, 5, 6] {
+        sur.extend(v.to_le_bytes());
+    }
+    seeds.push(("sur", sur));
     seeds
 }
 

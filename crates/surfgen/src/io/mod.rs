@@ -12,6 +12,7 @@
 //! | `.tmd` | TrueMap / TrueSurf binary (read only) | the header |
 //! | `.mi` | Molecular Imaging / Agilent PicoView image, its height channel (read only) | the header |
 //! | `.nid` | Nanosurf, its first height channel (read only) | the channel's ranges |
+//! | `.sur` | Digital Surf / MountainsMap surface, every point measured (read only) | the header |
 //!
 //! Heights and lengths are in metres; [`ReadOptions::unit`] converts files written in other
 //! units. Readers check everything (shape, finiteness, ragged rows) and return an error naming
@@ -23,6 +24,7 @@ mod netcdf;
 mod nid;
 mod npy;
 mod sdf;
+mod sur;
 mod tmd;
 mod x3p;
 
@@ -149,6 +151,7 @@ pub enum Format {
     Tmd,
     Mi,
     Nid,
+    Sur,
 }
 
 /// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
@@ -186,17 +189,18 @@ impl Format {
             "tmd" => Ok(Format::Tmd),
             "mi" => Ok(Format::Mi),
             "nid" => Ok(Format::Nid),
+            "sur" => Ok(Format::Sur),
             "" => Err(SurfError::parse(
                 path,
                 None,
                 "the file name has no extension, which names the format: give one of .npy, \
-                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid",
+                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur",
             )),
             _ => Err(SurfError::parse(
                 path,
                 None,
                 format!(
-                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid)"
+                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur)"
                 ),
             )),
         }
@@ -231,6 +235,7 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
         Format::Tmd => tmd::read(path, options)?,
         Format::Mi => mi::read(path, options)?,
         Format::Nid => nid::read(path, options)?,
+        Format::Sur => sur::read(path, options)?,
     };
     check_finite(surface.heights.view())?;
     Ok(surface)
@@ -248,7 +253,7 @@ pub fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Res
         Format::X3p => x3p::write(surface, path),
         Format::Sdf => sdf::write(surface, path),
         Format::NetCdf => netcdf::write(surface, path),
-        Format::Tmd | Format::Mi | Format::Nid => Err(SurfError::parse(
+        Format::Tmd | Format::Mi | Format::Nid | Format::Sur => Err(SurfError::parse(
             path,
             None,
             "instruments' own formats are read, not written: write .x3p, .sdf or .nc for other tools",
