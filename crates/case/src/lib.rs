@@ -100,7 +100,7 @@ impl OuterKind {
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 #[serde(default, deny_unknown_fields)]
 pub struct Case {
-    /// Rough surface file (.npy + sidecar, .txt, .xyz, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur): heights [m], peaks towards the
+    /// Rough surface file (.npy + sidecar, .txt, .xyz, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd): heights [m], peaks towards the
     /// counterface. With --sphere-radius the roughness sits on the sphere.
     #[cfg_attr(feature = "clap", arg(long))]
     pub surface: Option<PathBuf>,

@@ -28,7 +28,7 @@ pub struct GenerateArgs {
 /// Where a surface comes from, for commands that read one.
 #[derive(Args, Debug)]
 pub struct SurfaceFile {
-    /// Surface file: .npy (+ .json sidecar), .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid or .sur.
+    /// Surface file: .npy (+ .json sidecar), .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur or .opd.
     file: PathBuf,
     /// Box size along x [m], for files that do not carry it (bare .npy, plain matrix).
     #[arg(long)]

@@ -4,6 +4,9 @@
 use ndarray::Array2;
 use serde_json::Value;
 use std::io::Write;
+
+mod common;
+use common::tiny_opd;
 use std::path::{Path, PathBuf};
 use surfgen::io::{self, ReadOptions};
 use surfgen::{Grid, Surface};
@@ -226,5 +229,32 @@ fn digital_surf_reads_its_header_and_refuses_unmeasured_points() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("117 of 272492 points are not measured"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn wyko_opd_reads_its_blocks_and_refuses_unmeasured_points() {
+    let dir = std::env::temp_dir().join(format!("surfgen-opd-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("tiny.opd");
+    std::fs::write(&path, tiny_opd([1.0, 2.0, 3.0, 4.0, 5.0, 6.0])).unwrap();
+    let s = io::read(&path, &ReadOptions::default()).unwrap();
+    assert_eq!((s.grid.nx, s.grid.ny), (3, 2));
+    let pixel = 0.002f32 as f64 * 1e-3;
+    assert!((s.grid.length_x / (3.0 * pixel) - 1.0).abs() < 1e-15);
+    assert!((s.grid.length_y / (2.0 * 2.0 * pixel) - 1.0).abs() < 1e-15);
+    // Column x holds (top, bottom) = values[2x], values[2x + 1]; our row 0 is the bottom.
+    let waves = |j: usize| s.heights.row(j).mapv(|h| h / 500e-9).to_vec();
+    let near = |a: Vec<f64>, b: [f64; 3]| a.iter().zip(b).all(|(x, y)| (x / y - 1.0).abs() < 1e-15);
+    assert!(near(waves(0), [2.0, 4.0, 6.0]), "{:?}", waves(0));
+    assert!(near(waves(1), [1.0, 3.0, 5.0]), "{:?}", waves(1));
+    std::fs::write(&path, tiny_opd([1.0, 1e38, 3.0, 4.0, 5.0, f32::NAN])).unwrap();
+    let e = io::read(&path, &ReadOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("2 of 6 points are not measured"), "{e}");
+    // The real sample holds 116 of them; SurfaceTopography masks them (readings.json).
+    let e = io::read(&samples().join("opd-1.opd"), &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("116 of 307200 points are not measured"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -10,6 +10,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use surfgen::io::{self, ReadOptions};
 use surfgen::{Grid, Surface};
 
+mod common;
+use common::tiny_opd;
+
 /// The system allocator, counting the bytes live and their peak since the last reset. A single
 /// request above `CAP` is refused (the process aborts: the test fails) rather than granted.
 struct Counting;
@@ -124,6 +127,7 @@ Dim2Min=-1e-7\nDim2Range=2e-7\nDim2Unit=m\nSaveBits=16\nSaveSign=Signed\n#!"
         sur.extend(v.to_le_bytes());
     }
     seeds.push(("sur", sur));
+    seeds.push(("opd", tiny_opd([1.0, 2.0, 3.0, 4.0, 5.0, 6.0])));
     seeds
 }
 

@@ -180,7 +180,7 @@ def read(
     periodic: bool = True,
 ) -> Topography:
     """Reads a surface file (``.npy`` with its sidecar, text matrix, ``.xyz``, ``.gsf``,
-    ``.x3p``, ``.sdf``, ``.nc``, ``.tmd``, ``.mi``, ``.nid``, ``.sur``).
+    ``.x3p``, ``.sdf``, ``.nc``, ``.tmd``, ``.mi``, ``.nid``, ``.sur``, ``.opd``).
     ``length``/``length_y`` [m] give the box of files that do not carry it; ``unit`` is the
     metres per file unit; ``periodic`` applies to files without metadata."""
     heights, lx, ly, is_periodic = _native.read(os.fspath(path), length, length_y, float(unit), bool(periodic))

@@ -13,6 +13,7 @@
 //! | `.mi` | Molecular Imaging / Agilent PicoView image, its height channel (read only) | the header |
 //! | `.nid` | Nanosurf, its first height channel (read only) | the channel's ranges |
 //! | `.sur` | Digital Surf / MountainsMap surface, every point measured (read only) | the header |
+//! | `.opd` | Wyko / Veeco Vision, every point measured (read only) | `Pixel_size`, `Aspect` |
 //!
 //! Heights and lengths are in metres; [`ReadOptions::unit`] converts files written in other
 //! units. Readers check everything (shape, finiteness, ragged rows) and return an error naming
@@ -23,6 +24,7 @@ mod mi;
 mod netcdf;
 mod nid;
 mod npy;
+mod opd;
 mod sdf;
 mod sur;
 mod tmd;
@@ -152,6 +154,7 @@ pub enum Format {
     Mi,
     Nid,
     Sur,
+    Opd,
 }
 
 /// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
@@ -190,17 +193,18 @@ impl Format {
             "mi" => Ok(Format::Mi),
             "nid" => Ok(Format::Nid),
             "sur" => Ok(Format::Sur),
+            "opd" => Ok(Format::Opd),
             "" => Err(SurfError::parse(
                 path,
                 None,
                 "the file name has no extension, which names the format: give one of .npy, \
-                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur",
+                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd",
             )),
             _ => Err(SurfError::parse(
                 path,
                 None,
                 format!(
-                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur)"
+                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd)"
                 ),
             )),
         }
@@ -236,6 +240,7 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
         Format::Mi => mi::read(path, options)?,
         Format::Nid => nid::read(path, options)?,
         Format::Sur => sur::read(path, options)?,
+        Format::Opd => opd::read(path, options)?,
     };
     check_finite(surface.heights.view())?;
     Ok(surface)
@@ -253,7 +258,7 @@ pub fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Res
         Format::X3p => x3p::write(surface, path),
         Format::Sdf => sdf::write(surface, path),
         Format::NetCdf => netcdf::write(surface, path),
-        Format::Tmd | Format::Mi | Format::Nid | Format::Sur => Err(SurfError::parse(
+        Format::Tmd | Format::Mi | Format::Nid | Format::Sur | Format::Opd => Err(SurfError::parse(
             path,
             None,
             "instruments' own formats are read, not written: write .x3p, .sdf or .nc for other tools",
