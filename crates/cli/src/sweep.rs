@@ -9,7 +9,6 @@ use anyhow::{Context, Result, bail};
 use case::{Case, SweepPath, beside, layered, to_toml};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-
 use serde_json::json;
 use solver::{AdhesiveState, Branch, Control, CyclePoint, CycleSummary, Observer, SweepPoint, summarize};
 use std::path::{Path, PathBuf};

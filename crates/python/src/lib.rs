@@ -10,7 +10,7 @@ use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2};
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use solver::{AdhesiveState, Observer, Start, SweepPoint};
+use solver::{AdhesiveState, ContactProblem, Observer, Start, SweepPoint, Termination};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -306,47 +306,29 @@ fn solve<'py>(
     let adhesive = problem.adhesive();
     let outcome = py.detach(|| {
         on_pool(threads, || -> anyhow::Result<_> {
-            if adhesive {
+            Ok(if adhesive {
                 let settings = case.settings();
                 let (state, report) = problem.solve(control, &settings, Start::Loading, &mut observer)?;
-                let summary = serde_json::json!({
-                    "law": problem.law.name(),
-                    "converged": report.converged(),
-                    "termination": report.termination.to_string(),
-                    "report": report,
-                });
-                Ok((summary, adhesive_fields(state)))
+                let edge = problem.edge_warning(&state.contact.gap, &state.contact.pressure);
+                let head = (report.converged(), report.termination);
+                (summary(problem, head, &report, edge)?, adhesive_fields(state))
             } else {
                 let options = case.contact_options();
                 let (state, report) =
                     problem.solve_without_adhesion(control, &options, None, &mut observer)?;
-                let summary = serde_json::json!({
-                    "law": "none",
-                    "converged": report.converged(),
-                    "termination": report.termination.to_string(),
-                    "report": report,
-                });
+                let edge = problem.edge_warning(&state.gap, &state.pressure);
+                let head = (report.converged(), report.termination);
                 let fields = vec![
                     ("pressure", state.pressure),
                     ("gap", state.gap),
                     ("displacement", state.displacement),
                 ];
-                Ok((summary, fields))
-            }
+                (summary(problem, head, &report, edge)?, fields)
+            })
         })
         .and_then(|r| r)
     });
     let (mut summary, fields) = observer.finish(outcome)?;
-    let (gap, pressure) = match fields.as_slice() {
-        [(_, p), _, _, (_, g), _] | [(_, p), (_, g), _] => (g, p),
-        _ => unreachable!("the fields above"),
-    };
-    summary["warnings"] = problem
-        .warnings
-        .iter()
-        .cloned()
-        .chain(problem.edge_warning(gap, pressure))
-        .collect();
     summary["case"] = serde_json::to_value(&case).py()?;
     summary["surface_hash"] = serde_json::to_value(&built.surface_hash).py()?;
     let fields = fields
@@ -354,6 +336,24 @@ fn solve<'py>(
         .map(|(name, a)| (name.to_string(), array(py, a)))
         .collect();
     Ok((summary.to_string(), fields))
+}
+
+/// A solve's summary: the law, whether and how it ended, the report, and the problem's
+/// warnings with the edge warning of the state reached.
+fn summary(
+    problem: &ContactProblem,
+    (converged, termination): (bool, Termination),
+    report: &impl serde::Serialize,
+    edge: Option<String>,
+) -> anyhow::Result<serde_json::Value> {
+    let warnings: Vec<String> = problem.warnings.iter().cloned().chain(edge).collect();
+    Ok(serde_json::json!({
+        "law": problem.law.name(),
+        "converged": converged,
+        "termination": termination.to_string(),
+        "report": serde_json::to_value(report)?,
+        "warnings": warnings,
+    }))
 }
 
 /// An adhesive state's fields, named as the command line's files.

@@ -57,10 +57,7 @@ pub fn solve(
         options,
         &mut state,
         warm.is_some(),
-        &mut |i, r| {
-            observer.iteration(0, i, r);
-            !observer.interrupted()
-        },
+        &mut |i, r| crate::method::heard(observer, 0, i, r),
     )?;
     Ok((state, report))
 }

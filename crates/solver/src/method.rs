@@ -231,3 +231,9 @@ pub trait Observer {
 }
 
 impl Observer for () {}
+
+/// Shows `observer` an iteration of sweep step `step`; whether the solve goes on.
+pub(crate) fn heard(observer: &mut dyn Observer, step: usize, iteration: usize, residual: f64) -> bool {
+    observer.iteration(step, iteration, residual);
+    !observer.interrupted()
+}

@@ -128,8 +128,7 @@ impl ContactProblem {
         observer: &mut dyn Observer,
     ) -> Result<(AdhesiveState, AdhesiveReport)> {
         crate::adhesive::solve(self, control, settings, start, &mut |i, r| {
-            observer.iteration(0, i, r);
-            !observer.interrupted()
+            crate::method::heard(observer, 0, i, r)
         })
     }
 

@@ -172,8 +172,7 @@ impl ContactProblem {
                     };
                     let used = if retries == 0 { settings } else { &limited };
                     let (next, report) = crate::adhesive::solve(problem, sub, used, from, &mut |i, r| {
-                        observer.iteration(k, i, r);
-                        !observer.interrupted()
+                        crate::method::heard(observer, k, i, r)
                     })?;
                     budget = budget.saturating_sub(report.iterations.count());
                     match &mut spent {
