@@ -100,8 +100,9 @@ impl OuterKind {
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 #[serde(default, deny_unknown_fields)]
 pub struct Case {
-    /// Rough surface file (.npy + sidecar, .txt, .xyz, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd): heights [m], peaks towards the
-    /// counterface. With --sphere-radius the roughness sits on the sphere.
+    /// Rough surface file (.npy + sidecar, .txt, .xyz, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid,
+    /// .sur, .opd, .di/.spm; `roughcontact info FILE` shows what a file holds): heights, peaks
+    /// towards the counterface. With --sphere-radius the roughness sits on the sphere.
     #[cfg_attr(feature = "clap", arg(long))]
     pub surface: Option<PathBuf>,
     /// Generate the roughness instead of reading it: RMS height Rq [m].
@@ -131,6 +132,14 @@ pub struct Case {
     /// Metres per unit in the surface file.
     #[cfg_attr(feature = "clap", arg(long))]
     pub unit: Option<f64>,
+    /// The surface file's channel of heights, by name or index (default: the first channel
+    /// of heights; `roughcontact info FILE` lists them).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub channel: Option<String>,
+    /// Fill the points the instrument marks as not measured by harmonic interpolation
+    /// (default: refuse such a file, counting them).
+    #[cfg_attr(feature = "clap", arg(long, num_args = 0..=1, default_missing_value = "true"))]
+    pub fill_unmeasured: Option<bool>,
     /// Radius R of a rigid sphere [m], centred on the grid.
     #[cfg_attr(feature = "clap", arg(long))]
     pub sphere_radius: Option<f64>,
@@ -481,6 +490,8 @@ impl Case {
                     ("length", self.length.is_some()),
                     ("length_y", self.length_y.is_some()),
                     ("unit", self.unit.is_some()),
+                    ("channel", self.channel.is_some()),
+                    ("fill_unmeasured", self.fill_unmeasured.is_some()),
                 ] {
                     if given {
                         bail!("`{key}` applies to a surface file; a surface in memory carries its own size");
@@ -489,12 +500,22 @@ impl Case {
                 Some(s)
             }
             (None, Some(path)) => {
-                let options = ReadOptions {
+                let mut options = ReadOptions {
                     length_x: self.length,
                     length_y: self.length_y,
                     unit: self.unit.unwrap_or(1.0),
                     periodic: true,
+                    channel: None,
+                    unmeasured: match self.fill_unmeasured {
+                        Some(true) => io::Unmeasured::Fill,
+                        _ => io::Unmeasured::Refuse,
+                    },
                 };
+                if let Some(channel) = &self.channel {
+                    options.channel = Some(
+                        io::channel_index(path, &options, channel).map_err(|e| naming("reading", path, e))?,
+                    );
+                }
                 Some(io::read(path, &options).map_err(|e| naming("reading", path, e))?)
             }
             (None, None) => None,

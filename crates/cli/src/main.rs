@@ -24,6 +24,9 @@ enum Command {
     /// Generate a periodic self-affine rough surface from its power spectrum (Eq. 13).
     #[command(allow_hyphen_values = true)]
     Generate(surface::GenerateArgs),
+    /// List what a surface file holds: its channels (grid, size, unit), the channel read as
+    /// heights, and the points the instrument did not measure.
+    Info(surface::InfoArgs),
     /// Print a surface's statistics (heights, slopes, curvatures, Hurst exponent).
     Stats(surface::StatsArgs),
     /// Write a surface's radially averaged power spectrum as CSV and a log-log plot.
@@ -64,6 +67,7 @@ fn main() -> ExitCode {
     }
     let result = match cli.command {
         Command::Generate(args) => surface::generate(args),
+        Command::Info(args) => surface::info(args),
         Command::Stats(args) => surface::stats(args),
         Command::Psd(args) => surface::psd(args),
         Command::Solve(args) => solve::solve(args),

@@ -28,8 +28,9 @@ pub struct GenerateArgs {
 /// Where a surface comes from, for commands that read one.
 #[derive(Args, Debug)]
 pub struct SurfaceFile {
-    /// Surface file: .npy (+ .json sidecar), .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur or .opd.
-    file: PathBuf,
+    /// Surface file: .npy (+ .json sidecar), .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf,
+    /// .nc, .tmd, .mi, .nid, .sur, .opd or .di/.spm (heights and sizes in metres from the file).
+    pub file: PathBuf,
     /// Box size along x [m], for files that do not carry it (bare .npy, plain matrix).
     #[arg(long)]
     length: Option<f64>,
@@ -42,18 +43,149 @@ pub struct SurfaceFile {
     /// Treat a file without metadata as non-periodic (finite differences then skip the edges).
     #[arg(long)]
     not_periodic: bool,
+    /// The channel of heights to read, by name or index (default: the first channel of
+    /// heights; `roughcontact info FILE` lists them).
+    #[arg(long)]
+    channel: Option<String>,
+    /// Fill the points the instrument marks as not measured by harmonic interpolation
+    /// (default: refuse such a file, counting them).
+    #[arg(long)]
+    fill_unmeasured: bool,
 }
 
 impl SurfaceFile {
-    fn read(&self) -> Result<Surface> {
-        let options = ReadOptions {
+    /// The reading options the flags give, the channel resolved to its index.
+    pub fn options(&self) -> Result<ReadOptions> {
+        let mut options = ReadOptions {
             length_x: self.length,
             length_y: self.length_y,
             unit: self.unit,
             periodic: !self.not_periodic,
+            channel: None,
+            unmeasured: if self.fill_unmeasured {
+                io::Unmeasured::Fill
+            } else {
+                io::Unmeasured::Refuse
+            },
         };
-        io::read(&self.file, &options).map_err(|e| case::naming("reading", &self.file, e))
+        if let Some(key) = &self.channel {
+            options.channel = Some(
+                io::channel_index(&self.file, &options, key)
+                    .map_err(|e| case::naming("reading", &self.file, e))?,
+            );
+        }
+        Ok(options)
     }
+
+    fn read(&self) -> Result<Surface> {
+        io::read(&self.file, &self.options()?).map_err(|e| case::naming("reading", &self.file, e))
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct InfoArgs {
+    #[command(flatten)]
+    surface: SurfaceFile,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+/// What `info` finds in a file: its channels, and the surface it reads as.
+#[derive(Serialize)]
+struct Info {
+    file: PathBuf,
+    channels: Vec<io::Channel>,
+    /// The channel read as the surface (the default, or --channel), or why none can be.
+    reads_as: std::result::Result<Reading, String>,
+}
+
+#[derive(Serialize)]
+struct Reading {
+    channel: usize,
+    nx: usize,
+    ny: usize,
+    length_x_m: f64,
+    length_y_m: f64,
+    unmeasured_points: usize,
+    mean_height_m: f64,
+    rms_height_m: f64,
+    min_height_m: f64,
+    max_height_m: f64,
+}
+
+/// `roughcontact info`: a file's channels, grid, size and units, and its unmeasured points.
+pub fn info(a: InfoArgs) -> Result<()> {
+    let path = &a.surface.file;
+    let options = a.surface.options()?;
+    let channels = io::channels(path, &options).map_err(|e| case::naming("reading", path, e))?;
+    let reads_as = io::read_measurement(path, &options)
+        .map(|m| {
+            let measured: Vec<f64> = m.heights.iter().copied().filter(|h| !h.is_nan()).collect();
+            let n = measured.len().max(1) as f64;
+            let mean = measured.iter().sum::<f64>() / n;
+            Reading {
+                channel: m.channel,
+                nx: m.grid.nx,
+                ny: m.grid.ny,
+                length_x_m: m.grid.length_x,
+                length_y_m: m.grid.length_y,
+                unmeasured_points: m.heights.len() - measured.len(),
+                mean_height_m: mean,
+                rms_height_m: (measured.iter().map(|h| (h - mean).powi(2)).sum::<f64>() / n).sqrt(),
+                min_height_m: measured.iter().copied().fold(f64::INFINITY, f64::min),
+                max_height_m: measured.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            }
+        })
+        .map_err(|e| e.to_string());
+    let info = Info {
+        file: path.clone(),
+        channels,
+        reads_as,
+    };
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&info)?);
+        return Ok(());
+    }
+    println!("{}", path.display());
+    println!("  channel  name                         points        size [m]                 unit  heights");
+    for (i, c) in info.channels.iter().enumerate() {
+        let size = match (c.length_x, c.length_y) {
+            (Some(x), Some(y)) => format!("{x:.4e} x {y:.4e}"),
+            _ => "not in the file".into(),
+        };
+        let points = format!("{} x {}", c.nx, c.ny);
+        println!(
+            "  {i:>7}  {:<28} {points:<13} {size:<24} {:<5} {}",
+            c.name,
+            c.unit,
+            if c.height { "yes" } else { "no" }
+        );
+    }
+    match &info.reads_as {
+        Ok(r) => {
+            println!(
+                "reads as channel {}: {} x {} points, {:.4e} x {:.4e} m",
+                r.channel, r.nx, r.ny, r.length_x_m, r.length_y_m
+            );
+            println!(
+                "  heights [m] of the measured points: mean {:.4e}, RMS {:.4e}, min {:.4e}, max {:.4e}",
+                r.mean_height_m, r.rms_height_m, r.min_height_m, r.max_height_m
+            );
+            if r.unmeasured_points > 0 {
+                println!(
+                    "  {} of {} points not measured: a contact calculation refuses the file unless \
+                     --fill-unmeasured fills them",
+                    r.unmeasured_points,
+                    r.nx * r.ny
+                );
+            } else {
+                println!("  every point measured");
+            }
+        }
+        Err(e) => println!("does not read as a surface: {e}"),
+    }
+    Ok(())
 }
 
 #[derive(Args, Debug)]

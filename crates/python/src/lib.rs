@@ -11,7 +11,7 @@ use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use solver::{AdhesiveState, ContactProblem, Observer, Start, SweepPoint, Termination};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use surfgen::io::{self, ReadOptions, Surface};
@@ -480,9 +480,42 @@ fn generate<'py>(
     ))
 }
 
+/// The reading options of the keywords, the channel resolved to its index.
+fn read_options(
+    path: &Path,
+    length: Option<f64>,
+    length_y: Option<f64>,
+    unit: f64,
+    periodic: bool,
+    channel: Option<String>,
+    fill_unmeasured: bool,
+) -> PyResult<ReadOptions> {
+    let mut options = ReadOptions {
+        length_x: length,
+        length_y,
+        unit,
+        periodic,
+        channel: None,
+        unmeasured: if fill_unmeasured {
+            io::Unmeasured::Fill
+        } else {
+            io::Unmeasured::Refuse
+        },
+    };
+    if let Some(key) = channel {
+        options.channel = Some(
+            io::channel_index(path, &options, &key)
+                .map_err(|e| case::naming("reading", path, e))
+                .py()?,
+        );
+    }
+    Ok(options)
+}
+
 /// Reads a surface file: heights [m] (ny, nx), sides [m], whether it is periodic.
 #[pyfunction]
-#[pyo3(signature = (path, length, length_y, unit, periodic))]
+#[pyo3(signature = (path, length, length_y, unit, periodic, channel, fill_unmeasured))]
+#[allow(clippy::too_many_arguments)]
 fn read(
     py: Python<'_>,
     path: PathBuf,
@@ -490,17 +523,25 @@ fn read(
     length_y: Option<f64>,
     unit: f64,
     periodic: bool,
+    channel: Option<String>,
+    fill_unmeasured: bool,
 ) -> PyResult<(Bound<'_, PyArray2<f64>>, f64, f64, bool)> {
-    let options = ReadOptions {
-        length_x: length,
-        length_y,
-        unit,
-        periodic,
-    };
+    let options = read_options(&path, length, length_y, unit, periodic, channel, fill_unmeasured)?;
     let s = py
         .detach(|| io::read(&path, &options).map_err(|e| case::naming("reading", &path, e)))
         .py()?;
     Ok((array(py, s.heights), s.grid.length_x, s.grid.length_y, s.periodic))
+}
+
+/// A file's channels as JSON: name, points, sizes [m], unit, whether they are heights.
+#[pyfunction]
+#[pyo3(signature = (path, length, length_y, unit))]
+fn channels(path: PathBuf, length: Option<f64>, length_y: Option<f64>, unit: f64) -> PyResult<String> {
+    let options = read_options(&path, length, length_y, unit, true, None, false)?;
+    let channels = io::channels(&path, &options)
+        .map_err(|e| case::naming("reading", &path, e))
+        .py()?;
+    Ok(serde_json::to_string(&channels).expect("channels serialise"))
 }
 
 /// Writes a surface file in the format of the path's extension (`.npy` with its sidecar).
@@ -564,6 +605,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(generate, m)?)?;
     m.add_function(wrap_pyfunction!(read, m)?)?;
+    m.add_function(wrap_pyfunction!(channels, m)?)?;
     m.add_function(wrap_pyfunction!(write, m)?)?;
     m.add_function(wrap_pyfunction!(statistics, m)?)?;
     m.add_function(wrap_pyfunction!(psd, m)?)?;

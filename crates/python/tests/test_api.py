@@ -5,6 +5,7 @@ import concurrent.futures
 import threading
 import time
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -180,3 +181,26 @@ def test_warnings_of_the_problem_reach_python():
         warnings.simplefilter("always")
         rc.solve(**dict(SPHERE, n=32, length=1.2e-7), approach=1e-9)
     assert any("adhesive range" in str(w.message) for w in caught)
+
+
+SAMPLES = Path(__file__).resolve().parents[3] / "data" / "topography-samples"
+
+
+def test_channels_of_an_instrument_file_and_reading_one_by_name():
+    chans = rc.channels(SAMPLES / "di-3.di")
+    assert [c["name"] for c in chans] == ["ZSensor", "AmplitudeError", "Phase", "Height"]
+    assert [c["height"] for c in chans] == [True, False, False, True]
+    assert chans[0]["length_x"] == pytest.approx(1e-5)
+    default = rc.read(SAMPLES / "di-3.di")
+    assert np.array_equal(default.heights, rc.read(SAMPLES / "di-3.di", channel=0).heights)
+    height = rc.read(SAMPLES / "di-3.di", channel="height")
+    assert height.heights.shape == (256, 256) and not np.array_equal(height.heights, default.heights)
+    with pytest.raises(ValueError, match="'Phase' holds"):
+        rc.read(SAMPLES / "di-3.di", channel="Phase")
+
+
+def test_unmeasured_points_are_refused_or_filled():
+    with pytest.raises(ValueError, match="117 of 272492 points are not measured"):
+        rc.read(SAMPLES / "sur-2.sur")
+    filled = rc.read(SAMPLES / "sur-2.sur", fill_unmeasured=True)
+    assert filled.heights.shape == (484, 563) and np.isfinite(filled.heights).all()

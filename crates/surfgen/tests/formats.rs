@@ -6,7 +6,7 @@ use serde_json::Value;
 use std::io::Write;
 
 mod common;
-use common::tiny_opd;
+use common::{tiny_di, tiny_opd};
 use std::path::{Path, PathBuf};
 use surfgen::io::{self, ReadOptions};
 use surfgen::{Grid, Surface};
@@ -36,9 +36,16 @@ fn sample_files_read_as_surfacetopography_reads_them() {
         "matrix-3.txt",
         "tmd-1.tmd",
         "mi-1.mi",
+        "nid-1.nid",
+        "di-1.di",
+        "di-3.di",
+        "sur-2.sur",
+        "opd-1.opd",
     ] {
         let r = &readings[name];
-        let s = io::read(&samples().join(name), &ReadOptions::default()).unwrap();
+        // SurfaceTopography's statistics skip the points it masks as unmeasured.
+        let s = io::read_measurement(&samples().join(name), &ReadOptions::default()).unwrap();
+        let measured: Vec<f64> = s.heights.iter().copied().filter(|h| !h.is_nan()).collect();
         let u = unit(r["unit"].as_str().unwrap());
         let (nx, ny) = (
             r["nb_grid_pts"][0].as_u64().unwrap() as usize,
@@ -62,20 +69,21 @@ fn sample_files_read_as_surfacetopography_reads_them() {
             r["physical_sizes"][1].as_f64().unwrap() * u,
             "length y",
         );
-        let n = s.heights.len() as f64;
-        let mean = s.heights.sum() / n;
-        let rms = (s.heights.iter().map(|h| (h - mean).powi(2)).sum::<f64>() / n).sqrt();
+        let n = measured.len() as f64;
+        let mean = measured.iter().sum::<f64>() / n;
+        let rms = (measured.iter().map(|h| (h - mean).powi(2)).sum::<f64>() / n).sqrt();
         close(mean, r["mean"].as_f64().unwrap() * u, "mean height");
         close(rms, r["rms_height"].as_f64().unwrap() * u, "RMS height");
-        let (min, max) = s
-            .heights
+        let (min, max) = measured
             .iter()
             .fold((f64::MAX, f64::MIN), |(a, b), &h| (a.min(h), b.max(h)));
         close(min, r["min"].as_f64().unwrap() * u, "min");
         close(max, r["max"].as_f64().unwrap() * u, "max");
         println!(
-            "{name}: {nx} x {ny}, {:e} x {:e} m, Rq {rms:e} m: as SurfaceTopography",
-            s.grid.length_x, s.grid.length_y
+            "{name}: {nx} x {ny}, {:e} x {:e} m, Rq {rms:e} m, {} unmeasured: as SurfaceTopography",
+            s.grid.length_x,
+            s.grid.length_y,
+            s.unmeasured()
         );
     }
 }
@@ -256,5 +264,101 @@ fn wyko_opd_reads_its_blocks_and_refuses_unmeasured_points() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("116 of 307200 points are not measured"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn harmonic_fill_restores_a_discrete_harmonic_surface_and_fills_the_samples() {
+    // x^2 - y^2 and planes are harmonic for the 5-point Laplacian too: the fill restores them
+    // exactly inside, whatever the holes' shape.
+    let exact = Array2::from_shape_fn((20, 30), |(j, i)| {
+        let (x, y) = (i as f64, j as f64);
+        1e-6 * (3.0 * x - 2.0 * y + 0.1 * (x * x - y * y))
+    });
+    let mut holed = exact.clone();
+    for (j, i) in [
+        (5, 5),
+        (5, 6),
+        (6, 5),
+        (10, 10),
+        (10, 11),
+        (10, 12),
+        (11, 12),
+        (12, 12),
+        (15, 25),
+    ] {
+        holed[[j, i]] = f64::NAN;
+    }
+    for j in 3..9 {
+        holed[[j, 18]] = f64::NAN;
+    }
+    io::fill_harmonic(&mut holed, false);
+    let worst = (&holed - &exact).iter().fold(0.0f64, |m, d| m.max(d.abs()));
+    assert!(worst < 1e-16, "largest error {worst:e} m");
+    // The real samples' unmeasured points, filled, lie within the measured range.
+    for name in ["sur-2.sur", "opd-1.opd"] {
+        let path = samples().join(name);
+        let m = io::read_measurement(&path, &ReadOptions::default()).unwrap();
+        let measured = m.heights.iter().copied().filter(|h| !h.is_nan());
+        let (lo, hi) = measured.fold((f64::MAX, f64::MIN), |(a, b), h| (a.min(h), b.max(h)));
+        let options = ReadOptions {
+            unmeasured: io::Unmeasured::Fill,
+            ..Default::default()
+        };
+        let s = io::read(&path, &options).unwrap();
+        for (h, m) in s.heights.iter().zip(&m.heights) {
+            if m.is_nan() {
+                assert!(
+                    (lo..=hi).contains(h),
+                    "{name}: filled {h:e} outside [{lo:e}, {hi:e}]"
+                );
+            } else {
+                assert_eq!(h, m);
+            }
+        }
+    }
+}
+
+#[test]
+fn nanoscope_lists_its_channels_reads_the_height_one_and_refuses_the_others() {
+    let dir = std::env::temp_dir().join(format!("surfgen-di-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("tiny.spm");
+    std::fs::write(&path, tiny_di([1, 2, 3, -4, 5, 600])).unwrap();
+    let channels = io::channels(&path, &ReadOptions::default()).unwrap();
+    let names: Vec<(&str, &str, bool)> = channels
+        .iter()
+        .map(|c| (c.name.as_str(), c.unit.as_str(), c.height))
+        .collect();
+    assert_eq!(names, [("Phase", "deg", false), ("Height", "nm", true)]);
+    assert_eq!((channels[1].nx, channels[1].ny), (3, 2));
+    assert!((channels[1].length_x.unwrap() - 3e-6).abs() < 1e-18);
+    // The height channel by default; stored from the top, so the second line is our y = 0.
+    let s = io::read(&path, &ReadOptions::default()).unwrap();
+    let pm = |v: f64| v * 1e-12;
+    let near = |a: f64, b: f64| (a - b).abs() < 1e-9 * b.abs();
+    assert!(near(s.heights[[0, 0]], pm(-4.0)) && near(s.heights[[0, 2]], pm(600.0)));
+    assert!(near(s.heights[[1, 0]], pm(1.0)), "{:?}", s.heights);
+    let by_index = ReadOptions {
+        channel: Some(1),
+        ..Default::default()
+    };
+    assert_eq!(io::read(&path, &by_index).unwrap(), s);
+    for (channel, reason) in [
+        (0, "channel 0 'Phase' holds deg, not heights"),
+        (2, "no channel 2"),
+    ] {
+        let options = ReadOptions {
+            channel: Some(channel),
+            ..Default::default()
+        };
+        let e = io::read(&path, &options).unwrap_err().to_string();
+        assert!(e.contains(reason), "{e}");
+    }
+    // A format of one surface has channel 0 only.
+    let e = io::read(&samples().join("tmd-1.tmd"), &by_index)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no channel 1: the file holds one surface"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -11,7 +11,7 @@ use surfgen::io::{self, ReadOptions};
 use surfgen::{Grid, Surface};
 
 mod common;
-use common::tiny_opd;
+use common::{tiny_di, tiny_opd};
 
 /// The system allocator, counting the bytes live and their peak since the last reset. A single
 /// request above `CAP` is refused (the process aborts: the test fails) rather than granted.
@@ -128,6 +128,7 @@ Dim2Min=-1e-7\nDim2Range=2e-7\nDim2Unit=m\nSaveBits=16\nSaveSign=Signed\n#!"
     }
     seeds.push(("sur", sur));
     seeds.push(("opd", tiny_opd([1.0, 2.0, 3.0, 4.0, 5.0, 6.0])));
+    seeds.push(("di", tiny_di([1, 2, 3, 4, 5, 6])));
     seeds
 }
 
@@ -178,8 +179,10 @@ fn mutate(rng: &mut ChaCha8Rng, seed: &[u8]) -> Vec<u8> {
 fn readers_never_panic_and_allocate_at_most_a_multiple_of_the_file() {
     let dir = std::env::temp_dir().join(format!("surfgen-fuzz-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
+    // Unmeasured points filled, so that the fill is fuzzed too.
     let options = ReadOptions {
         length_x: Some(1e-5),
+        unmeasured: io::Unmeasured::Fill,
         ..Default::default()
     };
     let mut rng = ChaCha8Rng::seed_from_u64(31);

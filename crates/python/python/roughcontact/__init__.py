@@ -20,7 +20,7 @@ import json
 import os
 import threading
 import warnings
-from typing import Any, Callable, Dict, Mapping, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
 
@@ -34,6 +34,7 @@ __all__ = [
     "ConvergenceWarning",
     "generate",
     "read",
+    "channels",
     "solve",
     "sweep",
     "from_toml",
@@ -178,13 +179,35 @@ def read(
     length_y: Optional[float] = None,
     unit: float = 1.0,
     periodic: bool = True,
+    channel: Union[str, int, None] = None,
+    fill_unmeasured: bool = False,
 ) -> Topography:
     """Reads a surface file (``.npy`` with its sidecar, text matrix, ``.xyz``, ``.gsf``,
-    ``.x3p``, ``.sdf``, ``.nc``, ``.tmd``, ``.mi``, ``.nid``, ``.sur``, ``.opd``).
+    ``.x3p``, ``.sdf``, ``.nc``, ``.tmd``, ``.mi``, ``.nid``, ``.sur``, ``.opd``, ``.di``/``.spm``).
     ``length``/``length_y`` [m] give the box of files that do not carry it; ``unit`` is the
-    metres per file unit; ``periodic`` applies to files without metadata."""
-    heights, lx, ly, is_periodic = _native.read(os.fspath(path), length, length_y, float(unit), bool(periodic))
+    metres per file unit; ``periodic`` applies to files without metadata. ``channel`` picks a
+    multi-channel file's channel of heights by name or index (default: the first;
+    :func:`channels` lists them). Points the instrument did not measure raise ValueError
+    unless ``fill_unmeasured`` fills them by harmonic interpolation."""
+    heights, lx, ly, is_periodic = _native.read(
+        os.fspath(path),
+        length,
+        length_y,
+        float(unit),
+        bool(periodic),
+        None if channel is None else str(channel),
+        bool(fill_unmeasured),
+    )
     return Topography(heights, lx, ly, is_periodic)
+
+
+def channels(
+    path: PathLike, *, length: Optional[float] = None, length_y: Optional[float] = None, unit: float = 1.0
+) -> List[Dict[str, Any]]:
+    """The channels of a surface file, in its order: ``name``, points ``nx`` and ``ny``,
+    ``length_x`` and ``length_y`` [m] (None where the file does not say), the ``unit`` of its
+    values and whether they are heights (``height``)."""
+    return json.loads(_native.channels(os.fspath(path), length, length_y, float(unit)))
 
 
 def from_toml(path: PathLike) -> Dict[str, Any]:

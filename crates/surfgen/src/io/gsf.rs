@@ -2,7 +2,7 @@
 //! `Gwyddion Simple Field 1.0`, NUL-padded to a multiple of 4 bytes (1 to 4 NULs), then
 //! `XRes * YRes` little-endian f32 heights, row by row.
 
-use super::{ReadOptions, Surface, length_unit};
+use super::{Measurement, ReadOptions, Surface, length_unit};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -10,7 +10,7 @@ use std::path::Path;
 
 const MAGIC: &str = "Gwyddion Simple Field 1.0\n";
 
-pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
+pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     let bytes = std::fs::read(path).map_err(|e| SurfError::io(path, e))?;
     if !bytes.starts_with(MAGIC.as_bytes()) {
         return Err(SurfError::parse(
@@ -73,7 +73,7 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
     let lx = xreal.unwrap_or(nx as f64) * xy_unit * options.unit;
     let ly = yreal.unwrap_or(ny as f64) * xy_unit * options.unit;
     let grid = Grid::new(nx, ny, lx, ly).map_err(|e| SurfError::parse(path, None, e.to_string()))?;
-    Surface::new(
+    Measurement::new(
         Array2::from_shape_vec((ny, nx), heights).expect("counted"),
         grid,
         options.periodic,

@@ -3,17 +3,15 @@
 //! `yLength` [m], then a `bufferLabel` block a channel with its `bufferRange` and
 //! `bufferUnit`), ended by `data BINARY` (i16) or `data BINARY_32` (i32), then each channel's
 //! `xPixels * yPixels` little-endian values in turn, x varying fastest, the first row the
-//! image's top. A value is `raw * bufferRange / 2^(bits - 1)` in `bufferUnit`. The height
-//! channel (`Topography`, else the first in a length unit) is read.
+//! image's top. A value is `raw * bufferRange / 2^(bits - 1)` in `bufferUnit`. Channels in a
+//! length unit are heights.
 
-use super::{ReadOptions, Surface, length_unit};
+use super::{Channel, Layer, length_unit};
 use crate::error::{Result, SurfError};
-use crate::grid::Grid;
 use ndarray::{Array2, s};
 use std::path::Path;
 
-pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
-    let bytes = std::fs::read(path).map_err(|e| SurfError::io(path, e))?;
+pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>> {
     let bad = |m: String| SurfError::parse(path, None, m);
     let mut header: Vec<(String, String)> = Vec::new();
     let mut at = 0;
@@ -75,60 +73,57 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
             _ => {}
         }
     }
-    let is_length =
-        |c: &(String, Option<f64>, Option<String>)| c.2.as_deref().and_then(length_unit).is_some();
-    let index = channels
-        .iter()
-        .position(|c| c.0 == "Topography" && is_length(c))
-        .or_else(|| channels.iter().position(is_length))
-        .ok_or_else(|| {
-            let names: Vec<&str> = channels.iter().map(|c| c.0.as_str()).collect();
-            bad(format!(
-                "no height channel in a length unit (the channels: {})",
-                names.join(", ")
-            ))
-        })?;
-    let (label, range, unit) = &channels[index];
-    let range = range.ok_or_else(|| bad(format!("channel {label} has no bufferRange")))?;
-    let unit = unit.as_deref().and_then(length_unit).expect("a length channel");
     let size = bits / 8;
     let n = nx
         .checked_mul(ny)
         .filter(|&n| n >= 1)
         .ok_or_else(|| bad(format!("{nx} x {ny} pixels")))?;
-    let start = n
-        .checked_mul(size * index)
-        .and_then(|o| o.checked_add(at))
-        .unwrap_or(usize::MAX);
-    let end = start.saturating_add(n * size);
-    if end > bytes.len() {
-        return Err(bad(format!(
-            "channel {} of {} ({label}): {nx} x {ny} values need {} bytes from byte {start}, the file has {}",
-            index + 1,
-            channels.len(),
-            n * size,
-            bytes.len()
-        )));
+    let (lx, ly) = (number("xLength")?, number("yLength")?);
+    let count = channels.len();
+    let mut layers = Vec::new();
+    for (index, (label, range, unit)) in channels.into_iter().enumerate() {
+        let start = n
+            .checked_mul(size * index)
+            .and_then(|o| o.checked_add(at))
+            .unwrap_or(usize::MAX);
+        let end = start.saturating_add(n * size);
+        if end > bytes.len() {
+            return Err(bad(format!(
+                "channel {} of {count} ({label}): {nx} x {ny} values need {} bytes from byte {start}, the file has {}",
+                index + 1,
+                n * size,
+                bytes.len()
+            )));
+        }
+        let metres = unit.as_deref().filter(|u| !u.is_empty()).and_then(length_unit);
+        let range = range.ok_or_else(|| bad(format!("channel {label} has no bufferRange")))?;
+        let scale = range / 2f64.powi(bits as i32 - 1) * metres.unwrap_or(1.0);
+        let raw = &bytes[start..end];
+        layers.push(Layer {
+            channel: Channel {
+                name: label,
+                nx,
+                ny,
+                length_x: Some(lx),
+                length_y: Some(ly),
+                unit: unit.unwrap_or_default(),
+                height: metres.is_some(),
+            },
+            values: Box::new(move || {
+                let values: Vec<f64> = raw
+                        .chunks_exact(size)
+                        .map(|c| match size {
+                            2 => i16::from_le_bytes([c[0], c[1]]) as f64,
+                            _ => i32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64,
+                        } * scale)
+                        .collect();
+                // The first row stored is the image's top: ours is y = 0.
+                Ok(Array2::from_shape_vec((ny, nx), values)
+                    .expect("counted")
+                    .slice(s![..;-1, ..])
+                    .to_owned())
+            }),
+        });
     }
-    let scale = range / 2f64.powi(bits as i32 - 1) * unit * options.unit;
-    let values: Vec<f64> = bytes[start..end]
-        .chunks_exact(size)
-        .map(|c| match size {
-            2 => i16::from_le_bytes([c[0], c[1]]) as f64,
-            _ => i32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64,
-        } * scale)
-        .collect();
-    // The first row stored is the image's top: ours is y = 0.
-    let heights = Array2::from_shape_vec((ny, nx), values)
-        .expect("counted")
-        .slice(s![..;-1, ..])
-        .to_owned();
-    let grid = Grid::new(
-        nx,
-        ny,
-        number("xLength")? * options.unit,
-        number("yLength")? * options.unit,
-    )
-    .map_err(|e| bad(e.to_string()))?;
-    Surface::new(heights, grid, options.periodic)
+    Ok(layers)
 }

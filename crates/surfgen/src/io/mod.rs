@@ -19,6 +19,8 @@
 //! units. Readers check everything (shape, finiteness, ragged rows) and return an error naming
 //! the file and line rather than a partial surface.
 
+mod di;
+mod fill;
 mod gsf;
 mod mi;
 mod netcdf;
@@ -30,12 +32,13 @@ mod sur;
 mod tmd;
 mod x3p;
 
+pub use fill::fill_harmonic;
 pub use npy::write_array as write_npy;
 mod text;
 
 use crate::error::{Result, SurfError};
 use crate::generate::SurfaceSpec;
-use crate::grid::{Grid, check_finite};
+use crate::grid::Grid;
 use crate::stats::Statistics;
 use ndarray::Array2;
 use serde::{Deserialize, Serialize};
@@ -63,6 +66,153 @@ impl Surface {
     }
 }
 
+/// One channel (layer, image) of a file, as [`channels`] lists it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Channel {
+    /// The channel's name in the file (`Height`, `ZSensor`, `Phase`, ...).
+    pub name: String,
+    /// Points along x and y; `ny` is 1 for a line scan.
+    pub nx: usize,
+    pub ny: usize,
+    /// Lateral sizes \[m\] where the file gives them.
+    pub length_x: Option<f64>,
+    pub length_y: Option<f64>,
+    /// The unit of the values as the file names it.
+    pub unit: String,
+    /// Whether the values are heights (a length unit), which a contact calculation reads.
+    pub height: bool,
+}
+
+/// A channel of a multi-channel file and how to read its values: heights \[m\] of shape
+/// `(ny, nx)`, row 0 at y = 0, NaN where not measured.
+pub(crate) struct Layer<'a> {
+    pub channel: Channel,
+    pub values: Box<dyn FnOnce() -> Result<Array2<f64>> + 'a>,
+}
+
+/// The channel `options` asks for (by default the first channel of heights) read as a
+/// measurement.
+pub(crate) fn pick(path: &Path, layers: Vec<Layer<'_>>, options: &ReadOptions) -> Result<Measurement> {
+    let bad = |m: String| SurfError::parse(path, None, m);
+    let names = || {
+        layers
+            .iter()
+            .enumerate()
+            .map(|(i, l)| format!("{i} '{}' [{}]", l.channel.name, l.channel.unit))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let index = match options.channel {
+        Some(i) if i >= layers.len() => {
+            return Err(bad(format!("no channel {i}: the file holds {}", names())));
+        }
+        Some(i) if !layers[i].channel.height => {
+            return Err(bad(format!(
+                "channel {i} '{}' holds {}, not heights (the file holds {})",
+                layers[i].channel.name,
+                layers[i].channel.unit,
+                names()
+            )));
+        }
+        Some(i) => i,
+        None => {
+            // A channel named as the topography, else the first in a length unit.
+            let named = |l: &Layer| {
+                let name = l.channel.name.to_ascii_lowercase();
+                l.channel.height
+                    && ["height", "topography", "zsensor"]
+                        .iter()
+                        .any(|n| name.contains(n))
+            };
+            layers
+                .iter()
+                .position(named)
+                .or_else(|| layers.iter().position(|l| l.channel.height))
+                .ok_or_else(|| bad(format!("no channel of heights among {}", names())))?
+        }
+    };
+    let layer = layers.into_iter().nth(index).expect("in range");
+    let Channel {
+        nx,
+        ny,
+        length_x,
+        length_y,
+        ..
+    } = layer.channel;
+    let heights = (layer.values)()?.mapv(|h| h * options.unit);
+    let grid = match (length_x, length_y) {
+        (Some(lx), Some(ly)) => {
+            Grid::new(nx, ny, lx * options.unit, ly * options.unit).map_err(|e| bad(e.to_string()))?
+        }
+        _ => options.grid_for(path, ny, nx)?,
+    };
+    Ok(Measurement {
+        channel: index,
+        ..Measurement::new(heights, grid, options.periodic)?
+    })
+}
+
+/// A surface as a file holds it: heights \[m\] of shape `(ny, nx)`, NaN where the instrument
+/// did not measure.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measurement {
+    pub heights: Array2<f64>,
+    pub grid: Grid,
+    pub periodic: bool,
+    /// The index of the channel read (0 for formats of one surface).
+    pub channel: usize,
+}
+
+impl Measurement {
+    /// A measurement, checked for its shape.
+    pub(crate) fn new(heights: Array2<f64>, grid: Grid, periodic: bool) -> Result<Self> {
+        if heights.dim() != grid.shape() {
+            return Err(SurfError::ShapeMismatch {
+                expected: grid.shape(),
+                got: heights.dim(),
+            });
+        }
+        Ok(Measurement {
+            heights,
+            grid,
+            periodic,
+            channel: 0,
+        })
+    }
+
+    /// How many points are not measured.
+    pub fn unmeasured(&self) -> usize {
+        self.heights.iter().filter(|h| h.is_nan()).count()
+    }
+
+    /// The surface, its unmeasured points refused or filled as `policy` says; `path` names
+    /// the file in the error.
+    pub fn into_surface(mut self, path: &Path, policy: Unmeasured) -> Result<Surface> {
+        let unmeasured = self.unmeasured();
+        let n = self.heights.len();
+        if unmeasured == n {
+            return Err(SurfError::parse(path, None, "no point is measured"));
+        }
+        if unmeasured > 0 {
+            match policy {
+                Unmeasured::Refuse => {
+                    return Err(SurfError::parse(
+                        path,
+                        None,
+                        format!(
+                            "{unmeasured} of {n} points are not measured (the file marks them): a contact \
+                             calculation needs every point; fill them by harmonic interpolation \
+                             (--fill-unmeasured) or in the instrument's software"
+                        ),
+                    ));
+                }
+                Unmeasured::Fill => fill_harmonic(&mut self.heights, self.periodic),
+            }
+        }
+        Surface::new(self.heights, self.grid, self.periodic)
+    }
+}
+
 /// Options for files that do not carry their spacing, or carry it in other units.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReadOptions {
@@ -75,6 +225,22 @@ pub struct ReadOptions {
     pub unit: f64,
     /// Whether a file without metadata is periodic.
     pub periodic: bool,
+    /// Which channel of a multi-channel file to read, by its index in [`channels`]; `None`
+    /// reads the first channel of heights.
+    pub channel: Option<usize>,
+    /// What to do with points the instrument marks as not measured.
+    pub unmeasured: Unmeasured,
+}
+
+/// Points an instrument marks as not measured (dropouts, out of range): a contact calculation
+/// needs a height at every point, so they are refused unless the user asks for them filled.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Unmeasured {
+    /// An error that counts them.
+    #[default]
+    Refuse,
+    /// Filled by harmonic interpolation from the measured points around them ([`fill_harmonic`]).
+    Fill,
 }
 
 impl Default for ReadOptions {
@@ -84,6 +250,8 @@ impl Default for ReadOptions {
             length_y: None,
             unit: 1.0,
             periodic: true,
+            channel: None,
+            unmeasured: Unmeasured::Refuse,
         }
     }
 }
@@ -155,6 +323,7 @@ pub enum Format {
     Nid,
     Sur,
     Opd,
+    Di,
 }
 
 /// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
@@ -194,17 +363,20 @@ impl Format {
             "nid" => Ok(Format::Nid),
             "sur" => Ok(Format::Sur),
             "opd" => Ok(Format::Opd),
+            // Nanoscope's older files are numbered: .000, .001, ...
+            "di" | "spm" => Ok(Format::Di),
+            e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => Ok(Format::Di),
             "" => Err(SurfError::parse(
                 path,
                 None,
                 "the file name has no extension, which names the format: give one of .npy, \
-                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd",
+                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd, .di/.spm",
             )),
             _ => Err(SurfError::parse(
                 path,
                 None,
                 format!(
-                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd)"
+                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd, .di/.spm)"
                 ),
             )),
         }
@@ -216,8 +388,14 @@ pub fn sidecar_path(path: &Path) -> PathBuf {
     path.with_extension("json")
 }
 
-/// Reads a surface in any known format (see the module docs).
+/// Reads a surface in any known format (see the module docs); unmeasured points are refused or
+/// filled as [`ReadOptions::unmeasured`] says.
 pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
+    read_measurement(path, options)?.into_surface(path, options.unmeasured)
+}
+
+/// Reads a surface as the file holds it, NaN where the instrument did not measure.
+pub fn read_measurement(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     if !(options.unit.is_finite() && options.unit > 0.0) {
         return Err(SurfError::invalid(
             "unit",
@@ -228,7 +406,18 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
     if path.is_dir() {
         return Err(SurfError::parse(path, None, "is a directory, not a surface file"));
     }
-    let surface = match Format::of(path)? {
+    let format = Format::of(path)?;
+    if let Some(bytes) = layered(format, path)? {
+        return pick(path, layers(format, &bytes, path)?, options);
+    }
+    if let Some(c) = options.channel.filter(|&c| c > 0) {
+        return Err(SurfError::parse(
+            path,
+            None,
+            format!("no channel {c}: the file holds one surface (channel 0)"),
+        ));
+    }
+    Ok(match format {
         Format::Npy => npy::read(path, options)?,
         Format::Matrix => text::read_matrix(path, options)?,
         Format::Xyh => text::read_xyh(path, options)?,
@@ -237,13 +426,72 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
         Format::Sdf => sdf::read(path, options)?,
         Format::NetCdf => netcdf::read(path, options)?,
         Format::Tmd => tmd::read(path, options)?,
-        Format::Mi => mi::read(path, options)?,
-        Format::Nid => nid::read(path, options)?,
         Format::Sur => sur::read(path, options)?,
         Format::Opd => opd::read(path, options)?,
-    };
-    check_finite(surface.heights.view())?;
-    Ok(surface)
+        Format::Mi | Format::Nid | Format::Di => unreachable!("layered"),
+    })
+}
+
+/// The index of the channel `key` names in the file: an index, or a channel's name (exactly,
+/// else ignoring case).
+pub fn channel_index(path: &Path, options: &ReadOptions, key: &str) -> Result<usize> {
+    if let Ok(index) = key.trim().parse() {
+        return Ok(index);
+    }
+    let channels = channels(path, options)?;
+    channels
+        .iter()
+        .position(|c| c.name == key)
+        .or_else(|| channels.iter().position(|c| c.name.eq_ignore_ascii_case(key)))
+        .ok_or_else(|| {
+            let names: Vec<String> = channels.iter().map(|c| format!("'{}'", c.name)).collect();
+            SurfError::parse(
+                path,
+                None,
+                format!("no channel named '{key}' (the file holds {})", names.join(", ")),
+            )
+        })
+}
+
+/// The bytes of a file in a format of several channels, `None` for the others.
+fn layered(format: Format, path: &Path) -> Result<Option<Vec<u8>>> {
+    match format {
+        Format::Mi | Format::Nid | Format::Di => {
+            std::fs::read(path).map(Some).map_err(|e| SurfError::io(path, e))
+        }
+        _ => Ok(None),
+    }
+}
+
+fn layers<'a>(format: Format, bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>> {
+    match format {
+        Format::Mi => mi::layers(bytes, path),
+        Format::Nid => nid::layers(bytes, path),
+        Format::Di => di::layers(bytes, path),
+        _ => unreachable!("one channel"),
+    }
+}
+
+/// The channels of a file: each with its grid, size and unit, and whether it holds heights. A
+/// format of one surface gives one channel, `heights`, read with `options`.
+pub fn channels(path: &Path, options: &ReadOptions) -> Result<Vec<Channel>> {
+    let format = Format::of(path)?;
+    if let Some(bytes) = layered(format, path)? {
+        return Ok(layers(format, &bytes, path)?
+            .into_iter()
+            .map(|l| l.channel)
+            .collect());
+    }
+    let m = read_measurement(path, options)?;
+    Ok(vec![Channel {
+        name: "heights".into(),
+        nx: m.grid.nx,
+        ny: m.grid.ny,
+        length_x: Some(m.grid.length_x),
+        length_y: Some(m.grid.length_y),
+        unit: "m".into(),
+        height: true,
+    }])
 }
 
 /// Writes `surface` in the format its extension names. For `.npy`, `metadata` (or, when `None`,
@@ -258,11 +506,13 @@ pub fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Res
         Format::X3p => x3p::write(surface, path),
         Format::Sdf => sdf::write(surface, path),
         Format::NetCdf => netcdf::write(surface, path),
-        Format::Tmd | Format::Mi | Format::Nid | Format::Sur | Format::Opd => Err(SurfError::parse(
-            path,
-            None,
-            "instruments' own formats are read, not written: write .x3p, .sdf or .nc for other tools",
-        )),
+        Format::Tmd | Format::Mi | Format::Nid | Format::Sur | Format::Opd | Format::Di => {
+            Err(SurfError::parse(
+                path,
+                None,
+                "instruments' own formats are read, not written: write .x3p, .sdf or .nc for other tools",
+            ))
+        }
     }
 }
 

@@ -3,7 +3,7 @@
 //! and `y` whose attributes give the box's side (`length`), `periodic` and `unit`. Read and
 //! written with the pure-Rust `netcdf3` crate (classic format).
 
-use super::{ReadOptions, Surface, length_unit};
+use super::{Measurement, ReadOptions, Surface, length_unit};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -145,7 +145,7 @@ fn number(kind: u32, c: &[u8]) -> f64 {
     }
 }
 
-pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
+pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     let bytes = std::fs::read(path).map_err(|e| SurfError::io(path, e))?;
     let bad = |m: String| SurfError::parse(path, None, m);
     let offset64 = match bytes.get(..4) {
@@ -264,7 +264,7 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
         .expect("counted")
         .reversed_axes();
     let grid = Grid::new(nx, ny, lx * options.unit, ly * options.unit).map_err(|e| bad(e.to_string()))?;
-    Surface::new(heights.as_standard_layout().into_owned(), grid, periodic)
+    Measurement::new(heights.as_standard_layout().into_owned(), grid, periodic)
 }
 
 pub(super) fn write(surface: &Surface, path: &Path) -> Result<()> {

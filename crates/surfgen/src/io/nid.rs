@@ -4,17 +4,15 @@
 //! `Lines`, the lateral ranges `Dim0Range`, `Dim1Range` [`Dim0Unit`], its quantity's `Dim2Min`,
 //! `Dim2Range` and `Dim2Unit`, and the storage (`SaveBits`, `SaveSign`, little-endian); a
 //! value is `Dim2Min + (raw - smallest raw) * Dim2Range / 2^bits`, rows stored from the
-//! image's top. The first channel in a length unit (the forward scan's height) is read.
+//! image's top. Channels in a length unit are heights.
 
-use super::{ReadOptions, Surface, length_unit};
+use super::{Channel, Layer, length_unit};
 use crate::error::{Result, SurfError};
-use crate::grid::Grid;
 use ndarray::{Array2, s};
 use std::collections::HashMap;
 use std::path::Path;
 
-pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
-    let bytes = std::fs::read(path).map_err(|e| SurfError::io(path, e))?;
+pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>> {
     let bad = |m: String| SurfError::parse(path, None, m);
     if !bytes.starts_with(b"[DataSet]") {
         return Err(bad(
@@ -54,9 +52,10 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
     }
     let data = &bytes[end + 2..];
     let mut offset = 0usize;
-    for name in &channels {
+    let mut layers = Vec::new();
+    for name in channels {
         let ch = sections
-            .get(name)
+            .get(&name)
             .ok_or_else(|| bad(format!("the channel [{name}] is not described")))?;
         let (nx, ny) = (int(ch, "Points").unwrap_or(0), int(ch, "Lines").unwrap_or(0));
         let bits = int(ch, "SaveBits").unwrap_or(32);
@@ -66,13 +65,12 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
         let size = nx
             .checked_mul(ny)
             .and_then(|n| n.checked_mul(bits / 8))
-            .filter(|&s| s <= data.len())
+            .filter(|&s| s >= 1 && offset + s <= data.len())
             .ok_or_else(|| bad(format!("[{name}]: {nx} x {ny} points cannot fit in the file")))?;
-        let unit = ch.get("Dim2Unit").map(String::as_str).unwrap_or("");
-        if length_unit(unit).is_none() || unit.is_empty() {
-            offset += size;
-            continue;
-        }
+        let raw = &data[offset..offset + size];
+        offset += size;
+        let unit = ch.get("Dim2Unit").cloned().unwrap_or_default();
+        let metres = length_unit(&unit).filter(|_| !unit.is_empty());
         let number = |key: &str| -> Result<f64> {
             ch.get(key)
                 .and_then(|v| v.split_whitespace().next()?.parse::<f64>().ok())
@@ -83,45 +81,53 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
             let unit = ch.get(key).map(String::as_str).unwrap_or("m");
             length_unit(unit).ok_or_else(|| bad(format!("[{name}]: unknown unit {key} '{unit}'")))
         };
-        let raw = data
-            .get(offset..offset + size)
-            .ok_or_else(|| bad(format!("[{name}]: the data end before this channel")))?;
+        // Checked when the channel is read: a listed channel may lack them.
+        let length = |range: &str, unit: &str| Some(number(range).ok()? * lateral(unit).ok()?);
+        let (length_x, length_y) = (length("Dim0Range", "Dim0Unit"), length("Dim1Range", "Dim1Unit"));
         let signed = ch.get("SaveSign").is_none_or(|s| s == "Signed");
         let smallest = if signed {
             -(2f64.powi(bits as i32 - 1))
         } else {
             0.0
         };
-        let (min, range, z) = (
-            number("Dim2Min")?,
-            number("Dim2Range")?,
-            length_unit(unit).expect("checked"),
-        );
-        let scale = range / 2f64.powi(bits as i32);
-        let values: Vec<f64> = raw
-            .chunks_exact(bits / 8)
-            .map(|c| {
-                let v = match (bits, signed) {
-                    (16, true) => i16::from_le_bytes([c[0], c[1]]) as f64,
-                    (16, false) => u16::from_le_bytes([c[0], c[1]]) as f64,
-                    (_, true) => i32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64,
-                    (_, false) => u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64,
-                };
-                (min + (v - smallest) * scale) * z * options.unit
-            })
-            .collect();
-        // The first row stored is the image's top: ours is y = 0.
-        let heights = Array2::from_shape_vec((ny, nx), values)
-            .expect("counted")
-            .slice(s![..;-1, ..])
-            .to_owned();
-        let lx = number("Dim0Range")? * lateral("Dim0Unit")? * options.unit;
-        let ly = number("Dim1Range")? * lateral("Dim1Unit")? * options.unit;
-        let grid = Grid::new(nx, ny, lx, ly).map_err(|e| bad(e.to_string()))?;
-        return Surface::new(heights, grid, options.periodic);
+        let (min, range) = (number("Dim2Min"), number("Dim2Range"));
+        let z = metres.unwrap_or(1.0);
+        layers.push(Layer {
+            channel: Channel {
+                name: match (ch.get("Dim2Name"), ch.get("Frame")) {
+                    (Some(q), Some(frame)) => format!("{q} ({frame})"),
+                    (Some(q), None) => q.clone(),
+                    _ => name.clone(),
+                },
+                nx,
+                ny,
+                length_x,
+                length_y,
+                unit,
+                height: metres.is_some(),
+            },
+            values: Box::new(move || {
+                let (min, range) = (min?, range?);
+                let scale = range / 2f64.powi(bits as i32);
+                let values: Vec<f64> = raw
+                    .chunks_exact(bits / 8)
+                    .map(|c| {
+                        let v = match (bits, signed) {
+                            (16, true) => i16::from_le_bytes([c[0], c[1]]) as f64,
+                            (16, false) => u16::from_le_bytes([c[0], c[1]]) as f64,
+                            (_, true) => i32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64,
+                            (_, false) => u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64,
+                        };
+                        (min + (v - smallest) * scale) * z
+                    })
+                    .collect();
+                // The first row stored is the image's top: ours is y = 0.
+                Ok(Array2::from_shape_vec((ny, nx), values)
+                    .expect("counted")
+                    .slice(s![..;-1, ..])
+                    .to_owned())
+            }),
+        });
     }
-    Err(bad(format!(
-        "no channel in a length unit among {}",
-        channels.join(", ")
-    )))
+    Ok(layers)
 }

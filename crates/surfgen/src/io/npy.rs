@@ -1,6 +1,6 @@
 //! `.npy` heights with a JSON sidecar.
 
-use super::{Metadata, ReadOptions, Surface, sidecar_path};
+use super::{Measurement, Metadata, ReadOptions, Surface, sidecar_path};
 use crate::error::{Result, SurfError};
 use ndarray::Array2;
 use ndarray_npy::ReadNpyExt;
@@ -72,7 +72,7 @@ fn check_size(path: &Path, file: &mut File) -> Result<()> {
     Ok(())
 }
 
-pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
+pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     let mut file = File::open(path).map_err(|e| SurfError::io(path, e))?;
     check_size(path, &mut file)?;
     let heights = Array2::<f64>::read_npy(BufReader::new(file))
@@ -99,7 +99,7 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
     if options.unit != 1.0 {
         heights.mapv_inplace(|h| h * options.unit);
     }
-    Surface::new(heights, grid, periodic)
+    Measurement::new(heights, grid, periodic)
 }
 
 /// Writes an `.npy` (format 1.0) holding `heights` as little-endian f64 in C order. Written by

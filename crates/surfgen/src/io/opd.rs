@@ -3,10 +3,10 @@
 //! directory itself; the blocks follow in the entries' order. `Raw` (a 2-D array: columns,
 //! rows and the bytes a value as i16, then the values column by column, each column from the
 //! image's top) holds the heights in waves: a height is `raw * Wavelength [nm] / Mult`;
-//! `Pixel_size` [mm] and `Aspect` give the spacings. Values of 1e10 and above mark unmeasured
-//! points, which are refused with their count: a contact calculation needs every point.
+//! `Pixel_size` [mm] and `Aspect` give the spacings. NaN and values of 1e10 and above mark
+//! unmeasured points.
 
-use super::{ReadOptions, Surface};
+use super::{Measurement, ReadOptions};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -14,7 +14,7 @@ use std::path::Path;
 
 const ENTRY: usize = 24;
 
-pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
+pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     let bytes = std::fs::read(path).map_err(|e| SurfError::io(path, e))?;
     let bad = |m: String| SurfError::parse(path, None, m);
     let entry = |k: usize| -> Option<(String, i16, usize)> {
@@ -88,13 +88,6 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
             )));
         }
     };
-    let unmeasured = values.iter().filter(|v| v.is_nan() || v.abs() >= 1e10).count();
-    if unmeasured > 0 {
-        return Err(bad(format!(
-            "{unmeasured} of {n} points are not measured (the file marks them): fill them (e.g. in Gwyddion or \
-             Vision) before a contact calculation"
-        )));
-    }
     let wavelength = float("Wavelength")?.ok_or_else(|| bad("no Wavelength block".into()))?;
     let mult = match block(&["Mult"]) {
         Some(b) => body(b)?
@@ -106,9 +99,13 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
     let aspect = float("Aspect")?.unwrap_or(1.0);
     let scale = wavelength * 1e-9 / mult * options.unit;
     // Stored column by column (x slowest), each from the top: ours is (y, x) from y = 0.
-    let heights = Array2::from_shape_fn((ny, nx), |(j, i)| values[i * ny + (ny - 1 - j)] * scale);
+    // Unmeasured points hold NaN or a huge value.
+    let heights = Array2::from_shape_fn((ny, nx), |(j, i)| match values[i * ny + (ny - 1 - j)] {
+        v if v.abs() < 1e10 => v * scale,
+        _ => f64::NAN,
+    });
     let mm = 1e-3 * options.unit;
     let grid = Grid::new(nx, ny, nx as f64 * pixel * mm, ny as f64 * pixel * aspect * mm)
         .map_err(|e| bad(e.to_string()))?;
-    Surface::new(heights, grid, options.periodic)
+    Measurement::new(heights, grid, options.periodic)
 }

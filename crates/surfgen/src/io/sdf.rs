@@ -5,14 +5,14 @@
 //! trailer. Heights are the stored numbers times `Zscale` [m]; `Xscale` and `Yscale` are the
 //! spacings [m], so the box is `NumPoints * Xscale` by `NumProfiles * Yscale`.
 
-use super::{ReadOptions, Surface};
+use super::{Measurement, ReadOptions, Surface};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
 use std::path::Path;
 
 /// Reads a text (`a`) or binary (`b`) SDF file.
-pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
+pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     let bytes = std::fs::read(path).map_err(|e| SurfError::io(path, e))?;
     let bad = |line: Option<usize>, m: String| SurfError::parse(path, line, m);
     let binary = match bytes.get(..8) {
@@ -148,7 +148,7 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
         .map_err(|e| bad(None, e.to_string()))?;
     let heights = Array2::from_shape_vec((ny, nx), values.into_iter().map(|v| v * sz * unit).collect())
         .expect("counted");
-    Surface::new(heights, grid, options.periodic)
+    Measurement::new(heights, grid, options.periodic)
 }
 
 /// Writes a text SDF file: heights in metres (`Zscale = 1`) with the digits that read back to

@@ -3,10 +3,10 @@
 //! values, points along x and y, the spacings and the height step as f32 in the units their
 //! names give, the sizes of a comment and a private zone, the height offset), then the points
 //! as i16 or i32, x varying fastest, after the comment and private zones. A height is
-//! `raw * dz + z offset`. A file that marks unmeasured points (below the smallest value) is
-//! refused with their count: a contact calculation needs every point.
+//! `raw * dz + z offset`; points below the smallest value are unmeasured where the file says it
+//! marks them.
 
-use super::{ReadOptions, Surface, length_unit};
+use super::{Measurement, ReadOptions, length_unit};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -14,7 +14,7 @@ use std::path::Path;
 
 const HEADER: usize = 512;
 
-pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
+pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     let bytes = std::fs::read(path).map_err(|e| SurfError::io(path, e))?;
     let bad = |m: String| SurfError::parse(path, None, m);
     if bytes.len() < HEADER || !bytes.starts_with(b"DIGITAL SURF") {
@@ -77,19 +77,18 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
             }
         })
         .collect();
-    if i16_at(86) != 0 {
-        let unmeasured = raw.iter().filter(|&&v| v < zmin).count();
-        if unmeasured > 0 {
-            return Err(bad(format!(
-                "{unmeasured} of {n} points are not measured (the file marks them): fill them (e.g. in Gwyddion or \
-                 MountainsMap) before a contact calculation"
-            )));
-        }
-    }
+    // With a non-zero flag at byte 86, values below the smallest stored one are unmeasured.
+    let marks = i16_at(86) != 0;
     let scale = uz * options.unit;
     let heights: Vec<f64> = raw
         .into_iter()
-        .map(|v| (v as f64 * dz + z_offset) * scale)
+        .map(|v| {
+            if marks && v < zmin {
+                f64::NAN
+            } else {
+                (v as f64 * dz + z_offset) * scale
+            }
+        })
         .collect();
     let grid = Grid::new(
         nx,
@@ -98,7 +97,7 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
         ny as f64 * dy * uy * options.unit,
     )
     .map_err(|e| bad(e.to_string()))?;
-    Surface::new(
+    Measurement::new(
         Array2::from_shape_vec((ny, nx), heights).expect("counted"),
         grid,
         options.periodic,

@@ -1,6 +1,6 @@
 //! Plain-text formats: a height matrix, and `x y h` triples.
 
-use super::{ReadOptions, Surface, length_unit};
+use super::{Measurement, ReadOptions, Surface, length_unit};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -38,7 +38,7 @@ fn header_value(line: &str, key: &str) -> Option<String> {
         .map(str::to_string)
 }
 
-pub(super) fn read_matrix(path: &Path, options: &ReadOptions) -> Result<Surface> {
+pub(super) fn read_matrix(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     let mut rows: Vec<f64> = Vec::new();
     let (mut nx, mut ny) = (0usize, 0usize);
     let mut opts = *options;
@@ -108,7 +108,7 @@ pub(super) fn read_matrix(path: &Path, options: &ReadOptions) -> Result<Surface>
     let grid = opts.grid_for(path, ny, nx)?;
     let grid = Grid::new(nx, ny, grid.length_x * options.unit, grid.length_y * options.unit)?;
     let heights = Array2::from_shape_vec((ny, nx), rows).expect("counted") * (z_unit * options.unit);
-    Surface::new(heights, grid, opts.periodic)
+    Measurement::new(heights, grid, opts.periodic)
 }
 
 pub(super) fn write_matrix(surface: &Surface, path: &Path) -> Result<()> {
@@ -133,7 +133,7 @@ pub(super) fn write_matrix(surface: &Surface, path: &Path) -> Result<()> {
     w.flush().map_err(|e| SurfError::io(path, e))
 }
 
-pub(super) fn read_xyh(path: &Path, options: &ReadOptions) -> Result<Surface> {
+pub(super) fn read_xyh(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     let mut heights: Vec<f64> = Vec::new();
     let mut first_x: Vec<f64> = Vec::new();
     let mut row_y: Vec<f64> = Vec::new();
@@ -229,7 +229,7 @@ pub(super) fn read_xyh(path: &Path, options: &ReadOptions) -> Result<Surface> {
     let grid = Grid::new(nx, ny, lx.abs() * options.unit, ly.abs() * options.unit)
         .map_err(|e| SurfError::parse(path, None, format!("coordinates do not span a grid: {e}")))?;
     let heights = Array2::from_shape_vec((ny, nx), heights).expect("counted") * options.unit;
-    Surface::new(heights, grid, options.periodic)
+    Measurement::new(heights, grid, options.periodic)
 }
 
 pub(super) fn write_xyh(surface: &Surface, path: &Path) -> Result<()> {

@@ -3,7 +3,7 @@
 //! y), the box's sides and offsets (f32, millimetres), and `width * height` f32 heights
 //! [mm], x varying fastest.
 
-use super::{ReadOptions, Surface};
+use super::{Measurement, ReadOptions};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -12,7 +12,7 @@ use std::path::Path;
 const MAGIC: &[u8] = b"Binary TrueMap Data File v2.0\r\n\0";
 const END: &[u8] = b"\r\n\0";
 
-pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
+pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     let bytes = std::fs::read(path).map_err(|e| SurfError::io(path, e))?;
     let bad = |m: String| SurfError::parse(path, None, m);
     let rest = bytes
@@ -60,7 +60,7 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
         .map(|c| f32::from_le_bytes(c.try_into().expect("4 bytes")) as f64 * mm)
         .collect();
     let grid = Grid::new(nx, ny, lx * mm, ly * mm).map_err(|e| bad(e.to_string()))?;
-    Surface::new(
+    Measurement::new(
         Array2::from_shape_vec((ny, nx), heights).expect("counted"),
         grid,
         options.periodic,

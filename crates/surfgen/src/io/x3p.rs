@@ -8,7 +8,7 @@
 //! Reading never allocates more than the archive's entries can hold: a declared size is
 //! checked against the entry's compressed size times deflate's largest ratio.
 
-use super::{ReadOptions, Surface};
+use super::{Measurement, ReadOptions, Surface};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use md5::{Digest, Md5};
@@ -50,7 +50,7 @@ fn elements(xml: &str) -> std::result::Result<Vec<(String, String)>, String> {
     Ok(out)
 }
 
-pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
+pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     let bad = |m: String| SurfError::parse(path, None, m);
     let file = std::fs::File::open(path).map_err(|e| SurfError::io(path, e))?;
     let mut archive =
@@ -178,7 +178,7 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
             k / nx
         )));
     }
-    Surface::new(heights, grid, options.periodic)
+    Measurement::new(heights, grid, options.periodic)
 }
 
 fn hex(digest: &[u8]) -> String {

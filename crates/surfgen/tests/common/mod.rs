@@ -31,3 +31,26 @@ pub fn tiny_opd(values: [f32; 6]) -> Vec<u8> {
     }
     b
 }
+
+/// A Nanoscope file made by hand: a phase image (degrees), then a 3 x 2 height image of 16 bits
+/// stored from the top, 3 x 2 µm; a height is `raw * 6.5536 V / 2^16 * 10 nm/V = raw` pm.
+pub fn tiny_di(values: [i16; 6]) -> Vec<u8> {
+    let image = |name: &str, offset: usize, scale: &str| {
+        format!(
+            "\\*Ciao image list\r\n\\Data offset: {offset}\r\n\\Data length: 12\r\n\\Bytes/pixel: 2\r\n\
+             \\Samps/line: 3\r\n\\Number of lines: 2\r\n\\Scan Size: 3 2 ~m\r\n\
+             \\@2:Image Data: S [{name}] \"{name}\"\r\n\\@2:Z scale: {scale}\r\n"
+        )
+    };
+    let header = format!(
+        "\\*File list\r\n\\Data length: 1024\r\n\\*Scanner list\r\n\\@Sens. Zsens: V 10.00 nm/V\r\n\
+         \\@Sens. Phase: V 1.000 deg/V\r\n{}{}\\*File list end\r\n",
+        image("Phase", 1024, "V [Sens. Phase] (0.0001 V/LSB) 6.5536 V"),
+        image("Height", 1036, "V [Sens. Zsens] (0.0001 V/LSB) 6.5536 V"),
+    );
+    let mut b = header.into_bytes();
+    b.resize(1024, 0);
+    b.extend([0u8; 12]);
+    b.extend(values.iter().flat_map(|v| v.to_le_bytes()));
+    b
+}
