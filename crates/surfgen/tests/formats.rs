@@ -6,7 +6,7 @@ use serde_json::Value;
 use std::io::Write;
 
 mod common;
-use common::{tiny_di, tiny_opd};
+use common::{tiny_di, tiny_ibw, tiny_opd};
 use std::path::{Path, PathBuf};
 use surfgen::io::{self, ReadOptions};
 use surfgen::{Grid, Surface};
@@ -41,6 +41,7 @@ fn sample_files_read_as_surfacetopography_reads_them() {
         "di-3.di",
         "sur-2.sur",
         "opd-1.opd",
+        "spot_1-1000nm.ibw",
     ] {
         let r = &readings[name];
         // SurfaceTopography's statistics skip the points it masks as unmeasured.
@@ -360,5 +361,23 @@ fn nanoscope_lists_its_channels_reads_the_height_one_and_refuses_the_others() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("no channel 1: the file holds one surface"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn igor_wave_names_its_channels_and_reads_the_height_one() {
+    let dir = std::env::temp_dir().join(format!("surfgen-ibw-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("tiny.ibw");
+    let values: Vec<f32> = (1..=12).map(|v| v as f32).collect();
+    std::fs::write(&path, tiny_ibw(values.clone().try_into().unwrap())).unwrap();
+    let channels = io::channels(&path, &ReadOptions::default()).unwrap();
+    let names: Vec<(&str, bool)> = channels.iter().map(|c| (c.name.as_str(), c.height)).collect();
+    assert_eq!(names, [("HeightTrace", true), ("PhaseTrace", false)]);
+    let s = io::read(&path, &ReadOptions::default()).unwrap();
+    assert_eq!((s.grid.length_x, s.grid.length_y), (3e-6, 4e-6));
+    // x fastest; the wave's last y is our y = 0 (as SurfaceTopography and Gwyddion show it).
+    assert_eq!(s.heights.row(0).to_vec(), [4.0, 5.0, 6.0]);
+    assert_eq!(s.heights.row(1).to_vec(), [1.0, 2.0, 3.0]);
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -22,6 +22,7 @@
 mod di;
 mod fill;
 mod gsf;
+mod ibw;
 mod mi;
 mod netcdf;
 mod nid;
@@ -308,6 +309,10 @@ impl Metadata {
     }
 }
 
+/// The extensions read, for messages.
+const KNOWN: &str = ".npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd, \
+                     .di/.spm, .ibw";
+
 /// The file formats, chosen by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
@@ -324,6 +329,7 @@ pub enum Format {
     Sur,
     Opd,
     Di,
+    Ibw,
 }
 
 /// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
@@ -365,19 +371,17 @@ impl Format {
             "opd" => Ok(Format::Opd),
             // Nanoscope's older files are numbered: .000, .001, ...
             "di" | "spm" => Ok(Format::Di),
+            "ibw" => Ok(Format::Ibw),
             e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => Ok(Format::Di),
             "" => Err(SurfError::parse(
                 path,
                 None,
-                "the file name has no extension, which names the format: give one of .npy, \
-                 .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd, .di/.spm",
+                format!("the file name has no extension, which names the format: give one of {KNOWN}"),
             )),
             _ => Err(SurfError::parse(
                 path,
                 None,
-                format!(
-                    "unknown surface format '.{ext}' (known: .npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd, .di/.spm)"
-                ),
+                format!("unknown surface format '.{ext}' (known: {KNOWN})"),
             )),
         }
     }
@@ -428,7 +432,7 @@ pub fn read_measurement(path: &Path, options: &ReadOptions) -> Result<Measuremen
         Format::Tmd => tmd::read(path, options)?,
         Format::Sur => sur::read(path, options)?,
         Format::Opd => opd::read(path, options)?,
-        Format::Mi | Format::Nid | Format::Di => unreachable!("layered"),
+        _ => unreachable!("layered"),
     })
 }
 
@@ -455,11 +459,10 @@ pub fn channel_index(path: &Path, options: &ReadOptions, key: &str) -> Result<us
 
 /// The bytes of a file in a format of several channels, `None` for the others.
 fn layered(format: Format, path: &Path) -> Result<Option<Vec<u8>>> {
-    match format {
-        Format::Mi | Format::Nid | Format::Di => {
-            std::fs::read(path).map(Some).map_err(|e| SurfError::io(path, e))
-        }
-        _ => Ok(None),
+    if matches!(format, Format::Mi | Format::Nid | Format::Di | Format::Ibw) {
+        std::fs::read(path).map(Some).map_err(|e| SurfError::io(path, e))
+    } else {
+        Ok(None)
     }
 }
 
@@ -468,6 +471,7 @@ fn layers<'a>(format: Format, bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<
         Format::Mi => mi::layers(bytes, path),
         Format::Nid => nid::layers(bytes, path),
         Format::Di => di::layers(bytes, path),
+        Format::Ibw => ibw::layers(bytes, path),
         _ => unreachable!("one channel"),
     }
 }
@@ -506,13 +510,11 @@ pub fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Res
         Format::X3p => x3p::write(surface, path),
         Format::Sdf => sdf::write(surface, path),
         Format::NetCdf => netcdf::write(surface, path),
-        Format::Tmd | Format::Mi | Format::Nid | Format::Sur | Format::Opd | Format::Di => {
-            Err(SurfError::parse(
-                path,
-                None,
-                "instruments' own formats are read, not written: write .x3p, .sdf or .nc for other tools",
-            ))
-        }
+        _ => Err(SurfError::parse(
+            path,
+            None,
+            "instruments' own formats are read, not written: write .x3p, .sdf or .nc for other tools",
+        )),
     }
 }
 

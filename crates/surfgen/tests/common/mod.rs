@@ -54,3 +54,31 @@ pub fn tiny_di(values: [i16; 6]) -> Vec<u8> {
     b.extend(values.iter().flat_map(|v| v.to_le_bytes()));
     b
 }
+
+/// An Igor binary wave (version 5, little-endian) made by hand: 3 x 2 x 2 f32 in metres, x
+/// fastest, spacing 1 µm along x and 2 µm along y, channels `HeightTrace` and `PhaseTrace`.
+pub fn tiny_ibw(values: [f32; 12]) -> Vec<u8> {
+    let data: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+    let mut labels = vec![0u8; 3 * 32];
+    for (k, name) in ["", "HeightTrace", "PhaseTrace"].iter().enumerate() {
+        labels[32 * k..32 * k + name.len()].copy_from_slice(name.as_bytes());
+    }
+    let mut b = vec![0u8; 64 + 320];
+    let mut put = |o: usize, bytes: &[u8]| b[o..o + bytes.len()].copy_from_slice(bytes);
+    put(0, &5i16.to_le_bytes());
+    put(4, &((320 + data.len()) as u32).to_le_bytes());
+    put(36 + 8, &(labels.len() as u32).to_le_bytes());
+    put(64 + 12, &12u32.to_le_bytes());
+    put(64 + 16, &2i16.to_le_bytes());
+    for (d, n) in [3u32, 2, 2].iter().enumerate() {
+        put(64 + 68 + 4 * d, &n.to_le_bytes());
+    }
+    put(64 + 84, &1e-6f64.to_le_bytes());
+    put(64 + 92, &2e-6f64.to_le_bytes());
+    put(64 + 148, b"m");
+    put(64 + 152, b"m");
+    put(64 + 156, b"m");
+    b.extend(data);
+    b.extend(labels);
+    b
+}
