@@ -85,37 +85,10 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         }
     };
     let kind = i16_at(w + 16);
-    let (width, decode): (usize, fn([u8; 8], bool) -> f64) = match kind {
-        2 => (4, |b, le| {
-            let b = [b[0], b[1], b[2], b[3]];
-            (if le {
-                f32::from_le_bytes(b)
-            } else {
-                f32::from_be_bytes(b)
-            }) as f64
-        }),
-        4 => (8, |b, le| {
-            if le {
-                f64::from_le_bytes(b)
-            } else {
-                f64::from_be_bytes(b)
-            }
-        }),
-        0x10 => (2, |b, le| {
-            (if le {
-                i16::from_le_bytes([b[0], b[1]])
-            } else {
-                i16::from_be_bytes([b[0], b[1]])
-            }) as f64
-        }),
-        0x20 => (4, |b, le| {
-            let b = [b[0], b[1], b[2], b[3]];
-            (if le {
-                i32::from_le_bytes(b)
-            } else {
-                i32::from_be_bytes(b)
-            }) as f64
-        }),
+    let width = match kind {
+        0x10 => 2,
+        2 | 0x20 => 4,
+        4 => 8,
         t => {
             return Err(bad(format!(
                 "data type {t:#x} (32- or 64-bit float, 16- or 32-bit integer are read)"
@@ -191,11 +164,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                     height: metres.is_some() && heights,
                 },
                 values: Box::new(move || {
-                    let value = |k: usize| {
-                        let mut b = [0u8; 8];
-                        b[..width].copy_from_slice(&raw[k * width..(k + 1) * width]);
-                        decode(b, little) * scale
-                    };
+                    let value = |k: usize| decode(kind, &raw[k * width..(k + 1) * width], little) * scale;
                     // x varies fastest; the last column of y is our y = 0, as SurfaceTopography
                     // and Gwyddion orient these images.
                     Ok(Array2::from_shape_fn((ny, nx), |(j, i)| {
@@ -205,4 +174,19 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
             }
         })
         .collect())
+}
+
+/// One value of Igor type `kind` (checked: f32, f64, i16, i32) from its bytes.
+fn decode(kind: i16, b: &[u8], little: bool) -> f64 {
+    let mut a = [0u8; 8];
+    a[..b.len()].copy_from_slice(b);
+    if !little {
+        a[..b.len()].reverse();
+    }
+    match kind {
+        2 => f32::from_le_bytes([a[0], a[1], a[2], a[3]]) as f64,
+        4 => f64::from_le_bytes(a),
+        0x10 => i16::from_le_bytes([a[0], a[1]]) as f64,
+        _ => i32::from_le_bytes([a[0], a[1], a[2], a[3]]) as f64,
+    }
 }
