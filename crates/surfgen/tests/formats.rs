@@ -6,7 +6,7 @@ use serde_json::Value;
 use std::io::Write;
 
 mod common;
-use common::{tiny_di, tiny_ibw, tiny_opd};
+use common::{tiny_di, tiny_frt, tiny_ibw, tiny_opd};
 use std::path::{Path, PathBuf};
 use surfgen::io::{self, ReadOptions};
 use surfgen::{Grid, Surface};
@@ -42,6 +42,7 @@ fn sample_files_read_as_surfacetopography_reads_them() {
         "sur-2.sur",
         "opd-1.opd",
         "spot_1-1000nm.ibw",
+        "frt-1.frt",
     ] {
         let r = &readings[name];
         // SurfaceTopography's statistics skip the points it masks as unmeasured.
@@ -297,7 +298,7 @@ fn harmonic_fill_restores_a_discrete_harmonic_surface_and_fills_the_samples() {
     let worst = (&holed - &exact).iter().fold(0.0f64, |m, d| m.max(d.abs()));
     assert!(worst < 1e-16, "largest error {worst:e} m");
     // The real samples' unmeasured points, filled, lie within the measured range.
-    for name in ["sur-2.sur", "opd-1.opd"] {
+    for name in ["sur-2.sur", "opd-1.opd", "frt-1.frt"] {
         let path = samples().join(name);
         let m = io::read_measurement(&path, &ReadOptions::default()).unwrap();
         let measured = m.heights.iter().copied().filter(|h| !h.is_nan());
@@ -379,5 +380,26 @@ fn igor_wave_names_its_channels_and_reads_the_height_one() {
     // x fastest; the wave's last y is our y = 0 (as SurfaceTopography and Gwyddion show it).
     assert_eq!(s.heights.row(0).to_vec(), [4.0, 5.0, 6.0]);
     assert_eq!(s.heights.row(1).to_vec(), [1.0, 2.0, 3.0]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn frt_reads_its_blocks_and_marks_unmeasured_points() {
+    let dir = std::env::temp_dir().join(format!("surfgen-frt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("tiny.frt");
+    std::fs::write(&path, tiny_frt([2, 3, 4, 5, 6, 700])).unwrap();
+    let s = io::read(&path, &ReadOptions::default()).unwrap();
+    assert_eq!(
+        (s.grid.nx, s.grid.ny, s.grid.length_x, s.grid.length_y),
+        (3, 2, 3e-3, 1e-3)
+    );
+    assert_eq!(s.heights.row(1).to_vec(), [5.0 * 1e-9, 6.0 * 1e-9, 700.0 * 1e-9]);
+    std::fs::write(&path, tiny_frt([2, 1, 4, 5, 6, 1])).unwrap();
+    let e = io::read(&path, &ReadOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("2 of 6 points are not measured"), "{e}");
+    // The real sample: 76456 of its 250000 points.
+    let m = io::read_measurement(&samples().join("frt-1.frt"), &ReadOptions::default()).unwrap();
+    assert_eq!(m.unmeasured(), 76456);
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -11,7 +11,7 @@ use surfgen::io::{self, ReadOptions};
 use surfgen::{Grid, Surface};
 
 mod common;
-use common::{tiny_di, tiny_ibw, tiny_opd};
+use common::{tiny_di, tiny_frt, tiny_ibw, tiny_opd};
 
 /// The system allocator, counting the bytes live and their peak since the last reset. A single
 /// request above `CAP` is refused (the process aborts: the test fails) rather than granted.

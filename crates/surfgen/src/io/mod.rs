@@ -21,6 +21,7 @@
 
 mod di;
 mod fill;
+mod frt;
 mod gsf;
 mod ibw;
 mod mi;
@@ -311,7 +312,7 @@ impl Metadata {
 
 /// The extensions read, for messages.
 const KNOWN: &str = ".npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd, \
-                     .di/.spm, .ibw";
+                     .di/.spm, .ibw, .frt";
 
 /// The file formats, chosen by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -330,6 +331,7 @@ pub enum Format {
     Opd,
     Di,
     Ibw,
+    Frt,
 }
 
 /// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
@@ -372,6 +374,7 @@ impl Format {
             // Nanoscope's older files are numbered: .000, .001, ...
             "di" | "spm" => Ok(Format::Di),
             "ibw" => Ok(Format::Ibw),
+            "frt" => Ok(Format::Frt),
             e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => Ok(Format::Di),
             "" => Err(SurfError::parse(
                 path,
@@ -432,6 +435,7 @@ pub fn read_measurement(path: &Path, options: &ReadOptions) -> Result<Measuremen
         Format::Tmd => tmd::read(path, options)?,
         Format::Sur => sur::read(path, options)?,
         Format::Opd => opd::read(path, options)?,
+        Format::Frt => frt::read(path, options)?,
         _ => unreachable!("layered"),
     })
 }

@@ -82,3 +82,25 @@ pub fn tiny_ibw(values: [f32; 12]) -> Vec<u8> {
     b.extend(labels);
     b
 }
+
+/// An FRT file (version 1.00) made by hand: a text block, then 3 x 2 points of 16 bits, a box
+/// of 3 x 1 mm, 1 nm a count, x fastest; a count of 1 is unmeasured.
+pub fn tiny_frt(counts: [u16; 6]) -> Vec<u8> {
+    let mut b = b"FRTM_GLIDERV1.00".to_vec();
+    b.extend(5u16.to_le_bytes());
+    let mut block = |id: u16, body: Vec<u8>| {
+        b.extend(id.to_le_bytes());
+        b.extend((body.len() as u32).to_le_bytes());
+        b.extend(body);
+    };
+    block(0x65, b"note\0".to_vec());
+    block(0x66, [3u32, 2, 16].iter().flat_map(|v| v.to_le_bytes()).collect());
+    let mut sizes: Vec<u8> = [3e-3f64, 1e-3].iter().flat_map(|v| v.to_le_bytes()).collect();
+    sizes.extend([0u8; 28]);
+    block(0x67, sizes);
+    let mut range = 0u32.to_le_bytes().to_vec();
+    range.extend(1e-9f64.to_le_bytes());
+    block(0x6c, range);
+    block(0x0b, counts.iter().flat_map(|v| v.to_le_bytes()).collect());
+    b
+}
