@@ -129,6 +129,7 @@ Dim2Min=-1e-7\nDim2Range=2e-7\nDim2Unit=m\nSaveBits=16\nSaveSign=Signed\n#!"
     seeds.push(("sur", sur));
     seeds.push(("opd", tiny_opd([1.0, 2.0, 3.0, 4.0, 5.0, 6.0])));
     seeds.push(("di", tiny_di([1, 2, 3, 4, 5, 6])));
+    seeds.push(("frt", tiny_frt([2, 3, 1, 5, 6, 7])));
     seeds.push((
         "ibw",
         tiny_ibw([1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0, 12.0]),
