@@ -117,21 +117,41 @@ SAMPLES = sorted(
 )
 
 
-# Samples with unmeasured points, which SurfaceTopography masks and we refuse (with their count).
-UNMEASURED = {"sur-2.sur", "opd-1.opd"}
+# Samples with unmeasured points, which SurfaceTopography masks and we refuse (with their
+# count) unless asked to fill them.
+UNMEASURED = {"sur-2.sur", "opd-1.opd", "frt-1.frt"}
 
 
 @pytest.mark.parametrize("name", SAMPLES)
 def test_samples_read_as_surfacetopography_reads_them_the_same_way_round(name):
     """Every instrument sample: the same heights as SurfaceTopography's (CI installs it), in
-    metres, with its [x, y] indexing transposed to our (ny, nx)."""
+    metres, with its [x, y] indexing transposed to our (ny, nx); at the points it masks, ours
+    are refused, or filled within the measured range."""
     st = pytest.importorskip("SurfaceTopography")
     path = ROOT / "data" / "topography-samples" / name
-    if name in UNMEASURED:
-        with pytest.raises(ValueError, match="points are not measured"):
-            rc.read(path)
-        return
-    ours, theirs = rc.read(path), st.read_topography(str(path))
+    theirs = st.read_topography(str(path))
     scale = {"m": 1.0, "mm": 1e-3, "µm": 1e-6, "nm": 1e-9}[theirs.unit]
-    assert ours.shape == theirs.heights().T.shape
-    np.testing.assert_allclose(ours.heights, theirs.heights().T * scale, rtol=1e-9, atol=1e-9 * np.abs(ours.heights).max())
+    heights = np.ma.masked_invalid(theirs.heights().T * scale)
+    if name in UNMEASURED:
+        with pytest.raises(ValueError, match=f"{np.ma.count_masked(heights)} of .* points are not measured"):
+            rc.read(path)
+    ours = rc.read(path, fill_unmeasured=name in UNMEASURED)
+    assert ours.shape == heights.shape
+    measured = ~np.ma.getmaskarray(heights)
+    np.testing.assert_allclose(
+        ours.heights[measured], heights.data[measured], rtol=1e-9, atol=1e-9 * np.abs(heights).max()
+    )
+    filled = ours.heights[~measured]
+    assert np.all((filled >= heights.min()) & (filled <= heights.max()))
+
+
+def test_we_read_what_surfacetopography_writes_as_gwyddion(tmp_path):
+    """Gwyddion's format, written by an independent writer (SurfaceTopography's), read back
+    with its grid, size and heights."""
+    st = pytest.importorskip("SurfaceTopography")
+    heights = np.random.default_rng(3).normal(size=(32, 16)) * 1e-7  # SurfaceTopography's [x, y]
+    theirs = st.Topography(heights, (2e-5, 1e-5), unit="m")
+    theirs.to_gwy(str(tmp_path / "theirs.gwy"))
+    ours = rc.read(tmp_path / "theirs.gwy")
+    assert ours.shape == (16, 32) and ours.physical_sizes == pytest.approx((2e-5, 1e-5), rel=1e-15)
+    assert np.array_equal(ours.heights, heights.T)

@@ -6,7 +6,7 @@ use serde_json::Value;
 use std::io::Write;
 
 mod common;
-use common::{tiny_di, tiny_frt, tiny_ibw, tiny_opd};
+use common::{tiny_di, tiny_frt, tiny_gwy, tiny_ibw, tiny_opd};
 use std::path::{Path, PathBuf};
 use surfgen::io::{self, ReadOptions};
 use surfgen::{Grid, Surface};
@@ -394,12 +394,38 @@ fn frt_reads_its_blocks_and_marks_unmeasured_points() {
         (s.grid.nx, s.grid.ny, s.grid.length_x, s.grid.length_y),
         (3, 2, 3e-3, 1e-3)
     );
-    assert_eq!(s.heights.row(1).to_vec(), [5.0 * 1e-9, 6.0 * 1e-9, 700.0 * 1e-9]);
+    // Rows stored from the top: the second is our y = 0.
+    assert_eq!(s.heights.row(0).to_vec(), [5.0 * 1e-9, 6.0 * 1e-9, 700.0 * 1e-9]);
     std::fs::write(&path, tiny_frt([2, 1, 4, 5, 6, 1])).unwrap();
     let e = io::read(&path, &ReadOptions::default()).unwrap_err().to_string();
     assert!(e.contains("2 of 6 points are not measured"), "{e}");
     // The real sample: 76456 of its 250000 points.
     let m = io::read_measurement(&samples().join("frt-1.frt"), &ReadOptions::default()).unwrap();
     assert_eq!(m.unmeasured(), 76456);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn gwyddion_lists_its_images_reads_the_heights_and_their_mask() {
+    let dir = std::env::temp_dir().join(format!("surfgen-gwy-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("tiny.gwy");
+    let h = [1e-9, 2e-9, 3e-9, 4e-9, 5e-9, 6e-9];
+    std::fs::write(&path, tiny_gwy(h, [false; 6])).unwrap();
+    let channels = io::channels(&path, &ReadOptions::default()).unwrap();
+    let names: Vec<(&str, &str, bool)> = channels
+        .iter()
+        .map(|c| (c.name.as_str(), c.unit.as_str(), c.height))
+        .collect();
+    assert_eq!(names, [("Phase", "deg", false), ("Topography", "m", true)]);
+    let s = io::read(&path, &ReadOptions::default()).unwrap();
+    assert_eq!(
+        (s.grid.nx, s.grid.ny, s.grid.length_x, s.grid.length_y),
+        (3, 2, 3e-6, 2e-6)
+    );
+    assert_eq!(s.heights.row(1).to_vec(), h[3..]);
+    std::fs::write(&path, tiny_gwy(h, [false, true, false, false, false, true])).unwrap();
+    let m = io::read_measurement(&path, &ReadOptions::default()).unwrap();
+    assert!(m.heights[[0, 1]].is_nan() && m.heights[[1, 2]].is_nan() && m.unmeasured() == 2);
     std::fs::remove_dir_all(&dir).ok();
 }

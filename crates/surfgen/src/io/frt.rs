@@ -2,12 +2,12 @@
 //! count (u16), then blocks of an id (u16), a size (u32 in 1.00, u64 in 1.01) and their bytes,
 //! little-endian. Block 0x66 gives the points along x and y and the bits a value (16: u16, 32:
 //! i32); 0x67 the box's sides [m]; 0x6c the metres a count; 0x0b the heights, x varying
-//! fastest. A count of 1 marks an unmeasured point.
+//! fastest, rows from the image's top. A count of 1 marks an unmeasured point.
 
 use super::{Measurement, ReadOptions};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
-use ndarray::Array2;
+use ndarray::{Array2, s};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -97,9 +97,10 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
         })
         .collect();
     let grid = Grid::new(nx, ny, lx * options.unit, ly * options.unit).map_err(|e| bad(e.to_string()))?;
-    Measurement::new(
-        Array2::from_shape_vec((ny, nx), heights).expect("counted"),
-        grid,
-        options.periodic,
-    )
+    // Rows are stored from the image's top: ours is y = 0.
+    let heights = Array2::from_shape_vec((ny, nx), heights)
+        .expect("counted")
+        .slice(s![..;-1, ..])
+        .to_owned();
+    Measurement::new(heights, grid, options.periodic)
 }

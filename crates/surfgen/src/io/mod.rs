@@ -23,6 +23,7 @@ mod di;
 mod fill;
 mod frt;
 mod gsf;
+mod gwy;
 mod ibw;
 mod mi;
 mod netcdf;
@@ -312,7 +313,7 @@ impl Metadata {
 
 /// The extensions read, for messages.
 const KNOWN: &str = ".npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd, \
-                     .di/.spm, .ibw, .frt";
+                     .di/.spm, .ibw, .frt, .gwy";
 
 /// The file formats, chosen by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -332,6 +333,7 @@ pub enum Format {
     Di,
     Ibw,
     Frt,
+    Gwy,
 }
 
 /// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
@@ -375,6 +377,7 @@ impl Format {
             "di" | "spm" => Ok(Format::Di),
             "ibw" => Ok(Format::Ibw),
             "frt" => Ok(Format::Frt),
+            "gwy" => Ok(Format::Gwy),
             e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => Ok(Format::Di),
             "" => Err(SurfError::parse(
                 path,
@@ -463,7 +466,10 @@ pub fn channel_index(path: &Path, options: &ReadOptions, key: &str) -> Result<us
 
 /// The bytes of a file in a format of several channels, `None` for the others.
 fn layered(format: Format, path: &Path) -> Result<Option<Vec<u8>>> {
-    if matches!(format, Format::Mi | Format::Nid | Format::Di | Format::Ibw) {
+    if matches!(
+        format,
+        Format::Mi | Format::Nid | Format::Di | Format::Ibw | Format::Gwy
+    ) {
         std::fs::read(path).map(Some).map_err(|e| SurfError::io(path, e))
     } else {
         Ok(None)
@@ -476,6 +482,7 @@ fn layers<'a>(format: Format, bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<
         Format::Nid => nid::layers(bytes, path),
         Format::Di => di::layers(bytes, path),
         Format::Ibw => ibw::layers(bytes, path),
+        Format::Gwy => gwy::layers(bytes, path),
         _ => unreachable!("one channel"),
     }
 }

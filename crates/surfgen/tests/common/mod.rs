@@ -104,3 +104,56 @@ pub fn tiny_frt(counts: [u16; 6]) -> Vec<u8> {
     block(0x0b, counts.iter().flat_map(|v| v.to_le_bytes()).collect());
     b
 }
+
+/// A serialized Gwyddion object: class name, size, components (name, type, value bytes).
+fn gwy_object(class: &str, components: &[(&str, u8, Vec<u8>)]) -> Vec<u8> {
+    let mut body = Vec::new();
+    for (name, kind, value) in components {
+        body.extend(name.as_bytes());
+        body.push(0);
+        body.push(*kind);
+        body.extend(value);
+    }
+    let mut b = class.as_bytes().to_vec();
+    b.push(0);
+    b.extend((body.len() as u32).to_le_bytes());
+    b.extend(body);
+    b
+}
+
+fn gwy_field(values: &[f64], unit_z: &str) -> Vec<u8> {
+    let unit = |u: &str| gwy_object("GwySIUnit", &[("unitstr", b's', [u.as_bytes(), &[0]].concat())]);
+    let mut data = (values.len() as u32).to_le_bytes().to_vec();
+    data.extend(values.iter().flat_map(|v| v.to_le_bytes()));
+    gwy_object(
+        "GwyDataField",
+        &[
+            ("xres", b'i', 3i32.to_le_bytes().to_vec()),
+            ("yres", b'i', 2i32.to_le_bytes().to_vec()),
+            ("xreal", b'd', 3e-6f64.to_le_bytes().to_vec()),
+            ("yreal", b'd', 2e-6f64.to_le_bytes().to_vec()),
+            ("si_unit_xy", b'o', unit("m")),
+            ("si_unit_z", b'o', unit(unit_z)),
+            ("data", b'D', data),
+        ],
+    )
+}
+
+/// A Gwyddion file made by hand: image 0 a phase (deg), image 1 heights (3 x 2 over 3 x 2 µm,
+/// rows in order) with a mask over the points where `masked` is true.
+pub fn tiny_gwy(heights: [f64; 6], masked: [bool; 6]) -> Vec<u8> {
+    let mask: Vec<f64> = masked.iter().map(|&m| if m { 1.0 } else { 0.0 }).collect();
+    let text = |t: &str| [t.as_bytes(), &[0]].concat();
+    let container = gwy_object(
+        "GwyContainer",
+        &[
+            ("/0/data/title", b's', text("Phase")),
+            ("/0/data", b'o', gwy_field(&[0.0; 6], "deg")),
+            ("/1/data/title", b's', text("Topography")),
+            ("/1/data", b'o', gwy_field(&heights, "m")),
+            ("/1/mask", b'o', gwy_field(&mask, "")),
+            ("/1/data/visible", b'b', vec![1]),
+        ],
+    );
+    [b"GWYP".as_slice(), &container].concat()
+}
