@@ -429,3 +429,41 @@ fn gwyddion_lists_its_images_reads_the_heights_and_their_mask() {
     assert!(m.heights[[0, 1]].is_nan() && m.heights[[1, 2]].is_nan() && m.unmeasured() == 2);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn hdf5_written_by_the_c_library_lists_its_arrays_and_reads_them() {
+    // h5-1.h5 was written by h5py 3.16 (HDF5 2.0.0): `surface` (6 x 8, f64, gzip-compressed
+    // chunks) = 1e-7 sin(i + 0.3 j) + 1e-9 i j, its f32 copy `channels/height32`, a 1-D
+    // `profile` and a string array, which are not surfaces.
+    let path = samples().join("h5-1.h5");
+    let options = ReadOptions {
+        length_x: Some(8e-6),
+        ..Default::default()
+    };
+    let channels = io::channels(&path, &options).unwrap();
+    let names: Vec<&str> = channels.iter().map(|c| c.name.as_str()).collect();
+    assert_eq!(names, ["channels/height32", "surface"]);
+    assert!(channels.iter().all(|c| (c.nx, c.ny, c.length_x) == (8, 6, None)));
+    let formula = |j: usize, i: usize| 1e-7 * (i as f64 + 0.3 * j as f64).sin() + 1e-9 * (i * j) as f64;
+    let surface = io::read(
+        &path,
+        &ReadOptions {
+            channel: Some(io::channel_index(&path, &options, "surface").unwrap()),
+            ..options
+        },
+    )
+    .unwrap();
+    assert_eq!(
+        surface.heights,
+        Array2::from_shape_fn((6, 8), |(j, i)| formula(j, i))
+    );
+    assert_eq!((surface.grid.length_x, surface.grid.length_y), (8e-6, 6e-6));
+    let single = io::read(&path, &options).unwrap();
+    assert_eq!(
+        single.heights,
+        Array2::from_shape_fn((6, 8), |(j, i)| formula(j, i) as f32 as f64)
+    );
+    // Without a size the file cannot say, it is refused with the reason.
+    let e = io::read(&path, &ReadOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("does not say its lateral size"), "{e}");
+}

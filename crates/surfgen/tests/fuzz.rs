@@ -5,7 +5,7 @@
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use surfgen::io::{self, ReadOptions};
 use surfgen::{Grid, Surface};
@@ -130,6 +130,9 @@ Dim2Min=-1e-7\nDim2Range=2e-7\nDim2Unit=m\nSaveBits=16\nSaveSign=Signed\n#!"
     seeds.push(("opd", tiny_opd([1.0, 2.0, 3.0, 4.0, 5.0, 6.0])));
     seeds.push(("di", tiny_di([1, 2, 3, 4, 5, 6])));
     seeds.push(("frt", tiny_frt([2, 3, 1, 5, 6, 7])));
+    // HDF5 as the C library writes it (h5py): the committed sample.
+    let h5 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/topography-samples/h5-1.h5");
+    seeds.push(("h5", std::fs::read(h5).unwrap()));
     seeds.push(("gwy", tiny_gwy([1e-9, 2e-9, 3e-9, 4e-9, 5e-9, 6e-9], [false; 6])));
     seeds.push((
         "ibw",

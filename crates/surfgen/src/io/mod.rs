@@ -24,6 +24,7 @@ mod fill;
 mod frt;
 mod gsf;
 mod gwy;
+mod h5;
 mod ibw;
 mod mi;
 mod netcdf;
@@ -313,7 +314,7 @@ impl Metadata {
 
 /// The extensions read, for messages.
 const KNOWN: &str = ".npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd, \
-                     .di/.spm, .ibw, .frt, .gwy";
+                     .di/.spm, .ibw, .frt, .gwy, .h5/.hdf5";
 
 /// The file formats, chosen by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -334,6 +335,7 @@ pub enum Format {
     Ibw,
     Frt,
     Gwy,
+    Hdf5,
 }
 
 /// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
@@ -378,6 +380,7 @@ impl Format {
             "ibw" => Ok(Format::Ibw),
             "frt" => Ok(Format::Frt),
             "gwy" => Ok(Format::Gwy),
+            "h5" | "hdf5" | "hdf" => Ok(Format::Hdf5),
             e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => Ok(Format::Di),
             "" => Err(SurfError::parse(
                 path,
@@ -468,7 +471,7 @@ pub fn channel_index(path: &Path, options: &ReadOptions, key: &str) -> Result<us
 fn layered(format: Format, path: &Path) -> Result<Option<Vec<u8>>> {
     if matches!(
         format,
-        Format::Mi | Format::Nid | Format::Di | Format::Ibw | Format::Gwy
+        Format::Mi | Format::Nid | Format::Di | Format::Ibw | Format::Gwy | Format::Hdf5
     ) {
         std::fs::read(path).map(Some).map_err(|e| SurfError::io(path, e))
     } else {
@@ -483,6 +486,7 @@ fn layers<'a>(format: Format, bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<
         Format::Di => di::layers(bytes, path),
         Format::Ibw => ibw::layers(bytes, path),
         Format::Gwy => gwy::layers(bytes, path),
+        Format::Hdf5 => h5::layers(bytes, path),
         _ => unreachable!("one channel"),
     }
 }
