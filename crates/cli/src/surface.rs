@@ -103,10 +103,12 @@ struct Info {
 #[derive(Serialize)]
 struct Reading {
     channel: usize,
+    /// `surface` or `line scan`.
+    kind: &'static str,
     nx: usize,
     ny: usize,
-    length_x_m: f64,
-    length_y_m: f64,
+    length_x_m: Option<f64>,
+    length_y_m: Option<f64>,
     unmeasured_points: usize,
     mean_height_m: f64,
     rms_height_m: f64,
@@ -114,29 +116,63 @@ struct Reading {
     max_height_m: f64,
 }
 
+impl Reading {
+    fn of(t: io::Topography) -> Self {
+        let (channel, kind, nx, ny, lx, ly, heights) = match t {
+            io::Topography::Surface(m) => (
+                m.channel,
+                "surface",
+                m.grid.nx,
+                m.grid.ny,
+                Some(m.grid.length_x),
+                Some(m.grid.length_y),
+                m.heights.into_iter().collect::<Vec<_>>(),
+            ),
+            io::Topography::Profile(p) => (
+                p.channel,
+                "line scan",
+                p.heights.len(),
+                1,
+                p.length,
+                None,
+                p.heights,
+            ),
+        };
+        let measured: Vec<f64> = heights.iter().copied().filter(|h| !h.is_nan()).collect();
+        let n = measured.len().max(1) as f64;
+        let mean = measured.iter().sum::<f64>() / n;
+        Reading {
+            channel,
+            kind,
+            nx,
+            ny,
+            length_x_m: lx,
+            length_y_m: ly,
+            unmeasured_points: heights.len() - measured.len(),
+            mean_height_m: mean,
+            rms_height_m: (measured.iter().map(|h| (h - mean).powi(2)).sum::<f64>() / n).sqrt(),
+            min_height_m: measured.iter().copied().fold(f64::INFINITY, f64::min),
+            max_height_m: measured.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        }
+    }
+}
+
+/// A lateral size for a table: both sides, one (a line), or none.
+fn size_text(x: Option<f64>, y: Option<f64>) -> String {
+    match (x, y) {
+        (Some(x), Some(y)) => format!("{x:.4e} x {y:.4e}"),
+        (Some(x), None) => format!("{x:.4e} (a line)"),
+        _ => "not in the file".into(),
+    }
+}
+
 /// `roughcontact info`: a file's channels, grid, size and units, and its unmeasured points.
 pub fn info(a: InfoArgs) -> Result<()> {
     let path = &a.surface.file;
     let options = a.surface.options()?;
     let channels = io::channels(path, &options).map_err(|e| case::naming("reading", path, e))?;
-    let reads_as = io::read_measurement(path, &options)
-        .map(|m| {
-            let measured: Vec<f64> = m.heights.iter().copied().filter(|h| !h.is_nan()).collect();
-            let n = measured.len().max(1) as f64;
-            let mean = measured.iter().sum::<f64>() / n;
-            Reading {
-                channel: m.channel,
-                nx: m.grid.nx,
-                ny: m.grid.ny,
-                length_x_m: m.grid.length_x,
-                length_y_m: m.grid.length_y,
-                unmeasured_points: m.heights.len() - measured.len(),
-                mean_height_m: mean,
-                rms_height_m: (measured.iter().map(|h| (h - mean).powi(2)).sum::<f64>() / n).sqrt(),
-                min_height_m: measured.iter().copied().fold(f64::INFINITY, f64::min),
-                max_height_m: measured.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-            }
-        })
+    let reads_as = io::read_topography(path, &options)
+        .map(Reading::of)
         .map_err(|e| e.to_string());
     let info = Info {
         file: path.clone(),
@@ -150,14 +186,11 @@ pub fn info(a: InfoArgs) -> Result<()> {
     println!("{}", path.display());
     println!("  channel  name                         points        size [m]                 unit  heights");
     for (i, c) in info.channels.iter().enumerate() {
-        let size = match (c.length_x, c.length_y) {
-            (Some(x), Some(y)) => format!("{x:.4e} x {y:.4e}"),
-            _ => "not in the file".into(),
-        };
         let points = format!("{} x {}", c.nx, c.ny);
         println!(
-            "  {i:>7}  {:<28} {points:<13} {size:<24} {:<5} {}",
+            "  {i:>7}  {:<28} {points:<13} {:<24} {:<5} {}",
             c.name,
+            size_text(c.length_x, c.length_y),
             c.unit,
             if c.height { "yes" } else { "no" }
         );
@@ -165,13 +198,20 @@ pub fn info(a: InfoArgs) -> Result<()> {
     match &info.reads_as {
         Ok(r) => {
             println!(
-                "reads as channel {}: {} x {} points, {:.4e} x {:.4e} m",
-                r.channel, r.nx, r.ny, r.length_x_m, r.length_y_m
+                "reads as channel {}: a {} of {} x {} points, {} m",
+                r.channel,
+                r.kind,
+                r.nx,
+                r.ny,
+                size_text(r.length_x_m, r.length_y_m)
             );
             println!(
                 "  heights [m] of the measured points: mean {:.4e}, RMS {:.4e}, min {:.4e}, max {:.4e}",
                 r.mean_height_m, r.rms_height_m, r.min_height_m, r.max_height_m
             );
+            if r.ny == 1 {
+                println!("  a contact calculation needs a surface: this line scan is refused");
+            }
             if r.unmeasured_points > 0 {
                 println!(
                     "  {} of {} points not measured: a contact calculation refuses the file unless \
@@ -183,7 +223,7 @@ pub fn info(a: InfoArgs) -> Result<()> {
                 println!("  every point measured");
             }
         }
-        Err(e) => println!("does not read as a surface: {e}"),
+        Err(e) => println!("does not read: {e}"),
     }
     Ok(())
 }

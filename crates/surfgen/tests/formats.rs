@@ -434,7 +434,7 @@ fn gwyddion_lists_its_images_reads_the_heights_and_their_mask() {
 fn hdf5_written_by_the_c_library_lists_its_arrays_and_reads_them() {
     // h5-1.h5 was written by h5py 3.16 (HDF5 2.0.0): `surface` (6 x 8, f64, gzip-compressed
     // chunks) = 1e-7 sin(i + 0.3 j) + 1e-9 i j, its f32 copy `channels/height32`, a 1-D
-    // `profile` and a string array, which are not surfaces.
+    // `profile` (a line scan) and a string array (not a topography).
     let path = samples().join("h5-1.h5");
     let options = ReadOptions {
         length_x: Some(8e-6),
@@ -442,8 +442,9 @@ fn hdf5_written_by_the_c_library_lists_its_arrays_and_reads_them() {
     };
     let channels = io::channels(&path, &options).unwrap();
     let names: Vec<&str> = channels.iter().map(|c| c.name.as_str()).collect();
-    assert_eq!(names, ["channels/height32", "surface"]);
-    assert!(channels.iter().all(|c| (c.nx, c.ny, c.length_x) == (8, 6, None)));
+    assert_eq!(names, ["channels/height32", "profile", "surface"]);
+    let grids: Vec<(usize, usize)> = channels.iter().map(|c| (c.nx, c.ny)).collect();
+    assert_eq!(grids, [(8, 6), (5, 1), (8, 6)]);
     let formula = |j: usize, i: usize| 1e-7 * (i as f64 + 0.3 * j as f64).sin() + 1e-9 * (i * j) as f64;
     let surface = io::read(
         &path,
@@ -466,4 +467,46 @@ fn hdf5_written_by_the_c_library_lists_its_arrays_and_reads_them() {
     // Without a size the file cannot say, it is refused with the reason.
     let e = io::read(&path, &ReadOptions::default()).unwrap_err().to_string();
     assert!(e.contains("does not say its lateral size"), "{e}");
+}
+
+#[test]
+fn line_scans_read_as_profiles_and_are_refused_as_surfaces() {
+    let dir = std::env::temp_dir().join(format!("surfgen-profiles-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let options = ReadOptions {
+        length_x: Some(4e-6),
+        ..Default::default()
+    };
+    // A text file of one row (or one column), NaN unmeasured.
+    let row = dir.join("row.txt");
+    std::fs::write(&row, "1e-9 2e-9 NaN 4e-9\n").unwrap();
+    let column = dir.join("column.txt");
+    std::fs::write(&column, "1e-9\n2e-9\nnan\n4e-9\n").unwrap();
+    for path in [&row, &column] {
+        let Ok(io::Topography::Profile(p)) = io::read_topography(path, &options) else {
+            panic!("{} is a profile", path.display());
+        };
+        assert_eq!((p.heights.len(), p.length), (4, Some(4e-6)));
+        assert!(p.heights[2].is_nan() && p.heights[3] == 4e-9);
+        let e = io::read(path, &options).unwrap_err().to_string();
+        assert!(
+            e.contains("a line scan (a profile of 4 points over 4e-6 m), not a surface"),
+            "{e}"
+        );
+    }
+    // A 1-D HDF5 dataset, chosen by name (h5py's file); by default the surfaces come first.
+    let h5 = samples().join("h5-1.h5");
+    let profile = ReadOptions {
+        channel: Some(io::channel_index(&h5, &options, "profile").unwrap()),
+        ..options
+    };
+    let Ok(io::Topography::Profile(p)) = io::read_topography(&h5, &profile) else {
+        panic!("the HDF5 profile");
+    };
+    assert_eq!(p.heights, [0.0, 1.0, 2.0, 3.0, 4.0]);
+    assert!(matches!(
+        io::read_topography(&h5, &options),
+        Ok(io::Topography::Surface(_))
+    ));
+    std::fs::remove_dir_all(&dir).ok();
 }

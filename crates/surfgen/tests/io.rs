@@ -132,14 +132,19 @@ fn malformed_files_are_refused_with_their_line() {
     let (line, msg) = parse_error("ragged.txt", b"1 2 3\n4 5 6\n7 8\n", lx);
     assert_eq!(line, Some(3));
     assert!(msg.contains("ragged"), "{msg}");
-    let (line, msg) = parse_error("nan.txt", b"1 2\nNaN 4\n", lx);
+    let (line, msg) = parse_error("inf.txt", b"1 2\ninf 4\n", lx);
     assert_eq!(line, Some(2));
     assert!(msg.contains("non-finite"), "{msg}");
+    // NaN marks an unmeasured point (Gwyddion's export), refused unless filled.
+    let (_, msg) = parse_error("nan.txt", b"1 2\nNaN 4\n", lx);
+    assert!(msg.contains("1 of 4 points are not measured"), "{msg}");
     let (line, msg) = parse_error("word.txt", b"1 2\n3 abc\n", lx);
     assert_eq!(line, Some(2));
     assert!(msg.contains("'abc'"), "{msg}");
     let (_, msg) = parse_error("one.txt", b"1 2 3\n", lx);
-    assert!(msg.contains("2 x 2"), "{msg}");
+    assert!(msg.contains("a line scan (a profile of 3 points"), "{msg}");
+    let (_, msg) = parse_error("single.txt", b"1\n", lx);
+    assert!(msg.contains("need at least 2 heights"), "{msg}");
     let (_, msg) = parse_error("nolength.txt", b"1 2\n3 4\n", ReadOptions::default());
     assert!(msg.contains("lateral size"), "{msg}");
 

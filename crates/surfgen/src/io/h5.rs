@@ -1,6 +1,6 @@
-//! HDF5 (`.h5`, `.hdf5`), read with the pure-Rust `hdf5-pure`: every two-dimensional numeric
-//! dataset, in any group, is a channel named by its path (the contact-mechanics challenge's
-//! files hold one, `surface`). HDF5 carries no lateral size or unit by convention, so these come
+//! HDF5 (`.h5`, `.hdf5`), read with the pure-Rust `hdf5-pure`: every numeric dataset of two
+//! dimensions (or one: a line scan), in any group, is a channel named by its path (the
+//! contact-mechanics challenge's files hold one, `surface`). HDF5 carries no lateral size or unit by convention, so these come
 //! from [`ReadOptions`] like a plain matrix's; the first index is y, as NumPy and h5py store a
 //! `(ny, nx)` array.
 
@@ -42,7 +42,12 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                 | DType::U32
                 | DType::U64)
         );
-        let [ny, nx] = shape[..] else { continue };
+        // A 1-D dataset is a line scan: one row.
+        let (ny, nx) = match shape[..] {
+            [n] => (1, n),
+            [ny, nx] => (ny, nx),
+            _ => continue,
+        };
         let (nx, ny) = (usize::try_from(nx).unwrap_or(0), usize::try_from(ny).unwrap_or(0));
         // A compressed dataset may inflate; bound it as a zip bomb is bounded.
         if !numeric || nx == 0 || ny == 0 || nx.saturating_mul(ny) / 1100 > bytes.len() {
@@ -70,7 +75,9 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         });
     }
     if layers.is_empty() {
-        return Err(bad("no two-dimensional numeric dataset in the file".into()));
+        return Err(bad(
+            "no numeric dataset of one or two dimensions in the file".into()
+        ));
     }
     Ok(layers)
 }

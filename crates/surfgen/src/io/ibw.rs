@@ -4,7 +4,7 @@
 //! type, 4-character units) and the data, the first dimension varying fastest; after it the
 //! formula, the note, the extended units and the dimension labels (32 bytes each, the first
 //! naming the dimension). A 3-D wave `(x, y, channel)` holds one image a channel, named by the
-//! third dimension's labels. Byte order from the version field. Channels in a length unit whose
+//! third dimension's labels; a 1-D wave is a line scan. Byte order from the version field. Channels in a length unit whose
 //! name says height (`Height`, `ZSensor`) are heights: Asylum gives every channel the unit of
 //! the first, so the unit alone cannot tell.
 
@@ -70,17 +70,12 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
     let w = BIN_HEADER;
     let dims: Vec<usize> = (0..4).map(|d| size(w + 68 + 4 * d)).collect();
     let (nx, ny, layers_count) = match dims.as_slice() {
+        [nx, 0, 0, 0] => (*nx, 1, 1),
         [nx, ny, 0, 0] => (*nx, *ny, 1),
         [nx, ny, nc, 0] => (*nx, *ny, *nc),
-        [_, 0, ..] => {
-            return Err(bad(format!(
-                "a wave of one dimension ({} points): a line scan, not a surface",
-                dims[0]
-            )));
-        }
         _ => {
             return Err(bad(format!(
-                "a wave of dimensions {dims:?} (2-D or 3-D are read)"
+                "a wave of dimensions {dims:?} (1-D to 3-D are read)"
             )));
         }
     };
@@ -132,11 +127,13 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         let unit = &dim_unit[d];
         length_unit(unit).ok_or_else(|| bad(format!("dimension {d} is in '{unit}', not a length")))
     };
-    let (ux, uy) = (lateral(0)?, lateral(1)?);
-    let (length_x, length_y) = (
-        nx as f64 * f64_at(w + 84).abs() * ux,
-        ny as f64 * f64_at(w + 92).abs() * uy,
-    );
+    let length_x = nx as f64 * f64_at(w + 84).abs() * lateral(0)?;
+    // A line scan (one row) has no extent along y.
+    let length_y = if ny > 1 {
+        Some(ny as f64 * f64_at(w + 92).abs() * lateral(1)?)
+    } else {
+        None
+    };
     let metres = length_unit(&data_unit).filter(|_| !data_unit.is_empty());
     let values = &bytes[data..data + needed];
     Ok((0..layers_count)
@@ -159,7 +156,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                     nx,
                     ny,
                     length_x: Some(length_x),
-                    length_y: Some(length_y),
+                    length_y,
                     unit: data_unit.clone(),
                     height: metres.is_some() && heights,
                 },

@@ -94,9 +94,8 @@ pub(crate) struct Layer<'a> {
     pub values: Box<dyn FnOnce() -> Result<Array2<f64>> + 'a>,
 }
 
-/// The channel `options` asks for (by default the first channel of heights) read as a
-/// measurement.
-pub(crate) fn pick(path: &Path, layers: Vec<Layer<'_>>, options: &ReadOptions) -> Result<Measurement> {
+/// The channel `options` asks for (by default the first channel of heights), read.
+pub(crate) fn pick(path: &Path, layers: Vec<Layer<'_>>, options: &ReadOptions) -> Result<Topography> {
     let bad = |m: String| SurfError::parse(path, None, m);
     let names = || {
         layers
@@ -120,18 +119,21 @@ pub(crate) fn pick(path: &Path, layers: Vec<Layer<'_>>, options: &ReadOptions) -
         }
         Some(i) => i,
         None => {
-            // A channel named as the topography, else the first in a length unit.
-            let named = |l: &Layer| {
+            // A surface before a line scan; among them, a channel named as the topography
+            // before the other channels in a length unit.
+            let rank = |l: &Layer| {
                 let name = l.channel.name.to_ascii_lowercase();
-                l.channel.height
-                    && ["height", "topography", "zsensor"]
-                        .iter()
-                        .any(|n| name.contains(n))
+                let named = ["height", "topography", "zsensor"]
+                    .iter()
+                    .any(|n| name.contains(n));
+                (l.channel.ny == 1, !named)
             };
             layers
                 .iter()
-                .position(named)
-                .or_else(|| layers.iter().position(|l| l.channel.height))
+                .enumerate()
+                .filter(|(_, l)| l.channel.height)
+                .min_by_key(|(i, l)| (rank(l), *i))
+                .map(|(i, _)| i)
                 .ok_or_else(|| bad(format!("no channel of heights among {}", names())))?
         }
     };
@@ -144,16 +146,40 @@ pub(crate) fn pick(path: &Path, layers: Vec<Layer<'_>>, options: &ReadOptions) -
         ..
     } = layer.channel;
     let heights = (layer.values)()?.mapv(|h| h * options.unit);
+    if ny == 1 {
+        return Ok(Topography::Profile(Profile {
+            heights: heights.into_iter().collect(),
+            length: length_x.or(options.length_x).map(|l| l * options.unit),
+            channel: index,
+        }));
+    }
     let grid = match (length_x, length_y) {
         (Some(lx), Some(ly)) => {
             Grid::new(nx, ny, lx * options.unit, ly * options.unit).map_err(|e| bad(e.to_string()))?
         }
         _ => options.grid_for(path, ny, nx)?,
     };
-    Ok(Measurement {
+    Ok(Topography::Surface(Measurement {
         channel: index,
         ..Measurement::new(heights, grid, options.periodic)?
-    })
+    }))
+}
+
+/// What a file holds: a surface, or a line scan.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Topography {
+    Surface(Measurement),
+    Profile(Profile),
+}
+
+/// A line scan: heights \[m\] along x, NaN where not measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Profile {
+    pub heights: Vec<f64>,
+    /// Its length \[m\], where the file or [`ReadOptions::length_x`] gives it.
+    pub length: Option<f64>,
+    /// The index of the channel read.
+    pub channel: usize,
 }
 
 /// A surface as a file holds it: heights \[m\] of shape `(ny, nx)`, NaN where the instrument
@@ -407,8 +433,26 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
     read_measurement(path, options)?.into_surface(path, options.unmeasured)
 }
 
-/// Reads a surface as the file holds it, NaN where the instrument did not measure.
+/// Reads a surface as the file holds it, NaN where the instrument did not measure; a line
+/// scan is refused, saying what it is.
 pub fn read_measurement(path: &Path, options: &ReadOptions) -> Result<Measurement> {
+    match read_topography(path, options)? {
+        Topography::Surface(m) => Ok(m),
+        Topography::Profile(p) => Err(SurfError::parse(
+            path,
+            None,
+            format!(
+                "a line scan (a profile of {} points{}), not a surface: a contact calculation needs \
+                 a two-dimensional topography",
+                p.heights.len(),
+                p.length.map(|l| format!(" over {l:e} m")).unwrap_or_default()
+            ),
+        )),
+    }
+}
+
+/// Reads what a file holds, surface or line scan, NaN where the instrument did not measure.
+pub fn read_topography(path: &Path, options: &ReadOptions) -> Result<Topography> {
     if !(options.unit.is_finite() && options.unit > 0.0) {
         return Err(SurfError::invalid(
             "unit",
@@ -430,9 +474,9 @@ pub fn read_measurement(path: &Path, options: &ReadOptions) -> Result<Measuremen
             format!("no channel {c}: the file holds one surface (channel 0)"),
         ));
     }
-    Ok(match format {
+    Ok(Topography::Surface(match format {
         Format::Npy => npy::read(path, options)?,
-        Format::Matrix => text::read_matrix(path, options)?,
+        Format::Matrix => return text::read_matrix(path, options),
         Format::Xyh => text::read_xyh(path, options)?,
         Format::Gsf => gsf::read(path, options)?,
         Format::X3p => x3p::read(path, options)?,
@@ -443,7 +487,7 @@ pub fn read_measurement(path: &Path, options: &ReadOptions) -> Result<Measuremen
         Format::Opd => opd::read(path, options)?,
         Format::Frt => frt::read(path, options)?,
         _ => unreachable!("layered"),
-    })
+    }))
 }
 
 /// The index of the channel `key` names in the file: an index, or a channel's name (exactly,
@@ -501,15 +545,25 @@ pub fn channels(path: &Path, options: &ReadOptions) -> Result<Vec<Channel>> {
             .map(|l| l.channel)
             .collect());
     }
-    let m = read_measurement(path, options)?;
-    Ok(vec![Channel {
-        name: "heights".into(),
-        nx: m.grid.nx,
-        ny: m.grid.ny,
-        length_x: Some(m.grid.length_x),
-        length_y: Some(m.grid.length_y),
-        unit: "m".into(),
-        height: true,
+    Ok(vec![match read_topography(path, options)? {
+        Topography::Surface(m) => Channel {
+            name: "heights".into(),
+            nx: m.grid.nx,
+            ny: m.grid.ny,
+            length_x: Some(m.grid.length_x),
+            length_y: Some(m.grid.length_y),
+            unit: "m".into(),
+            height: true,
+        },
+        Topography::Profile(p) => Channel {
+            name: "profile".into(),
+            nx: p.heights.len(),
+            ny: 1,
+            length_x: p.length,
+            length_y: None,
+            unit: "m".into(),
+            height: true,
+        },
     }])
 }
 

@@ -1,6 +1,6 @@
 //! Plain-text formats: a height matrix, and `x y h` triples.
 
-use super::{Measurement, ReadOptions, Surface, length_unit};
+use super::{Measurement, Profile, ReadOptions, Surface, Topography, length_unit};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -38,7 +38,7 @@ fn header_value(line: &str, key: &str) -> Option<String> {
         .map(str::to_string)
 }
 
-pub(super) fn read_matrix(path: &Path, options: &ReadOptions) -> Result<Measurement> {
+pub(super) fn read_matrix(path: &Path, options: &ReadOptions) -> Result<Topography> {
     let mut rows: Vec<f64> = Vec::new();
     let (mut nx, mut ny) = (0usize, 0usize);
     let mut opts = *options;
@@ -84,7 +84,9 @@ pub(super) fn read_matrix(path: &Path, options: &ReadOptions) -> Result<Measurem
             .split(|c: char| c.is_whitespace() || c == ',')
             .filter(|s| !s.is_empty())
         {
-            rows.push(number(path, no, token)?);
+            // NaN marks an unmeasured point, as Gwyddion's export writes it.
+            let nan = token.eq_ignore_ascii_case("nan");
+            rows.push(if nan { f64::NAN } else { number(path, no, token)? });
         }
         let count = rows.len() - before;
         if ny == 0 {
@@ -98,17 +100,30 @@ pub(super) fn read_matrix(path: &Path, options: &ReadOptions) -> Result<Measurem
         }
         ny += 1;
     }
+    let scale = z_unit * options.unit;
+    if (ny == 1 || nx == 1) && rows.len() >= 2 {
+        // One row or one column: a line scan.
+        return Ok(Topography::Profile(Profile {
+            heights: rows.into_iter().map(|h| h * scale).collect(),
+            length: opts.length_x.map(|l| l * options.unit),
+            channel: 0,
+        }));
+    }
     if ny < 2 || nx < 2 {
         return Err(SurfError::parse(
             path,
             None,
-            format!("need at least 2 x 2 heights, found {ny} rows of {nx}"),
+            format!("need at least 2 heights, found {ny} rows of {nx}"),
         ));
     }
     let grid = opts.grid_for(path, ny, nx)?;
     let grid = Grid::new(nx, ny, grid.length_x * options.unit, grid.length_y * options.unit)?;
-    let heights = Array2::from_shape_vec((ny, nx), rows).expect("counted") * (z_unit * options.unit);
-    Measurement::new(heights, grid, opts.periodic)
+    let heights = Array2::from_shape_vec((ny, nx), rows).expect("counted") * scale;
+    Ok(Topography::Surface(Measurement::new(
+        heights,
+        grid,
+        opts.periodic,
+    )?))
 }
 
 pub(super) fn write_matrix(surface: &Surface, path: &Path) -> Result<()> {
