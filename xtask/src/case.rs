@@ -57,9 +57,7 @@ impl Case {
         if let Some(path) = &self.surface {
             let options = ReadOptions {
                 length_x: self.length,
-                length_y: None,
-                unit: 1.0,
-                periodic: true,
+                ..Default::default()
             };
             let s = io::read(path, &options).with_context(|| format!("reading {}", path.display()))?;
             return Ok(Some((s.heights, s.grid.length_x, s.grid.length_y)));
