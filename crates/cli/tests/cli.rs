@@ -31,13 +31,79 @@ fn stderr(o: &Output) -> String {
 
 #[test]
 fn help_texts_name_their_units() {
-    for cmd in ["generate", "stats", "psd", "solve", "sweep", "theory"] {
+    for cmd in ["generate", "info", "stats", "psd", "solve", "sweep", "theory"] {
         let o = roughcontact(&[cmd, "--help"]);
         assert!(o.status.success());
         insta::assert_snapshot!(format!("help_{cmd}"), stdout(&o));
     }
     let o = roughcontact(&["--help"]);
     insta::assert_snapshot!("help", stdout(&o));
+}
+
+fn sample(name: &str) -> String {
+    format!(
+        "{}/../../data/topography-samples/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+#[test]
+fn info_lists_a_files_channels_and_the_flags_choose_and_fill() {
+    let o = roughcontact(&["info", &sample("di-3.di"), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let info: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let names: Vec<&str> = info["channels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["ZSensor", "AmplitudeError", "Phase", "Height"]);
+    assert_eq!(info["reads_as"]["Ok"]["channel"], 0);
+    // The channel by name, and a channel that holds no heights refused naming what it holds.
+    let o = roughcontact(&["stats", &sample("di-3.di"), "--channel", "Height", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = roughcontact(&["stats", &sample("di-3.di"), "--channel", "Phase"]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("'Phase' holds º, not heights"),
+        "{}",
+        stderr(&o)
+    );
+    // Unmeasured points: counted by info, refused by a calculation, filled on request.
+    let o = roughcontact(&["info", &sample("opd-1.opd")]);
+    assert!(
+        stdout(&o).contains("116 of 307200 points not measured"),
+        "{}",
+        stdout(&o)
+    );
+    let o = roughcontact(&["stats", &sample("opd-1.opd")]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("--fill-unmeasured"),
+        "{}",
+        stderr(&o)
+    );
+    let o = roughcontact(&["stats", &sample("opd-1.opd"), "--fill-unmeasured"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // A case file names the channel and the fill too.
+    let d = dir("info");
+    let case = d.join("case.toml");
+    std::fs::write(
+        &case,
+        format!(
+            "surface = \"{}\"\nchannel = \"ZSensor\"\nmodulus = 1e9\nmean_pressure = 1e6\n",
+            sample("di-3.di")
+        ),
+    )
+    .unwrap();
+    let o = roughcontact(&[
+        "solve",
+        "--config",
+        case.to_str().unwrap(),
+        "--no-png",
+        "--out",
+        d.join("run").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
 }
 
 #[test]
