@@ -155,6 +155,11 @@ fn bad_files_are_refused_with_a_reason() {
     refused("magic.x3p", Some(b"PK not really a zip"), "not an X3P file");
     refused("magic.sdf", Some(b"ISO-1.0\n*\n"), "aISO-1.0 or bISO-1.0");
     refused("magic.nc", Some(b"CDX\x01junk"), "not a NetCDF-3 file");
+    refused(
+        "document.mnt",
+        Some(b"\xd0\xcf\x11\xe0"),
+        "export the surface from MountainsMap as .sur or .x3p",
+    );
     let sample = std::fs::read(samples().join("x3p-2.x3p")).unwrap();
     refused("cut.x3p", Some(&sample[..sample.len() / 2]), "");
     let sdf = std::fs::read_to_string(samples().join("sdf-1.sdf")).unwrap();

@@ -9,15 +9,25 @@
 //! | `.x3p` | ISO 25178-72 XML 3D surface profile (zip: `main.xml` + binary heights) | the x and y increments |
 //! | `.sdf` | ISO 25178-71 Surface Data File (text, or binary i16/i32/f64) | `Xscale`, `Yscale` |
 //! | `.nc` | NetCDF-3 as contact.engineering writes it (`heights(x, y)`) | the `length` of `x` and `y` |
+//! | `.gwy` | Gwyddion native: every `/N/data` field a channel, `/N/mask` unmeasured (read only) | each field's `xreal`, `yreal` |
+//! | `.h5`, `.hdf5` | HDF5: every 2-D (or 1-D: a line scan) numeric dataset a channel (read only) | [`ReadOptions`] |
+//! | `.di`, `.spm`, `.001`... | Bruker / Veeco / DI Nanoscope: every image a channel (read only) | `Scan Size` |
+//! | `.ibw` | Igor binary wave v5 (Asylum AFMs): every layer a channel (read only) | the wave's scaling |
+//! | `.mi` | Molecular Imaging / Agilent PicoView: every buffer a channel (read only) | the header |
+//! | `.nid` | Nanosurf: every channel (read only) | the channel's ranges |
+//! | `.sur` | Digital Surf / MountainsMap surface (read only) | the header |
+//! | `.opd` | Wyko / Veeco Vision (read only) | `Pixel_size`, `Aspect` |
+//! | `.frt` | FRT MicroProf (read only) | its size block |
 //! | `.tmd` | TrueMap / TrueSurf binary (read only) | the header |
-//! | `.mi` | Molecular Imaging / Agilent PicoView image, its height channel (read only) | the header |
-//! | `.nid` | Nanosurf, its first height channel (read only) | the channel's ranges |
-//! | `.sur` | Digital Surf / MountainsMap surface, every point measured (read only) | the header |
-//! | `.opd` | Wyko / Veeco Vision, every point measured (read only) | `Pixel_size`, `Aspect` |
+//!
+//! A file of several channels reads its first channel of heights unless
+//! [`ReadOptions::channel`] names one ([`channels`] lists them). Points the instrument marks as
+//! not measured read as NaN ([`read_measurement`]) and are refused or filled as
+//! [`ReadOptions::unmeasured`] says; a line scan reads as a [`Profile`] ([`read_topography`]).
 //!
 //! Heights and lengths are in metres; [`ReadOptions::unit`] converts files written in other
-//! units. Readers check everything (shape, finiteness, ragged rows) and return an error naming
-//! the file and line rather than a partial surface.
+//! units. Readers check everything (shape, finiteness, ragged rows, sizes against the file's
+//! length) and return an error naming the file and line rather than a partial surface.
 
 mod di;
 mod fill;
@@ -408,6 +418,18 @@ impl Format {
             "gwy" => Ok(Format::Gwy),
             "h5" | "hdf5" | "hdf" => Ok(Format::Hdf5),
             e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => Ok(Format::Di),
+            "mnt" => Err(SurfError::parse(
+                path,
+                None,
+                "MountainsMap documents (.mnt) are not read: their layout is not published; export the \
+                 surface from MountainsMap as .sur or .x3p",
+            )),
+            "datx" => Err(SurfError::parse(
+                path,
+                None,
+                "Zygo .datx is not read: its lateral calibration sits in HDF5 compound attributes that the \
+                 pure-Rust HDF5 reader does not decode; export .x3p or .sdf from Mx",
+            )),
             "" => Err(SurfError::parse(
                 path,
                 None,
