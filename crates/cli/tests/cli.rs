@@ -422,11 +422,17 @@ fn bad_input_is_refused_clearly() {
         );
     }
     assert!(!d.join("run").exists(), "refused runs leave no output directory");
+    let inf = d.join("inf.txt");
+    std::fs::write(&inf, "0 1\ninf 2\n").unwrap();
+    let o = roughcontact(&["stats", inf.to_str().unwrap(), "--length", "1e-6"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("line 2"), "{}", stderr(&o));
+    // NaN is an unmeasured point: counted and refused, or filled on request.
     let nan = d.join("nan.txt");
     std::fs::write(&nan, "0 1\nnan 2\n").unwrap();
     let o = roughcontact(&["stats", nan.to_str().unwrap(), "--length", "1e-6"]);
     assert!(!o.status.success());
-    assert!(stderr(&o).contains("line 2"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("1 of 4 points are not measured"), "{}", stderr(&o));
     // A roll-off longer than the box is legal but warned about.
     let o = roughcontact(&[
         "generate",
