@@ -432,7 +432,11 @@ fn bad_input_is_refused_clearly() {
     std::fs::write(&nan, "0 1\nnan 2\n").unwrap();
     let o = roughcontact(&["stats", nan.to_str().unwrap(), "--length", "1e-6"]);
     assert!(!o.status.success());
-    assert!(stderr(&o).contains("1 of 4 points are not measured"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("1 of 4 points are not measured"),
+        "{}",
+        stderr(&o)
+    );
     // A roll-off longer than the box is legal but warned about.
     let o = roughcontact(&[
         "generate",

@@ -6,7 +6,7 @@ use serde_json::Value;
 use std::io::Write;
 
 mod common;
-use common::{tiny_di, tiny_frt, tiny_gwy, tiny_ibw, tiny_opd};
+use common::{tiny_di, tiny_frt, tiny_gwy, tiny_ibw, tiny_mnt, tiny_opd};
 use std::path::{Path, PathBuf};
 use surfgen::io::{self, ReadOptions};
 use surfgen::{Grid, Surface};
@@ -43,6 +43,7 @@ fn sample_files_read_as_surfacetopography_reads_them() {
         "opd-1.opd",
         "spot_1-1000nm.ibw",
         "frt-1.frt",
+        "mnt-1.mnt",
     ] {
         let r = &readings[name];
         // SurfaceTopography's statistics skip the points it masks as unmeasured.
@@ -158,7 +159,12 @@ fn bad_files_are_refused_with_a_reason() {
     refused(
         "document.mnt",
         Some(b"\xd0\xcf\x11\xe0"),
-        "export the surface from MountainsMap as .sur or .x3p",
+        "not a MountainsMap document",
+    );
+    refused(
+        "zygo.datx",
+        Some(b"\x89HDF\r\n\x1a\n"),
+        "export .x3p or .sdf from Mx",
     );
     let sample = std::fs::read(samples().join("x3p-2.x3p")).unwrap();
     refused("cut.x3p", Some(&sample[..sample.len() / 2]), "");
@@ -513,5 +519,29 @@ fn line_scans_read_as_profiles_and_are_refused_as_surfaces() {
         io::read_topography(&h5, &options),
         Ok(io::Topography::Surface(_))
     ));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn mountains_documents_read_their_axes_heights_and_mask() {
+    let dir = std::env::temp_dir().join(format!("surfgen-mnt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("tiny.mnt");
+    std::fs::write(&path, tiny_mnt([1, 2, 3, 4, 5, 600], &[])).unwrap();
+    let channels = io::channels(&path, &ReadOptions::default()).unwrap();
+    assert_eq!(
+        (channels[0].name.as_str(), channels[0].unit.as_str()),
+        ("tiny", "µm")
+    );
+    let s = io::read(&path, &ReadOptions::default()).unwrap();
+    assert_eq!((s.grid.nx, s.grid.ny), (3, 2));
+    assert!((s.grid.length_x - 1.5e-3).abs() < 1e-18 && (s.grid.length_y - 0.5e-3).abs() < 1e-18);
+    // count * 2 nm + 1 µm, x fastest, row by row from y = 0.
+    let h = |c: f64| c * 2e-9 + 1e-6;
+    assert_eq!(s.heights.row(0).to_vec(), [h(1.0), h(2.0), h(3.0)]);
+    assert_eq!(s.heights.row(1).to_vec(), [h(4.0), h(5.0), h(600.0)]);
+    std::fs::write(&path, tiny_mnt([1, 2, 3, 4, 5, 6], &[1, 5])).unwrap();
+    let m = io::read_measurement(&path, &ReadOptions::default()).unwrap();
+    assert!(m.heights[[0, 1]].is_nan() && m.heights[[1, 2]].is_nan() && m.unmeasured() == 2);
     std::fs::remove_dir_all(&dir).ok();
 }

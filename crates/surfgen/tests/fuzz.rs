@@ -11,7 +11,7 @@ use surfgen::io::{self, ReadOptions};
 use surfgen::{Grid, Surface};
 
 mod common;
-use common::{tiny_di, tiny_frt, tiny_gwy, tiny_ibw, tiny_opd};
+use common::{tiny_di, tiny_frt, tiny_gwy, tiny_ibw, tiny_mnt, tiny_opd};
 
 /// The system allocator, counting the bytes live and their peak since the last reset. A single
 /// request above `CAP` is refused (the process aborts: the test fails) rather than granted.
@@ -130,6 +130,7 @@ Dim2Min=-1e-7\nDim2Range=2e-7\nDim2Unit=m\nSaveBits=16\nSaveSign=Signed\n#!"
     seeds.push(("opd", tiny_opd([1.0, 2.0, 3.0, 4.0, 5.0, 6.0])));
     seeds.push(("di", tiny_di([1, 2, 3, 4, 5, 6])));
     seeds.push(("frt", tiny_frt([2, 3, 1, 5, 6, 7])));
+    seeds.push(("mnt", tiny_mnt([1, 2, 3, 4, 5, 6], &[4])));
     // HDF5 as the C library writes it (h5py): the committed sample.
     let h5 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/topography-samples/h5-1.h5");
     seeds.push(("h5", std::fs::read(h5).unwrap()));

@@ -16,6 +16,7 @@
 //! | `.mi` | Molecular Imaging / Agilent PicoView: every buffer a channel (read only) | the header |
 //! | `.nid` | Nanosurf: every channel (read only) | the channel's ranges |
 //! | `.sur` | Digital Surf / MountainsMap surface (read only) | the header |
+//! | `.mnt` | MountainsMap document: every measured surface a channel, its mask (read only) | the lateral axes' steps |
 //! | `.opd` | Wyko / Veeco Vision (read only) | `Pixel_size`, `Aspect` |
 //! | `.frt` | FRT MicroProf (read only) | its size block |
 //! | `.tmd` | TrueMap / TrueSurf binary (read only) | the header |
@@ -37,6 +38,7 @@ mod gwy;
 mod h5;
 mod ibw;
 mod mi;
+mod mnt;
 mod netcdf;
 mod nid;
 mod npy;
@@ -350,7 +352,7 @@ impl Metadata {
 
 /// The extensions read, for messages.
 const KNOWN: &str = ".npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd, \
-                     .di/.spm, .ibw, .frt, .gwy, .h5/.hdf5";
+                     .di/.spm, .ibw, .frt, .gwy, .h5/.hdf5, .mnt";
 
 /// The file formats, chosen by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -372,6 +374,7 @@ pub enum Format {
     Frt,
     Gwy,
     Hdf5,
+    Mnt,
 }
 
 /// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
@@ -418,12 +421,7 @@ impl Format {
             "gwy" => Ok(Format::Gwy),
             "h5" | "hdf5" | "hdf" => Ok(Format::Hdf5),
             e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => Ok(Format::Di),
-            "mnt" => Err(SurfError::parse(
-                path,
-                None,
-                "MountainsMap documents (.mnt) are not read: their layout is not published; export the \
-                 surface from MountainsMap as .sur or .x3p",
-            )),
+            "mnt" => Ok(Format::Mnt),
             "datx" => Err(SurfError::parse(
                 path,
                 None,
@@ -537,7 +535,7 @@ pub fn channel_index(path: &Path, options: &ReadOptions, key: &str) -> Result<us
 fn layered(format: Format, path: &Path) -> Result<Option<Vec<u8>>> {
     if matches!(
         format,
-        Format::Mi | Format::Nid | Format::Di | Format::Ibw | Format::Gwy | Format::Hdf5
+        Format::Mi | Format::Nid | Format::Di | Format::Ibw | Format::Gwy | Format::Hdf5 | Format::Mnt
     ) {
         std::fs::read(path).map(Some).map_err(|e| SurfError::io(path, e))
     } else {
@@ -553,6 +551,7 @@ fn layers<'a>(format: Format, bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<
         Format::Ibw => ibw::layers(bytes, path),
         Format::Gwy => gwy::layers(bytes, path),
         Format::Hdf5 => h5::layers(bytes, path),
+        Format::Mnt => mnt::layers(bytes, path),
         _ => unreachable!("one channel"),
     }
 }

@@ -157,3 +157,116 @@ pub fn tiny_gwy(heights: [f64; 6], masked: [bool; 6]) -> Vec<u8> {
     );
     [b"GWYP".as_slice(), &container].concat()
 }
+
+/// A tag-size-value entry of a MountainsMap document.
+fn mnt_entry(tag: u16, value: &[u8]) -> Vec<u8> {
+    [&tag.to_le_bytes()[..], &(value.len() as u64).to_le_bytes(), value].concat()
+}
+
+fn mnt_text(s: &str) -> Vec<u8> {
+    std::iter::once(4u8)
+        .chain(s.encode_utf16().flat_map(|u| u.to_le_bytes()))
+        .collect()
+}
+
+/// An array of one zlib block.
+fn mnt_array(class: u32, count: usize, bytes: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::default());
+    z.write_all(bytes).unwrap();
+    let z = z.finish().unwrap();
+    let data = [
+        &(bytes.len() as u64).to_le_bytes()[..],
+        &0u64.to_le_bytes(),
+        &(count as u32).to_le_bytes(),
+        &(z.len() as u32).to_le_bytes(),
+        &z,
+    ]
+    .concat();
+    let body = [mnt_entry(1, &(count as u32).to_le_bytes()), mnt_entry(2, &data)].concat();
+    [
+        mnt_entry(1, &mnt_entry(1, &class.to_le_bytes())),
+        mnt_entry(2, &body),
+    ]
+    .concat()
+}
+
+/// A MountainsMap document made by hand (an OLE compound file): one measured surface of 3 x 2
+/// points, steps 0.5 mm and 0.25 mm, heights `count * 2 nm + 1 µm` stored row by row, x
+/// fastest; `unmeasured` points marked in a mask.
+pub fn tiny_mnt(counts: [i32; 6], unmeasured: &[usize]) -> Vec<u8> {
+    use std::io::Write;
+    let scale = |step: f64, unit: &str, display: &str, origin: f64| {
+        [
+            mnt_entry(1, &step.to_le_bytes()),
+            mnt_entry(2, &mnt_text(unit)),
+            mnt_entry(3, &mnt_text(display)),
+            mnt_entry(5, &origin.to_le_bytes()),
+        ]
+        .concat()
+    };
+    let lateral = |n: u32, step: f64| {
+        let axis = [
+            mnt_entry(0xFFFF, &scale(step, "mm", "mm", 0.0)),
+            mnt_entry(1, &n.to_le_bytes()),
+        ]
+        .concat();
+        mnt_entry(0xFFFF, &axis)
+    };
+    let mut image = vec![9u8; 5 * 4];
+    for &k in unmeasured {
+        image[(k / 3 + 1) * 5 + k % 3 + 1] = 22;
+    }
+    let mask_body = [
+        mnt_entry(1, &3u32.to_le_bytes()),
+        mnt_entry(2, &2u32.to_le_bytes()),
+        mnt_entry(5, &mnt_array(9048, 20, &image)),
+    ]
+    .concat();
+    let mask = [
+        mnt_entry(1, &mnt_entry(1, &9056u32.to_le_bytes())),
+        mnt_entry(2, &mask_body),
+    ]
+    .concat();
+    let grid = [
+        mnt_entry(0xFFFF, &mnt_entry(0xFFFF, &mnt_entry(1, &mnt_text("tiny")))),
+        mnt_entry(1, &lateral(3, 0.5)),
+        mnt_entry(2, &lateral(2, 0.25)),
+        mnt_entry(3, &mask),
+    ]
+    .concat();
+    let heights: Vec<u8> = counts.iter().flat_map(|c| c.to_le_bytes()).collect();
+    let measurement = [
+        mnt_entry(0xFFFF, &grid),
+        mnt_entry(1, &mnt_array(9049, 6, &heights)),
+        mnt_entry(2, &mnt_entry(0xFFFF, &scale(2.0, "nm", "µm", 1.0))),
+    ]
+    .concat();
+    let data = [
+        mnt_entry(1, &mnt_entry(1, &9062u32.to_le_bytes())),
+        mnt_entry(2, &mnt_entry(0xFFFF, &measurement)),
+    ]
+    .concat();
+    let surface_body = [
+        mnt_entry(0xFFFF, &mnt_entry(4, &mnt_text("title"))),
+        mnt_entry(1, &data),
+    ]
+    .concat();
+    let object = [
+        mnt_entry(1, &mnt_entry(1, &9012u32.to_le_bytes())),
+        mnt_entry(2, &surface_body),
+    ]
+    .concat();
+    let listed = mnt_entry(1, &object);
+    let objects = [&(listed.len() as u64).to_le_bytes()[..], &listed].concat();
+    let document = [mnt_entry(1, &[1]), mnt_entry(2, &mnt_entry(1, &objects))].concat();
+    let main = mnt_entry(1, &mnt_entry(0x02BD, &document));
+    let contents = [&(main.len() as u64).to_le_bytes()[..], &main].concat();
+    let mut file = cfb::CompoundFile::create(std::io::Cursor::new(Vec::new())).unwrap();
+    file.create_stream("/ScopedContents")
+        .unwrap()
+        .write_all(&contents)
+        .unwrap();
+    file.flush().unwrap();
+    file.into_inner().into_inner()
+}
