@@ -101,7 +101,7 @@ impl OuterKind {
 #[serde(default, deny_unknown_fields)]
 pub struct Case {
     /// Rough surface file (.npy + sidecar, .txt, .xyz, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid,
-    /// .sur, .mnt, .opd, .di/.spm, .ibw, .frt, .gwy, .h5; `roughcontact info FILE` shows what a file
+    /// .sur, .mnt, .opd, .di/.spm, .ibw, .frt, .gwy, .h5, .datx; `roughcontact info FILE` shows what a file
     /// holds): heights, peaks towards the counterface. With --sphere-radius the roughness sits on the sphere.
     #[cfg_attr(feature = "clap", arg(long))]
     pub surface: Option<PathBuf>,

@@ -29,7 +29,7 @@ pub struct GenerateArgs {
 #[derive(Args, Debug)]
 pub struct SurfaceFile {
     /// Surface file: .npy (+ .json sidecar), .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf,
-    /// .nc, .tmd, .mi, .nid, .sur, .mnt, .opd, .di/.spm, .ibw, .frt, .gwy or .h5 (heights and sizes
+    /// .nc, .tmd, .mi, .nid, .sur, .mnt, .opd, .di/.spm, .ibw, .frt, .gwy, .h5 or .datx (heights and sizes
     /// converted to metres from the file's units).
     pub file: PathBuf,
     /// Box size along x [m], for files that do not carry it (bare .npy, plain matrix).

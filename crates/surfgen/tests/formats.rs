@@ -161,11 +161,6 @@ fn bad_files_are_refused_with_a_reason() {
         Some(b"\xd0\xcf\x11\xe0"),
         "not a MountainsMap document",
     );
-    refused(
-        "zygo.datx",
-        Some(b"\x89HDF\r\n\x1a\n"),
-        "export .x3p or .sdf from Mx",
-    );
     let sample = std::fs::read(samples().join("x3p-2.x3p")).unwrap();
     refused("cut.x3p", Some(&sample[..sample.len() / 2]), "");
     let sdf = std::fs::read_to_string(samples().join("sdf-1.sdf")).unwrap();
@@ -544,4 +539,35 @@ fn mountains_documents_read_their_axes_heights_and_mask() {
     let m = io::read_measurement(&path, &ReadOptions::default()).unwrap();
     assert!(m.heights[[0, 1]].is_nan() && m.heights[[1, 2]].is_nan() && m.unmeasured() == 2);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn zygo_datx_reads_its_surface_in_its_unit_with_unmeasured_points() {
+    // zygo-like.datx, written by h5py as Zygo lays out a measurement: `Measurement/Surface`
+    // (f32, `Unit` nm, `No Data` the largest f32 at one point, the spacing in a compound
+    // `X Converter`), and a unitless `Measurement/Intensity`.
+    let path = samples().join("zygo-like.datx");
+    let options = ReadOptions {
+        length_x: Some(3e-6),
+        ..Default::default()
+    };
+    let channels = io::channels(&path, &options).unwrap();
+    let heights: Vec<(&str, &str, bool)> = channels
+        .iter()
+        .map(|c| (c.name.as_str(), c.unit.as_str(), c.height))
+        .collect();
+    assert_eq!(
+        heights,
+        [
+            ("Measurement/Intensity", "", false),
+            ("Measurement/Surface", "nm", true)
+        ]
+    );
+    let m = io::read_measurement(&path, &options).unwrap();
+    assert_eq!(m.channel, 1);
+    assert!(m.heights[[0, 2]].is_nan() && m.unmeasured() == 1);
+    assert_eq!(m.heights.row(1).to_vec(), [4.0 * 1e-9, -5.0 * 1e-9, 6.25 * 1e-9]);
+    // The spacing is not decoded: without a size from the user the file is refused.
+    let e = io::read(&path, &ReadOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("does not say its lateral size"), "{e}");
 }

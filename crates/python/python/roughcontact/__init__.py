@@ -184,7 +184,7 @@ def read(
 ) -> Topography:
     """Reads a surface file (``.npy`` with its sidecar, text matrix, ``.xyz``, ``.gsf``,
     ``.x3p``, ``.sdf``, ``.nc``, ``.tmd``, ``.mi``, ``.nid``, ``.sur``, ``.opd``, ``.di``/``.spm``,
-    ``.ibw``, ``.frt``, ``.gwy``, ``.h5``, ``.mnt``).
+    ``.ibw``, ``.frt``, ``.gwy``, ``.h5``, ``.datx``, ``.mnt``).
     ``length``/``length_y`` [m] give the box of files that do not carry it; ``unit`` is the
     metres per file unit; ``periodic`` applies to files without metadata. ``channel`` picks a
     multi-channel file's channel of heights by name or index (default: the first;

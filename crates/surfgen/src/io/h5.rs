@@ -1,12 +1,16 @@
-//! HDF5 (`.h5`, `.hdf5`), read with the pure-Rust `hdf5-pure`: every numeric dataset of two
-//! dimensions (or one: a line scan), in any group, is a channel named by its path (the
-//! contact-mechanics challenge's files hold one, `surface`). HDF5 carries no lateral size or unit by convention, so these come
-//! from [`ReadOptions`] like a plain matrix's; the first index is y, as NumPy and h5py store a
-//! `(ny, nx)` array.
+//! HDF5 (`.h5`, `.hdf5`, and Zygo's `.datx`), read with the pure-Rust `hdf5-pure`: every
+//! numeric dataset of two dimensions (or one: a line scan), in any group, is a channel named by
+//! its path (the contact-mechanics challenge's files hold one, `surface`; Zygo's,
+//! `Measurement/Surface`). A dataset's `Unit` attribute (a length unit) gives its heights' unit
+//! and its `No Data` attribute the value of unmeasured points, as Zygo writes them; HDF5 has no
+//! convention for the lateral size (Zygo's sits in a compound attribute `hdf5-pure` does not
+//! decode), so it comes from [`ReadOptions`] like a plain matrix's. The first index is y, as
+//! NumPy and h5py store a `(ny, nx)` array.
 
+use super::length_unit;
 use super::{Channel, Layer};
 use crate::error::{Result, SurfError};
-use hdf5_pure::{DType, File, Group};
+use hdf5_pure::{AttrValue, DType, File, Group};
 use ndarray::Array2;
 use std::path::Path;
 
@@ -53,6 +57,17 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         if !numeric || nx == 0 || ny == 0 || nx.saturating_mul(ny) / 1100 > bytes.len() {
             continue;
         }
+        let attrs = dataset.attrs().unwrap_or_default();
+        let unit = attrs.get("Unit").and_then(AttrValue::as_str).map(str::to_string);
+        // No unit: heights in the user's unit; an empty or other unit: not heights.
+        let scale = match unit.as_deref() {
+            Some("") => None,
+            Some(u) => length_unit(u),
+            None => Some(1.0),
+        };
+        let no_data = attrs
+            .get("No Data")
+            .and_then(|v| v.as_f64().or_else(|| v.to_f64s()?.first().copied()));
         let (what, file, at) = (name.clone(), file.clone(), path.to_path_buf());
         layers.push(Layer {
             channel: Channel {
@@ -61,14 +76,25 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                 ny,
                 length_x: None,
                 length_y: None,
-                unit: "unstated".into(),
-                height: true,
+                unit: unit.clone().unwrap_or_else(|| "unstated".into()),
+                height: scale.is_some(),
             },
             values: Box::new(move || {
                 let values = file
                     .dataset(&what)
                     .and_then(|d| d.read_f64())
                     .map_err(|e| SurfError::parse(&at, None, format!("HDF5 {what}: {e}")))?;
+                let scale = scale.unwrap_or(1.0);
+                let values = values
+                    .into_iter()
+                    .map(|v| {
+                        if Some(v) == no_data || v.is_nan() {
+                            f64::NAN
+                        } else {
+                            v * scale
+                        }
+                    })
+                    .collect();
                 Array2::from_shape_vec((ny, nx), values)
                     .map_err(|_| SurfError::parse(&at, None, format!("HDF5 {what}: not {ny} x {nx} values")))
             }),

@@ -10,7 +10,7 @@
 //! | `.sdf` | ISO 25178-71 Surface Data File (text, or binary i16/i32/f64) | `Xscale`, `Yscale` |
 //! | `.nc` | NetCDF-3 as contact.engineering writes it (`heights(x, y)`) | the `length` of `x` and `y` |
 //! | `.gwy` | Gwyddion native: every `/N/data` field a channel, `/N/mask` unmeasured (read only) | each field's `xreal`, `yreal` |
-//! | `.h5`, `.hdf5` | HDF5: every 2-D (or 1-D: a line scan) numeric dataset a channel (read only) | [`ReadOptions`] |
+//! | `.h5`, `.hdf5`, `.datx` | HDF5 (Zygo's too): every 2-D (or 1-D: a line scan) numeric dataset a channel, its `Unit` and `No Data` (read only) | [`ReadOptions`] |
 //! | `.di`, `.spm`, `.001`... | Bruker / Veeco / DI Nanoscope: every image a channel (read only) | `Scan Size` |
 //! | `.ibw` | Igor binary wave v5 (Asylum AFMs): every layer a channel (read only) | the wave's scaling |
 //! | `.mi` | Molecular Imaging / Agilent PicoView: every buffer a channel (read only) | the header |
@@ -352,7 +352,7 @@ impl Metadata {
 
 /// The extensions read, for messages.
 const KNOWN: &str = ".npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd, \
-                     .di/.spm, .ibw, .frt, .gwy, .h5/.hdf5, .mnt";
+                     .di/.spm, .ibw, .frt, .gwy, .h5/.hdf5/.datx, .mnt";
 
 /// The file formats, chosen by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -419,15 +419,9 @@ impl Format {
             "ibw" => Ok(Format::Ibw),
             "frt" => Ok(Format::Frt),
             "gwy" => Ok(Format::Gwy),
-            "h5" | "hdf5" | "hdf" => Ok(Format::Hdf5),
+            "h5" | "hdf5" | "hdf" | "datx" => Ok(Format::Hdf5),
             e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => Ok(Format::Di),
             "mnt" => Ok(Format::Mnt),
-            "datx" => Err(SurfError::parse(
-                path,
-                None,
-                "Zygo .datx is not read: its lateral calibration sits in HDF5 compound attributes that the \
-                 pure-Rust HDF5 reader does not decode; export .x3p or .sdf from Mx",
-            )),
             "" => Err(SurfError::parse(
                 path,
                 None,
