@@ -265,7 +265,8 @@ pub struct ReadOptions {
     /// Metres per file unit, applied to heights and to coordinates read from the file
     /// (e.g. `1e-4` for the contact-mechanics challenge's files, in units of 0.1 mm).
     pub unit: f64,
-    /// Whether a file without metadata is periodic.
+    /// Whether a file without metadata is periodic (an instrument's file is a measurement:
+    /// never).
     pub periodic: bool,
     /// Which channel of a multi-channel file to read, by its index in [`channels`]; `None`
     /// reads the first channel of heights.
@@ -478,6 +479,24 @@ pub fn read_topography(path: &Path, options: &ReadOptions) -> Result<Topography>
         return Err(SurfError::parse(path, None, "is a directory, not a surface file"));
     }
     let format = Format::of(path)?;
+    // An instrument's file is a measurement, never periodic, whatever `options` assume.
+    let instrument = matches!(
+        format,
+        Format::Tmd
+            | Format::Mi
+            | Format::Nid
+            | Format::Sur
+            | Format::Opd
+            | Format::Frt
+            | Format::Di
+            | Format::Ibw
+            | Format::Gwy
+            | Format::Mnt
+    );
+    let options = &ReadOptions {
+        periodic: options.periodic && !instrument,
+        ..*options
+    };
     if let Some(bytes) = layered(format, path)? {
         return pick(path, layers(format, &bytes, path)?, options);
     }
