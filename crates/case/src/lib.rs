@@ -500,23 +500,18 @@ impl Case {
                 Some(s)
             }
             (None, Some(path)) => {
-                let mut options = ReadOptions {
+                let options = ReadOptions {
                     length_x: self.length,
                     length_y: self.length_y,
                     unit: self.unit.unwrap_or(1.0),
                     periodic: true,
                     channel: None,
-                    unmeasured: match self.fill_unmeasured {
-                        Some(true) => io::Unmeasured::Fill,
-                        _ => io::Unmeasured::Refuse,
-                    },
+                    unmeasured: io::Unmeasured::filled_if(self.fill_unmeasured == Some(true)),
                 };
-                if let Some(channel) = &self.channel {
-                    options.channel = Some(
-                        io::channel_index(path, &options, channel).map_err(|e| naming("reading", path, e))?,
-                    );
-                }
-                Some(io::read(path, &options).map_err(|e| naming("reading", path, e))?)
+                let read = options
+                    .with_channel(path, self.channel.as_deref())
+                    .and_then(|options| io::read(path, &options));
+                Some(read.map_err(|e| naming("reading", path, e))?)
             }
             (None, None) => None,
         };

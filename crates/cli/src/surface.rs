@@ -57,25 +57,17 @@ pub struct SurfaceFile {
 impl SurfaceFile {
     /// The reading options the flags give, the channel resolved to its index.
     pub fn options(&self) -> Result<ReadOptions> {
-        let mut options = ReadOptions {
+        let options = ReadOptions {
             length_x: self.length,
             length_y: self.length_y,
             unit: self.unit,
             periodic: !self.not_periodic,
             channel: None,
-            unmeasured: if self.fill_unmeasured {
-                io::Unmeasured::Fill
-            } else {
-                io::Unmeasured::Refuse
-            },
+            unmeasured: io::Unmeasured::filled_if(self.fill_unmeasured),
         };
-        if let Some(key) = &self.channel {
-            options.channel = Some(
-                io::channel_index(&self.file, &options, key)
-                    .map_err(|e| case::naming("reading", &self.file, e))?,
-            );
-        }
-        Ok(options)
+        options
+            .with_channel(&self.file, self.channel.as_deref())
+            .map_err(|e| case::naming("reading", &self.file, e))
     }
 
     fn read(&self) -> Result<Surface> {

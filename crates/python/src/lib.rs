@@ -490,26 +490,18 @@ fn read_options(
     channel: Option<String>,
     fill_unmeasured: bool,
 ) -> PyResult<ReadOptions> {
-    let mut options = ReadOptions {
+    let options = ReadOptions {
         length_x: length,
         length_y,
         unit,
         periodic,
         channel: None,
-        unmeasured: if fill_unmeasured {
-            io::Unmeasured::Fill
-        } else {
-            io::Unmeasured::Refuse
-        },
+        unmeasured: io::Unmeasured::filled_if(fill_unmeasured),
     };
-    if let Some(key) = channel {
-        options.channel = Some(
-            io::channel_index(path, &options, &key)
-                .map_err(|e| case::naming("reading", path, e))
-                .py()?,
-        );
-    }
-    Ok(options)
+    options
+        .with_channel(path, channel.as_deref())
+        .map_err(|e| case::naming("reading", path, e))
+        .py()
 }
 
 /// Reads a surface file: heights [m] (ny, nx), sides [m], whether it is periodic.

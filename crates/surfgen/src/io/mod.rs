@@ -299,7 +299,30 @@ impl Default for ReadOptions {
     }
 }
 
+impl Unmeasured {
+    /// Filled if `fill`, else refused.
+    pub fn filled_if(fill: bool) -> Self {
+        if fill {
+            Unmeasured::Fill
+        } else {
+            Unmeasured::Refuse
+        }
+    }
+}
+
 impl ReadOptions {
+    /// These options reading the channel `key` names in the file at `path` (an index or a
+    /// name, [`channel_index`]); `None` keeps the default channel.
+    pub fn with_channel(self, path: &Path, key: Option<&str>) -> Result<Self> {
+        Ok(match key {
+            Some(key) => ReadOptions {
+                channel: Some(channel_index(path, &self, key)?),
+                ..self
+            },
+            None => self,
+        })
+    }
+
     /// The grid of an `(ny, nx)` array read from `path`, from the lengths given here.
     fn grid_for(&self, path: &Path, ny: usize, nx: usize) -> Result<Grid> {
         let lx = self.length_x.ok_or_else(|| {
@@ -415,12 +438,12 @@ impl Format {
             "nid" => Ok(Format::Nid),
             "sur" => Ok(Format::Sur),
             "opd" => Ok(Format::Opd),
-            // Nanoscope's older files are numbered: .000, .001, ...
             "di" | "spm" => Ok(Format::Di),
             "ibw" => Ok(Format::Ibw),
             "frt" => Ok(Format::Frt),
             "gwy" => Ok(Format::Gwy),
             "h5" | "hdf5" | "hdf" | "datx" => Ok(Format::Hdf5),
+            // Nanoscope's older files are numbered: .000, .001, ...
             e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => Ok(Format::Di),
             "mnt" => Ok(Format::Mnt),
             "" => Err(SurfError::parse(
