@@ -7,9 +7,8 @@
 //! where `soft` is the scanner's `@Sens. Q: V soft unit/V`; a channel is heights when that unit
 //! is a length.
 
-use super::{Channel, Layer, length_unit};
+use super::{Channel, Layer, length_unit, rows_from_top};
 use crate::error::{Result, SurfError};
-use ndarray::{Array2, s};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -117,11 +116,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                         v * scale
                     })
                     .collect();
-                // Lines are stored from the image's top: ours is y = 0.
-                Ok(Array2::from_shape_vec((ny, nx), values)
-                    .expect("counted")
-                    .slice(s![..;-1, ..])
-                    .to_owned())
+                Ok(rows_from_top(ny, nx, values))
             }),
         });
     }

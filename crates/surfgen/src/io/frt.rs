@@ -4,10 +4,9 @@
 //! i32); 0x67 the box's sides [m]; 0x6c the metres a count; 0x0b the heights, x varying
 //! fastest, rows from the image's top. A count of 1 marks an unmeasured point.
 
-use super::{Measurement, ReadOptions};
+use super::{Measurement, ReadOptions, rows_from_top};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
-use ndarray::{Array2, s};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -97,10 +96,5 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
         })
         .collect();
     let grid = Grid::new(nx, ny, lx * options.unit, ly * options.unit).map_err(|e| bad(e.to_string()))?;
-    // Rows are stored from the image's top: ours is y = 0.
-    let heights = Array2::from_shape_vec((ny, nx), heights)
-        .expect("counted")
-        .slice(s![..;-1, ..])
-        .to_owned();
-    Measurement::new(heights, grid, options.periodic)
+    Measurement::new(rows_from_top(ny, nx, heights), grid, options.periodic)
 }

@@ -6,9 +6,8 @@
 //! image's top. A value is `raw * bufferRange / 2^(bits - 1)` in `bufferUnit`. Channels in a
 //! length unit are heights.
 
-use super::{Channel, Layer, length_unit};
+use super::{Channel, Layer, length_unit, rows_from_top};
 use crate::error::{Result, SurfError};
-use ndarray::{Array2, s};
 use std::path::Path;
 
 pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>> {
@@ -117,11 +116,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                             _ => i32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64,
                         } * scale)
                         .collect();
-                // The first row stored is the image's top: ours is y = 0.
-                Ok(Array2::from_shape_vec((ny, nx), values)
-                    .expect("counted")
-                    .slice(s![..;-1, ..])
-                    .to_owned())
+                Ok(rows_from_top(ny, nx, values))
             }),
         });
     }

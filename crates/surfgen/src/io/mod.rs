@@ -401,6 +401,13 @@ pub enum Format {
     Mnt,
 }
 
+/// `ny` rows of `nx` values stored from an image's top, as heights with row 0 at y = 0.
+pub(crate) fn rows_from_top(ny: usize, nx: usize, values: Vec<f64>) -> Array2<f64> {
+    let mut a = Array2::from_shape_vec((ny, nx), values).expect("counted by the reader");
+    a.invert_axis(ndarray::Axis(0));
+    a.as_standard_layout().into_owned()
+}
+
 /// Metres per unit of a length unit's name as instruments write it (`m`, `mm`, `µm` or `um`,
 /// `nm`, `pm`, `Å`, ...).
 pub(crate) fn length_unit(name: &str) -> Option<f64> {

@@ -6,9 +6,8 @@
 //! value is `Dim2Min + (raw - smallest raw) * Dim2Range / 2^bits`, rows stored from the
 //! image's top. Channels in a length unit are heights.
 
-use super::{Channel, Layer, length_unit};
+use super::{Channel, Layer, length_unit, rows_from_top};
 use crate::error::{Result, SurfError};
-use ndarray::{Array2, s};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -121,11 +120,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                         (min + (v - smallest) * scale) * z
                     })
                     .collect();
-                // The first row stored is the image's top: ours is y = 0.
-                Ok(Array2::from_shape_vec((ny, nx), values)
-                    .expect("counted")
-                    .slice(s![..;-1, ..])
-                    .to_owned())
+                Ok(rows_from_top(ny, nx, values))
             }),
         });
     }
