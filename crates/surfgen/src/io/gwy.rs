@@ -98,12 +98,11 @@ impl<'a> Reader<'a> {
         Some(Object { items })
     }
     fn value(&mut self, kind: u8, depth: usize) -> Option<Value<'a>> {
-        let fixed = |r: &mut Self, n: usize| r.take(n).map(|b| b.to_vec());
         Some(match kind {
             b'b' | b'c' => Value::Int(*self.take(1)?.first()? as i64),
-            b'i' => Value::Int(i32::from_le_bytes(fixed(self, 4)?.try_into().ok()?) as i64),
-            b'q' => Value::Int(i64::from_le_bytes(fixed(self, 8)?.try_into().ok()?)),
-            b'd' => Value::Float(f64::from_le_bytes(fixed(self, 8)?.try_into().ok()?)),
+            b'i' => Value::Int(i32::from_le_bytes(self.take(4)?.try_into().ok()?) as i64),
+            b'q' => Value::Int(i64::from_le_bytes(self.take(8)?.try_into().ok()?)),
+            b'd' => Value::Float(f64::from_le_bytes(self.take(8)?.try_into().ok()?)),
             b's' => Value::Text(self.name()?),
             b'o' => Value::Object(self.object(depth + 1)?),
             b'D' => {

@@ -250,7 +250,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                         }
                     }
                 }
-                Ok(Array2::from_shape_vec((ny, nx), std::mem::take(&mut heights)).expect("counted"))
+                Ok(Array2::from_shape_vec((ny, nx), heights).expect("counted"))
             }),
         });
     }

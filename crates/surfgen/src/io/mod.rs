@@ -527,8 +527,8 @@ pub fn read_topography(path: &Path, options: &ReadOptions) -> Result<Topography>
         periodic: options.periodic && !instrument,
         ..*options
     };
-    if let Some(bytes) = layered(format, path)? {
-        return pick(path, layers(format, &bytes, path)?, options);
+    if let Some(reader) = layer_reader(format) {
+        return pick(path, reader(&read_bytes(path)?, path)?, options);
     }
     if let Some(c) = options.channel.filter(|&c| c > 0) {
         return Err(SurfError::parse(
@@ -549,7 +549,7 @@ pub fn read_topography(path: &Path, options: &ReadOptions) -> Result<Topography>
         Format::Sur => sur::read(path, options)?,
         Format::Opd => opd::read(path, options)?,
         Format::Frt => frt::read(path, options)?,
-        _ => unreachable!("layered"),
+        _ => unreachable!("formats of several channels are read above"),
     }))
 }
 
@@ -574,40 +574,34 @@ pub fn channel_index(path: &Path, options: &ReadOptions, key: &str) -> Result<us
         })
 }
 
-/// The bytes of a file in a format of several channels, `None` for the others.
-fn layered(format: Format, path: &Path) -> Result<Option<Vec<u8>>> {
-    if matches!(
-        format,
-        Format::Mi | Format::Nid | Format::Di | Format::Ibw | Format::Gwy | Format::Hdf5 | Format::Mnt
-    ) {
-        std::fs::read(path).map(Some).map_err(|e| SurfError::io(path, e))
-    } else {
-        Ok(None)
-    }
+/// A reader of a format of several channels: each channel and how to read it.
+type LayerReader = for<'a> fn(&'a [u8], &Path) -> Result<Vec<Layer<'a>>>;
+
+/// The reader of `format` if it holds several channels; `None` for a format of one surface.
+fn layer_reader(format: Format) -> Option<LayerReader> {
+    Some(match format {
+        Format::Mi => mi::layers,
+        Format::Nid => nid::layers,
+        Format::Di => di::layers,
+        Format::Ibw => ibw::layers,
+        Format::Gwy => gwy::layers,
+        Format::Hdf5 => h5::layers,
+        Format::Mnt => mnt::layers,
+        _ => return None,
+    })
 }
 
-fn layers<'a>(format: Format, bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>> {
-    match format {
-        Format::Mi => mi::layers(bytes, path),
-        Format::Nid => nid::layers(bytes, path),
-        Format::Di => di::layers(bytes, path),
-        Format::Ibw => ibw::layers(bytes, path),
-        Format::Gwy => gwy::layers(bytes, path),
-        Format::Hdf5 => h5::layers(bytes, path),
-        Format::Mnt => mnt::layers(bytes, path),
-        _ => unreachable!("one channel"),
-    }
+fn read_bytes(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|e| SurfError::io(path, e))
 }
 
 /// The channels of a file: each with its grid, size and unit, and whether it holds heights. A
 /// format of one surface gives one channel, `heights`, read with `options`.
 pub fn channels(path: &Path, options: &ReadOptions) -> Result<Vec<Channel>> {
     let format = Format::of(path)?;
-    if let Some(bytes) = layered(format, path)? {
-        return Ok(layers(format, &bytes, path)?
-            .into_iter()
-            .map(|l| l.channel)
-            .collect());
+    if let Some(reader) = layer_reader(format) {
+        let bytes = read_bytes(path)?;
+        return Ok(reader(&bytes, path)?.into_iter().map(|l| l.channel).collect());
     }
     Ok(vec![match read_topography(path, options)? {
         Topography::Surface(m) => Channel {
