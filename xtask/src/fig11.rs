@@ -4,14 +4,17 @@ use crate::rough_sphere::{PullOffFigure, Spec, falling, plan, points};
 use crate::{Context, FigureReport};
 use anyhow::Result;
 
-pub fn run(ctx: &Context) -> Result<FigureReport> {
+/// The figure's points: each Tabor parameter at each roughness.
+pub fn wanted(ctx: &Context) -> Vec<Spec> {
     let p = plan(ctx);
-    let wanted: Vec<Spec> = p
-        .mus_run(11)
+    p.mus_run(11)
         .into_iter()
         .flat_map(|mu| p.rqs.iter().map(move |&rq| Spec::new(mu, rq)))
-        .collect();
-    let pts = points(ctx, "Fig. 11", &wanted)?;
+        .collect()
+}
+
+pub fn run(ctx: &Context) -> Result<FigureReport> {
+    let pts = points(ctx, &wanted(ctx))?;
     let fig = PullOffFigure {
         number: 11,
         title: "Pull-off force of rough spheres vs RMS roughness",

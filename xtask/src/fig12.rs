@@ -7,10 +7,10 @@ use crate::rough_sphere::{Point, PullOffFigure, Spec, curve_of, falling, plan, p
 use crate::{Context, FigureReport};
 use anyhow::Result;
 
-pub fn run(ctx: &Context) -> Result<FigureReport> {
+/// The figure's points: each Tabor parameter at each roll-off, Rq = 2 z0.
+pub fn wanted(ctx: &Context) -> Vec<Spec> {
     let p = plan(ctx);
-    let wanted: Vec<Spec> = p
-        .mus_run(12)
+    p.mus_run(12)
         .into_iter()
         .flat_map(|mu| {
             p.rolloffs.iter().map(move |&rolloff| Spec {
@@ -18,8 +18,12 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
                 ..Spec::new(mu, 2.0)
             })
         })
-        .collect();
-    let pts = points(ctx, "Fig. 12", &wanted)?;
+        .collect()
+}
+
+pub fn run(ctx: &Context) -> Result<FigureReport> {
+    let p = plan(ctx);
+    let pts = points(ctx, &wanted(ctx))?;
     let fig = PullOffFigure {
         number: 12,
         title: "Pull-off force of rough spheres vs RMS gradient (Rq = 2 z0)",

@@ -21,7 +21,7 @@ pub fn wanted(ctx: &Context) -> Vec<Spec> {
 }
 
 pub fn run(ctx: &Context) -> Result<FigureReport> {
-    let pts = points(ctx, "Fig. 13", &wanted(ctx))?;
+    let pts = points(ctx, &wanted(ctx))?;
     let fig = PullOffFigure {
         number: 13,
         title: "Pull-off force vs the modified Johnson parameter α*",

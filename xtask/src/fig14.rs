@@ -7,7 +7,7 @@ use crate::{Context, FigureReport};
 use anyhow::Result;
 
 pub fn run(ctx: &Context) -> Result<FigureReport> {
-    let pts = points(ctx, "Fig. 14", &crate::fig13::wanted(ctx))?;
+    let pts = points(ctx, &crate::fig13::wanted(ctx))?;
     let fig = PullOffFigure {
         number: 14,
         title: "Pull-off force vs Ciavarella's variable Rq² E*/(λL w0)",

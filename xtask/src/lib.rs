@@ -132,6 +132,10 @@ pub fn figures(options: Options) -> Result<Vec<FigureReport>> {
     }
     std::fs::create_dir_all(&options.out).with_context(|| format!("creating {}", options.out.display()))?;
     let cache = cache::Cache::new(options.out.join("cache"), options.fresh)?;
+    let studies = options.out.join("studies");
+    if options.fresh && studies.exists() {
+        std::fs::remove_dir_all(&studies).with_context(|| format!("removing {}", studies.display()))?;
+    }
     let ctx = Context { options, cache };
     let mut reports = Vec::new();
     for n in only {

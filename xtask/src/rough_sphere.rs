@@ -7,10 +7,10 @@
 //! ([`solver::ContactProblem::pull_off`]).
 
 use crate::case::{Case, Law};
-use anyhow::Result;
+use anyhow::{Context, Result, bail};
 use serde::{Deserialize, Serialize};
-use solver::{Control, PullOffSearch, Settings};
 use std::f64::consts::PI;
+use std::path::Path;
 
 pub const RADIUS: f64 = 1e-4;
 pub const MODULUS: f64 = 5e10;
@@ -143,51 +143,131 @@ impl Job {
         c
     }
 
-    pub fn solve(&self) -> Result<Outcome> {
-        let case = self.case();
-        let p = case.build()?;
-        let settings = Settings {
-            tolerance: self.tolerance,
-            max_iterations: 5000,
-            ..Settings::default()
-        };
+    /// The run's directory name in its study.
+    fn name(&self) -> String {
+        let name = format!(
+            "mu{}_n{}_rq{}_cutoff{}_rolloff{}_seed{}",
+            self.mu, self.n, self.rq, self.cutoff_cells, self.rolloff, self.seed
+        );
+        name.replace(['/', ' '], "-")
+    }
+
+    /// The run's own keys of its study: what varies between jobs. A sweep in to the preload
+    /// from two z0 apart in five steps, then the pull-off search: coarse unloading steps until
+    /// the load has come back up from its minimum (or the sphere is far beyond the smooth
+    /// sphere's pull-off distance), refined in fifths around it.
+    fn keys(&self) -> Vec<(&'static str, toml::Value)> {
+        let top = self.preload();
+        let scale = (PI * PI * self.w0().powi(2) * RADIUS / MODULUS.powi(2)).cbrt() / Z0;
+        let mut keys = vec![
+            ("work_of_adhesion", self.w0().into()),
+            ("n", (self.n as i64).into()),
+            ("length", self.length().into()),
+            ("to", (top * Z0).into()),
+            ("pull_off_step", ((top / 8.0).max(0.5) * Z0).into()),
+            (
+                "pull_off_floor",
+                (-(3.0 * scale + 3.0 * self.rq + 5.0) * Z0).into(),
+            ),
+        ];
+        if self.rq > 0.0 {
+            let case = self.case();
+            keys.extend([
+                ("rms_height", case.rms_height.expect("rough").into()),
+                (
+                    "rolloff_wavelength",
+                    case.rolloff_wavelength.expect("rough").into(),
+                ),
+                ("cutoff_wavelength", case.cutoff_wavelength.expect("rough").into()),
+                ("seed", (self.seed as i64).into()),
+            ]);
+        }
+        keys
+    }
+
+    /// What the run in `dir` found, from its summary.
+    fn outcome(&self, dir: &Path) -> Result<Outcome> {
+        let path = dir.join("summary.json");
+        let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+        let summary: serde_json::Value = serde_json::from_str(&text)?;
+        let number = |k: &str| summary.get(k).and_then(serde_json::Value::as_f64);
         let (rms_gradient, rq) = if self.rq > 0.0 {
-            let (g, _, rq, _) = crate::surface_statistics(&case)?;
+            let (g, _, rq, _) = crate::surface_statistics(&self.case())?;
             (g, rq)
         } else {
             (0.0, 0.0)
         };
-        // Load: from apart to the preload in five steps.
-        let top = self.preload();
-        let loading: Vec<Control> = (0..=5)
-            .map(|k| Control::Approach((-2.0 + (top + 2.0) * k as f64 / 5.0) * Z0))
-            .collect();
-        let mut preloaded = None;
-        let mut keep = crate::States(&mut |_, s| preloaded = Some(s.clone()));
-        let loaded = p.sweep(&loading, None, &settings, None, &mut keep)?;
-        let preloaded = preloaded.expect("the loading sweep has steps");
-        // Unload in coarse steps until the load has come back up from its minimum (or the
-        // sphere is far beyond the smooth sphere's pull-off distance), refined in fifths.
-        let scale = (PI * PI * self.w0().powi(2) * RADIUS / MODULUS.powi(2)).cbrt() / Z0;
-        let search = PullOffSearch {
-            step: (top / 8.0).max(0.5) * Z0,
-            floor: -(3.0 * scale + 3.0 * self.rq + 5.0) * Z0,
-            recovery: Some(0.5),
-            refinement: 5,
-        };
-        let pull = p.pull_off(&search, &settings, preloaded, &mut ())?;
-        let points: Vec<_> = loaded.iter().chain(&pull.coarse).chain(&pull.refined).collect();
         Ok(Outcome {
-            pull_off: pull.force,
+            // No tensile load on unloading: no pull-off force.
+            pull_off: -number("pull_off_force").unwrap_or(0.0).min(0.0),
             rq,
             rms_gradient,
             length: self.length(),
             cutoff: self.cutoff_cells * self.length() / self.n as f64,
-            steps: points.len(),
-            all_converged: points.iter().all(|q| q.report.converged()),
-            wall_time_s: points.iter().map(|q| q.report.wall_time_s).sum(),
+            steps: number("steps").context("the summary has no steps")? as usize,
+            all_converged: summary.get("converged").and_then(serde_json::Value::as_bool) == Some(true),
+            wall_time_s: number("wall_time_s").unwrap_or(0.0),
         })
     }
+}
+
+/// Runs `jobs` (all smooth or all rough) as one study of `roughcontact`, each job a sweep
+/// with a pull-off search in `dir/runs/<name>`: finished runs are kept, so that building the
+/// figure again resumes, and the study file `dir.toml` can be run by hand, across machines
+/// with `mpirun -n K roughcontact study` or as a job array (`--shard`), before the figures
+/// read its runs (`docs/studies.md`).
+fn study(dir: &Path, jobs: &[Job]) -> Result<Vec<Outcome>> {
+    let Some(first) = jobs.first() else {
+        return Ok(Vec::new());
+    };
+    let rough = first.rq > 0.0;
+    let mut case = toml::Table::new();
+    let mut set = |k: &str, v: toml::Value| {
+        case.insert(k.into(), v);
+    };
+    set("sphere_radius", RADIUS.into());
+    set("modulus", MODULUS.into());
+    set("law", "point".into());
+    set("z0", Z0.into());
+    set("tolerance", first.tolerance.into());
+    set("max_iterations", 5000.into());
+    set("from", (-2.0 * Z0).into());
+    set("steps", 5.into());
+    // Unsplit steps, as the figures have always taken them.
+    set("max_step", 1.0.into());
+    if rough {
+        set("hurst", 0.8.into());
+    }
+    let mut axes = toml::Table::new();
+    for job in jobs {
+        for (k, v) in job.keys() {
+            match axes.entry(k).or_insert_with(|| toml::Value::Array(Vec::new())) {
+                toml::Value::Array(a) => a.push(v),
+                _ => unreachable!("axes are lists"),
+            }
+        }
+    }
+    let names: Vec<toml::Value> = jobs.iter().map(|j| j.name().into()).collect();
+    let mut file = toml::Table::new();
+    file.insert("command".into(), "sweep".into());
+    file.insert("combine".into(), "zip".into());
+    file.insert("names".into(), names.into());
+    file.insert("case".into(), case.into());
+    file.insert("axes".into(), axes.into());
+    let path = dir.with_extension("toml");
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    std::fs::write(&path, toml::to_string(&file)?).with_context(|| format!("writing {}", path.display()))?;
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    roughcontact::study::run(&path, dir, cores.min(jobs.len()), 1)?;
+    jobs.iter()
+        .map(|job| {
+            let run = dir.join("runs").join(job.name());
+            if let Ok(error) = std::fs::read_to_string(run.join("error.txt")) {
+                bail!("the run {} failed: {error}", run.display());
+            }
+            job.outcome(&run)
+        })
+        .collect()
 }
 
 /// Mean and sample standard deviation.
@@ -365,19 +445,62 @@ impl Point {
     }
 }
 
-/// Runs every point in parallel through the cache.
-pub fn points(ctx: &crate::Context, what: &str, wanted: &[Spec]) -> Result<Vec<Point>> {
+/// Every rough-sphere point the figures being built ask for (Figs. 11-14 among
+/// `--only`).
+fn all_wanted(ctx: &crate::Context) -> Vec<Spec> {
+    let only = &ctx.options.only;
+    let built = |n: u32| only.is_empty() || only.contains(&n);
+    let mut all = Vec::new();
+    if built(11) {
+        all.extend(crate::fig11::wanted(ctx));
+    }
+    if built(12) {
+        all.extend(crate::fig12::wanted(ctx));
+    }
+    if built(13) || built(14) {
+        all.extend(crate::fig13::wanted(ctx));
+    }
+    all
+}
+
+/// The outcomes of `wanted`'s realisations. Every job of the figures being built runs in two
+/// studies (`OUT/studies/rough-spheres-smooth` and `-rough`), the first time a figure asks;
+/// later figures find their runs finished.
+pub fn points(ctx: &crate::Context, wanted: &[Spec]) -> Result<Vec<Point>> {
     let plan = plan(ctx);
-    let groups: Vec<Vec<Job>> = wanted.iter().map(|&s| realisations(&plan, s)).collect();
-    let jobs: Vec<Job> = groups.iter().flatten().copied().collect();
-    let mut outcomes = ctx.run(what, "rough-sphere", &jobs, |j| j.solve())?.into_iter();
+    let mut jobs: Vec<Job> = Vec::new();
+    for job in all_wanted(ctx)
+        .iter()
+        .chain(wanted)
+        .flat_map(|&s| realisations(&plan, s))
+    {
+        if !jobs.contains(&job) {
+            jobs.push(job);
+        }
+    }
+    let (smooth, rough): (Vec<Job>, Vec<Job>) = jobs.into_iter().partition(|j| j.rq == 0.0);
+    let studies = ctx.options.out.join("studies");
+    let mut found: Vec<(Job, Outcome)> = Vec::new();
+    for (kind, jobs) in [("smooth", smooth), ("rough", rough)] {
+        let outcomes = study(&studies.join(format!("rough-spheres-{kind}")), &jobs)?;
+        found.extend(jobs.into_iter().zip(outcomes));
+    }
+    let outcome = |job: &Job| {
+        found
+            .iter()
+            .find(|(j, _)| j == job)
+            .map(|(_, o)| o.clone())
+            .expect("every job ran")
+    };
     Ok(wanted
         .iter()
-        .zip(&groups)
-        .map(|(&spec, g)| Point {
-            spec,
-            outcomes: outcomes.by_ref().take(g.len()).collect(),
-            job: g[0],
+        .map(|&spec| {
+            let jobs = realisations(&plan, spec);
+            Point {
+                spec,
+                outcomes: jobs.iter().map(outcome).collect(),
+                job: jobs[0],
+            }
         })
         .collect())
 }

@@ -689,6 +689,22 @@ pub struct SweepPath {
     /// To continue a cycle with another law, solver, tolerance or path.
     #[cfg_attr(feature = "clap", arg(long, value_name = "DIR"))]
     pub start_from: Option<PathBuf>,
+    /// Find the pull-off force: the path goes in only (from --from to --to in --steps, or the
+    /// --approaches), then unloads from its last state in steps of this size [m] until the
+    /// load has come back from its minimum, and again around the minimum in finer steps.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub pull_off_step: Option<f64>,
+    /// The lowest approach the pull-off search unloads to [m] (negative: bodies apart).
+    #[cfg_attr(feature = "clap", arg(long, allow_hyphen_values = true))]
+    pub pull_off_floor: Option<f64>,
+    /// Finer steps per coarse step around the lowest load of the pull-off search (1: none)
+    /// [default: 5].
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub pull_off_refinement: Option<usize>,
+    /// The pull-off search stops once the load has come back above this fraction of its
+    /// lowest, in (0, 1] [default: 0.5].
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub pull_off_recovery: Option<f64>,
 }
 
 /// The memory a step of a sweep keeps until the end [bytes]: its control, its report and its
@@ -708,6 +724,13 @@ impl SweepPath {
     /// The controls of the path, in order: a cycle from `from` to `to` and back, or the
     /// explicit list given.
     pub fn controls(&self) -> Result<Vec<Control>> {
+        let search = self.pull_off()?;
+        if search.is_some() && (self.mean_pressures.is_some() || self.central_gaps.is_some()) {
+            bail!(
+                "the pull-off search follows an approach path: give --from/--to or --approaches, \
+                 not --mean-pressures or --central-gaps"
+            );
+        }
         let controls: Vec<Control> = match (&self.approaches, &self.mean_pressures, &self.central_gaps) {
             (Some(a), None, None) => a.iter().map(|&v| Control::Approach(v)).collect(),
             (None, Some(p), None) => p.iter().map(|&v| Control::MeanPressure(v)).collect(),
@@ -728,7 +751,12 @@ impl SweepPath {
                     &format!("a sweep of {} steps", 2 * steps as u64 + 1),
                     (2.0 * steps as f64 + 1.0) * STEP_BYTES,
                 )?;
-                solver::approach_cycle(from, to, steps)
+                let mut cycle = solver::approach_cycle(from, to, steps);
+                if search.is_some() {
+                    // The way in only: the search is the way out.
+                    cycle.truncate(steps + 1);
+                }
+                cycle
             }
             _ => bail!("give one path only"),
         };
@@ -744,7 +772,51 @@ impl SweepPath {
         }) {
             bail!("the sweep path has a non-finite value");
         }
+        if let (Some(s), Some(Control::Approach(last))) = (search, controls.last())
+            && s.floor >= *last
+        {
+            bail!(
+                "--pull-off-floor ({:e} m) must be below the path's last approach ({last:e} m)",
+                s.floor
+            );
+        }
         Ok(controls)
+    }
+
+    /// The pull-off search after the path, if asked for (`pull_off_step`), checked.
+    pub fn pull_off(&self) -> Result<Option<solver::PullOffSearch>> {
+        let Some(step) = self.pull_off_step else {
+            if self.pull_off_floor.is_some()
+                || self.pull_off_refinement.is_some()
+                || self.pull_off_recovery.is_some()
+            {
+                bail!("the pull-off search's settings need --pull-off-step [m], which asks for it");
+            }
+            return Ok(None);
+        };
+        if !(step.is_finite() && step > 0.0) {
+            bail!("--pull-off-step must be a positive length [m], got {step}");
+        }
+        let Some(floor) = self.pull_off_floor else {
+            bail!("--pull-off-step needs --pull-off-floor, the lowest approach to unload to [m]");
+        };
+        if !floor.is_finite() {
+            bail!("--pull-off-floor must be finite [m], got {floor}");
+        }
+        let refinement = self.pull_off_refinement.unwrap_or(5);
+        if refinement == 0 {
+            bail!("--pull-off-refinement must be at least 1 (1: no refinement)");
+        }
+        let recovery = self.pull_off_recovery.unwrap_or(0.5);
+        if !(recovery > 0.0 && recovery <= 1.0) {
+            bail!("--pull-off-recovery must be in (0, 1], got {recovery}");
+        }
+        Ok(Some(solver::PullOffSearch {
+            step,
+            floor,
+            recovery: Some(recovery),
+            refinement,
+        }))
     }
 
     /// The largest step between two solves [m] on `problem` (`None`: no splitting), checked

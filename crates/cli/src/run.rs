@@ -168,6 +168,14 @@ impl RunDir {
         std::fs::write(&path, format!("{HEADER}\n")).with_context(|| format!("writing {}", path.display()))
     }
 
+    /// Keeps the first `rows` steps of `curve.csv`.
+    pub fn truncate_curve(&self, rows: usize) -> Result<()> {
+        let path = self.curve_path();
+        let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+        let kept: String = text.split_inclusive('\n').take(rows + 1).collect();
+        std::fs::write(&path, kept).with_context(|| format!("writing {}", path.display()))
+    }
+
     /// Whether a previous sweep left a curve here.
     pub fn has_curve(&self) -> bool {
         self.curve_path().exists()

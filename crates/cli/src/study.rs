@@ -16,7 +16,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 pub struct StudyArgs {
     /// Study file (TOML): `command` ("solve" or "sweep"), the base case as a `[case]` table of
     /// case keys (or `case = "FILE"`), the axes as an `[axes]` table of lists (`seed = [1, 2]`),
-    /// and `combine` ("product", the default: every combination; or "zip": the lists side by side).
+    /// `combine` ("product", the default: every combination; or "zip": the lists side by side),
+    /// and optionally `names`, the runs' directory names in order [default: key=value joined].
     study: PathBuf,
     /// Study directory: runs/ and the merged tables [default: the study file without its
     /// extension].
@@ -79,8 +80,13 @@ fn run_name(values: &[(String, toml::Value)]) -> String {
         .map(|(k, v)| format!("{k}={}", spelt(v)))
         .collect::<Vec<_>>()
         .join("_");
-    let clean: String = name
-        .chars()
+    let clean = clean_name(&name);
+    if clean.is_empty() { "base".into() } else { clean }
+}
+
+/// `name` with any character a file name should not hold replaced by `-`.
+fn clean_name(name: &str) -> String {
+    name.chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || "=._+-".contains(c) {
                 c
@@ -88,8 +94,7 @@ fn run_name(values: &[(String, toml::Value)]) -> String {
                 '-'
             }
         })
-        .collect();
-    if clean.is_empty() { "base".into() } else { clean }
+        .collect()
 }
 
 impl Study {
@@ -140,15 +145,41 @@ impl Study {
             Some(other) => bail!("{name}: `axes` is a table of lists, got {other}"),
             None => Vec::new(),
         };
+        let names = match table.remove("names") {
+            None => None,
+            Some(toml::Value::Array(v)) => Some(
+                v.into_iter()
+                    .map(|n| match n {
+                        toml::Value::String(n) if !n.is_empty() && n != "." && n != ".." => Ok(n),
+                        other => {
+                            bail!("{name}: `names` are the runs' directory names (strings), got {other}")
+                        }
+                    })
+                    .collect::<Result<Vec<String>>>()?,
+            ),
+            Some(other) => bail!("{name}: `names` is a list of the runs' directory names, got {other}"),
+        };
         if let Some(k) = table.keys().next() {
-            bail!("{name}: unknown key `{k}`; a study has command, case, axes and combine");
+            bail!("{name}: unknown key `{k}`; a study has command, case, axes, combine and names");
         }
         for (k, _) in &axes {
             if k == "out" {
                 bail!("{name}: `out` cannot be an axis: each run has its own directory");
             }
         }
-        let runs = expand(&axes, zip).with_context(|| format!("{name}: the axes"))?;
+        let mut runs = expand(&axes, zip).with_context(|| format!("{name}: the axes"))?;
+        if let Some(names) = names {
+            if names.len() != runs.len() {
+                bail!("{name}: {} names for {} runs", names.len(), runs.len());
+            }
+            if let Some(bad) = names.iter().find(|n| **n != clean_name(n)) {
+                bail!("{name}: the run name `{bad}` is not a plain file name (letters, digits, = . _ + -)");
+            }
+            for (run, n) in runs.iter_mut().zip(names) {
+                run.name = n;
+            }
+            unique(&runs)?;
+        }
         Ok(Study {
             command,
             case,
@@ -218,15 +249,21 @@ fn expand(axes: &[(String, Vec<toml::Value>)], zip: bool) -> Result<Vec<Run>> {
             values,
         })
         .collect();
+    unique(&runs)?;
+    Ok(runs)
+}
+
+/// Refuses runs that would share a directory.
+fn unique(runs: &[Run]) -> Result<()> {
     let mut names: Vec<&str> = runs.iter().map(|r| r.name.as_str()).collect();
     names.sort();
     if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
         bail!(
-            "two runs would share the directory {}: an axis repeats a value",
+            "two runs would share the directory {}: an axis or a name repeats",
             w[0]
         );
     }
-    Ok(runs)
+    Ok(())
 }
 
 /// `I/N` with 1 <= I <= N.
@@ -310,6 +347,21 @@ fn attempt(study: &Study, run: &Run, dir: &Path, threads: usize) -> Result<()> {
 struct Wrapped<A: Args> {
     #[command(flatten)]
     args: A,
+}
+
+/// Runs the study file `study` into `out`, `jobs` runs side by side on `threads` threads each,
+/// and merges its tables: `roughcontact study STUDY --out OUT --jobs J`, from a program.
+pub fn run(study: &Path, out: &Path, jobs: usize, threads: usize) -> Result<()> {
+    let args = StudyArgs {
+        study: study.to_path_buf(),
+        out: Some(out.to_path_buf()),
+        jobs,
+        shard: None,
+        merge: false,
+        group_over: None,
+        dry_run: false,
+    };
+    self::study(args, Some(threads))
 }
 
 pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {

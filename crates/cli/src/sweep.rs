@@ -10,7 +10,9 @@ use case::{Case, SweepPath, beside, layered, to_toml};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
-use solver::{AdhesiveState, Branch, Control, CyclePoint, CycleSummary, Observer, SweepPoint, summarize};
+use solver::{
+    AdhesiveState, Branch, Control, CyclePoint, CycleSummary, Observer, SweepPoint, Termination, summarize,
+};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -125,6 +127,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         return Ok(());
     }
     let controls = path.controls()?;
+    let search = path.pull_off()?;
     let built = case.build()?;
     let problem = &built.problem;
     for w in &problem.warnings {
@@ -169,6 +172,11 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             );
         }
         rows = run.read_curve()?;
+        if search.is_some() && rows.len() > controls.len() {
+            // The pull-off search had begun: it is redone from the path's last state.
+            rows.truncate(controls.len());
+            run.truncate_curve(rows.len())?;
+        }
         check_rows(&rows, &controls).with_context(|| {
             format!(
                 "--resume: {}/curve.csv does not belong to this path",
@@ -202,10 +210,19 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             max_step.unwrap_or(f64::NAN)
         );
     }
+    // Steps in all: the search's coarse steps at most, and its fine ones.
+    let searched = search.map_or(0, |s| {
+        let last = match controls.last() {
+            Some(Control::Approach(a)) => *a,
+            _ => s.floor,
+        };
+        ((last - s.floor) / s.step).round().max(1.0) as usize + 2 * s.refinement - 1
+    });
+    let total = controls.len() + searched;
     let bar = if crate::quiet() {
         ProgressBar::hidden()
     } else {
-        ProgressBar::new(controls.len() as u64)
+        ProgressBar::new(total as u64)
     }
     .with_style(
         ProgressStyle::with_template("{bar:30} {pos}/{len} steps, {elapsed} elapsed, ~{eta} left  {msg}")
@@ -216,8 +233,9 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     let mut writer = StepWriter {
         run: &run,
         done,
-        steps: controls.len(),
+        steps: total,
         save_states: args.save_states,
+        keep_step: search.map(|_| controls.len() - 1),
         curve: run.curve_writer()?,
         bar: &bar,
         last: String::new(),
@@ -226,7 +244,27 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         problem,
         edge: None,
     };
-    let points = on_workers(|| problem.sweep(&controls[done..], max_step, &settings, start, &mut writer))?;
+    let mut points = if done < controls.len() {
+        on_workers(|| problem.sweep(&controls[done..], max_step, &settings, start, &mut writer))?
+    } else {
+        Vec::new()
+    };
+    if let Some(search) = &search
+        && writer.error.is_none()
+        && done + points.len() == controls.len()
+        && points
+            .iter()
+            .all(|p| p.report.termination != Termination::Interrupted)
+    {
+        let last = match controls.last() {
+            Some(&Control::Approach(a)) => a,
+            _ => unreachable!("a pull-off path is one of approaches"),
+        };
+        let from = run.resume_state(controls.len() - 1, last)?;
+        let pull = on_workers(|| problem.pull_off(search, &settings, from, &mut writer))?;
+        points.extend(pull.coarse);
+        points.extend(pull.refined);
+    }
     bar.finish_and_clear();
     if let Some(e) = writer.error {
         return Err(e.context("writing the sweep's results"));
@@ -484,10 +522,12 @@ fn force_unit(v: f64) -> (f64, &'static str) {
 /// stands; a write that fails stops the sweep and is kept in `error`.
 struct StepWriter<'a> {
     run: &'a RunDir,
-    /// Steps finished before this run (a resumed sweep), and the path's length.
+    /// Steps finished (before this run too, when resumed), and the steps in all.
     done: usize,
     steps: usize,
     save_states: bool,
+    /// A step whose state is kept whatever `save_states` says: the pull-off search's start.
+    keep_step: Option<usize>,
     curve: CurveWriter,
     bar: &'a ProgressBar,
     /// The last finished step, shown beside the running solve's iteration and residual.
@@ -500,12 +540,12 @@ struct StepWriter<'a> {
 }
 
 impl Observer for StepWriter<'_> {
-    fn iteration(&mut self, k: usize, iteration: usize, residual: f64) {
+    fn iteration(&mut self, _: usize, iteration: usize, residual: f64) {
         // Without a terminal, where the running solve stands once a minute.
         if self.bar.is_hidden() && self.quiet_since.elapsed().as_secs() >= 60 {
             note!(
                 "step {}/{}: iteration {iteration}, residual {residual:.2e}",
-                self.done + k + 1,
+                self.done + 1,
                 self.steps
             );
             self.quiet_since = Instant::now();
@@ -518,27 +558,29 @@ impl Observer for StepWriter<'_> {
         }
     }
 
-    fn step(&mut self, k: usize, p: &SweepPoint, state: &AdhesiveState) -> bool {
+    fn step(&mut self, _: usize, p: &SweepPoint, state: &AdhesiveState) -> bool {
         let r = &p.report;
+        let k = self.done;
+        self.done += 1;
         if self.edge.is_none()
             && let Some(w) = self
                 .problem
                 .edge_warning(&state.contact.gap, &state.contact.pressure)
         {
-            let w = format!("from step {} on, {w}", self.done + k);
+            let w = format!("from step {k} on, {w}");
             self.bar.suspend(|| note!("warning: {w}"));
             self.edge = Some(w);
         }
         let saved = self
             .run
-            .save_state(self.done + k, state, self.save_states)
-            .and_then(|_| self.curve.append(self.done + k, p));
+            .save_state(k, state, self.save_states || self.keep_step == Some(k))
+            .and_then(|_| self.curve.append(k, p));
         let message = format!("last: approach {:.4e} m, load {:.4e} N", r.approach, r.load);
         if self.bar.is_hidden() {
             // No terminal (a background run, a log file): a plain line a step instead.
             note!(
                 "step {}/{}: approach {:.4e} m, load {:.4e} N, {}, {:.1} s",
-                self.done + k + 1,
+                k + 1,
                 self.steps,
                 r.approach,
                 r.load,

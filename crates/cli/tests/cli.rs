@@ -1558,3 +1558,127 @@ fn what_a_user_reads_warnings_comparisons_and_paths_beside_the_case() {
         3
     );
 }
+
+/// `sweep --pull-off-step`: the path goes in only, then the library's pull-off search runs
+/// from its last state: the same force as `ContactProblem::pull_off` called directly, its
+/// rows after the path's, and a search cut short is redone from the path's kept state.
+#[test]
+fn sweep_pull_off_search_is_the_library_search_and_resumes() {
+    const CASE: &str = "sphere_radius = 1e-6\nmodulus = 1e9\nlaw = \"point\"\nz0 = 1e-9\n\
+                        work_of_adhesion = 0.1\nn = 32\nlength = 2e-7\n";
+    let d = dir("pull-off");
+    let config = d.join("case.toml");
+    let path = "from = -3e-9\nto = 1e-9\nsteps = 4\npull_off_step = 1e-9\npull_off_floor = -8e-9\n";
+    std::fs::write(&config, format!("{CASE}{path}")).unwrap();
+    let out = d.join("run");
+    let sweep = |extra: &[&str]| {
+        let mut a = vec![
+            "sweep",
+            "--config",
+            config.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        a.extend(extra);
+        let o = roughcontact(&a);
+        assert!(o.status.success(), "{}", stderr(&o));
+        o
+    };
+    sweep(&[]);
+    let s = json(&out.join("summary.json"));
+    let force = s["pull_off_force"].as_f64().unwrap();
+
+    let mut case: case::Case = toml::from_str(CASE).unwrap();
+    case.fill_defaults("unused");
+    let problem = case.build().unwrap().problem;
+    let settings = case.settings();
+    let loading = solver::approach_cycle(-3e-9, 1e-9, 4)[..5].to_vec();
+    let mut last = None;
+    struct Keep<'a>(&'a mut Option<solver::AdhesiveState>);
+    impl solver::Observer for Keep<'_> {
+        fn step(&mut self, _: usize, _: &solver::SweepPoint, s: &solver::AdhesiveState) -> bool {
+            *self.0 = Some(s.clone());
+            true
+        }
+    }
+    problem
+        .sweep(&loading, Some(1e-9), &settings, None, &mut Keep(&mut last))
+        .unwrap();
+    let search = solver::PullOffSearch {
+        step: 1e-9,
+        floor: -8e-9,
+        recovery: Some(0.5),
+        refinement: 5,
+    };
+    let direct = problem
+        .pull_off(&search, &settings, last.unwrap(), &mut ())
+        .unwrap();
+    assert_eq!(force, -direct.force);
+    assert!(direct.force > 0.0 && !direct.refined.is_empty());
+    let csv = std::fs::read_to_string(out.join("curve.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(
+        rows.len(),
+        5 + direct.coarse.len() + direct.refined.len(),
+        "{csv}"
+    );
+    assert!(rows[..5].iter().all(|r| r.contains(",loading,")), "{csv}");
+    assert!(rows[5..].iter().all(|r| r.contains(",unloading,")), "{csv}");
+
+    // Cut within the search: resuming redoes the search from the path's last state.
+    let kept: Vec<&str> = csv.lines().take(1 + 7).collect();
+    std::fs::write(out.join("curve.csv"), kept.join("\n") + "\n").unwrap();
+    std::fs::remove_file(out.join("summary.json")).unwrap();
+    let o = sweep(&["--resume"]);
+    assert!(
+        stderr(&o).contains("resuming after 5 of 5 steps"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(
+        json(&out.join("summary.json"))["pull_off_force"],
+        s["pull_off_force"]
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("curve.csv"))
+            .unwrap()
+            .lines()
+            .count(),
+        csv.lines().count()
+    );
+
+    for (extra, message) in [
+        (
+            vec!["--pull-off-floor", "2e-9"],
+            "--pull-off-floor (2e-9 m) must be below the path's last approach",
+        ),
+        (
+            vec!["--pull-off-step", "0"],
+            "--pull-off-step must be a positive length",
+        ),
+        (
+            vec!["--pull-off-recovery", "1.5"],
+            "--pull-off-recovery must be in (0, 1]",
+        ),
+        (
+            vec!["--mean-pressures", "1e5"],
+            "the pull-off search follows an approach path",
+        ),
+    ] {
+        let mut a = vec![
+            "sweep",
+            "--config",
+            config.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--overwrite",
+        ];
+        a.extend(&extra);
+        let o = roughcontact(&a);
+        assert!(
+            !o.status.success() && stderr(&o).contains(message),
+            "{extra:?}: {}",
+            stderr(&o)
+        );
+    }
+}

@@ -162,6 +162,38 @@ fn bad_study_arguments_are_refused() {
     );
 }
 
+#[test]
+fn named_runs_take_their_names_and_wrong_names_are_refused() {
+    let dir = fresh("study-names");
+    let file = dir.join("study.toml");
+    let named = STUDY.replace(
+        "[case]",
+        "combine = \"zip\"\nnames = [\"first\", \"second\", \"third\"]\n\n[case]",
+    );
+    std::fs::write(&file, &named).unwrap();
+    let o = roughcontact(&["study", file.to_str().unwrap(), "--dry-run"]);
+    let listed = String::from_utf8_lossy(&o.stdout);
+    let last: Vec<&str> = listed.lines().map(|l| l.rsplit('/').next().unwrap()).collect();
+    assert_eq!(
+        last,
+        ["first", "second", "third"],
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    for (names, message) in [
+        ("[\"a\", \"b\"]", "2 names for 3 runs"),
+        ("[\"a\", \"b/c\", \"d\"]", "not a plain file name"),
+        ("[\"a\", \"a\", \"d\"]", "two runs would share the directory a"),
+        ("[1, 2, 3]", "`names` are the runs' directory names"),
+    ] {
+        let text = named.replace("[\"first\", \"second\", \"third\"]", names);
+        std::fs::write(&file, text).unwrap();
+        let o = roughcontact(&["study", file.to_str().unwrap(), "--dry-run"]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && err.contains(message), "{names}: {err}");
+    }
+}
+
 /// Under the `mpi` feature (Open MPI installed): `mpirun -n 2` hands the runs to two ranks and
 /// gives the serial table.
 #[cfg(feature = "mpi")]
