@@ -4,10 +4,9 @@
 //! p/(E* g_bar), and the gap along the mid cross-section.
 
 use crate::case::{Case, Law};
-use anyhow::{Context as _, Result};
+use anyhow::{Context as _, Result, bail};
 use serde::{Deserialize, Serialize};
-use solver::{AdhesiveState, ContactOptions, ContactState, Control, Settings, Start};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The challenge's box \[m\], modulus \[Pa\], and adhesion (work [J/m^2], exponential range \[m\]).
 pub const LENGTH: f64 = 1e-4;
@@ -86,93 +85,135 @@ pub struct Outcome {
 }
 
 impl Run {
-    /// Solves every load in turn; with `log`, one line per finished load on stderr (a 1024^2
-    /// adhesive run takes an hour).
-    pub fn solve(&self, log: bool) -> Result<Outcome> {
-        let (rms_gradient, local_radius, rms_height, cell) = crate::surface_statistics(&self.case)?;
-        let p = self.case.build()?;
-        let (ny, nx) = p.initial_gap.dim();
-        let mut points = Vec::new();
-        let mut profile = Vec::new();
-        let mut keep = |reduced: f64, gap: &ndarray::Array2<f64>| {
-            if self.profile_at == Some(reduced) {
-                profile = (0..ny).map(|j| gap[(j, nx / 2)]).collect();
-            }
-        };
-        let mean = |a: &ndarray::Array2<f64>| a.iter().sum::<f64>() / a.len() as f64;
-        let mut unloading = Vec::new();
-        if p.adhesive() {
-            let settings = Settings::default();
-            let mut state: Option<AdhesiveState> = None;
-            for (loading, loads) in [(true, &self.reduced), (false, &self.unloading)] {
-                for &r in loads {
-                    let control = Control::MeanPressure(r * p.e_star() * rms_gradient);
-                    let start = match &state {
-                        Some(s) => Start::Warm(s),
-                        None => Start::Loading,
-                    };
-                    let (s, rep) = p
-                        .solve(control, &settings, start, &mut ())
-                        .with_context(|| format!("p/(E* g) = {r}"))?;
-                    // The profile is the loading branch's.
-                    if loading {
-                        keep(r, &s.contact.gap);
-                    }
-                    if log {
-                        eprintln!(
-                            "challenge {nx}^2 adhesive, {} p/(E* g) = {r}: contact {:.4}, {:?}, {:.0} s, {:?}",
-                            if loading { "loading" } else { "unloading" },
-                            rep.contact_area_fraction,
-                            rep.iterations,
-                            rep.wall_time_s,
-                            rep.termination
-                        );
-                    }
-                    let branch = if loading { &mut points } else { &mut unloading };
-                    branch.push(LoadPoint {
-                        reduced: r,
-                        mean_pressure: rep.mean_pressure,
-                        contact_area_fraction: rep.contact_area_fraction,
-                        mean_gap: mean(&s.contact.gap),
-                        converged: rep.converged(),
-                        iterations: rep.iterations.count(),
-                        wall_time_s: rep.wall_time_s,
-                    });
-                    state = Some(s);
-                }
-            }
-        } else {
-            let options = ContactOptions::default();
-            let mut state: Option<ContactState> = None;
-            for &r in &self.reduced {
-                let control = Control::MeanPressure(r * p.e_star() * rms_gradient);
-                let (s, rep) = p
-                    .solve_without_adhesion(control, &options, state.as_ref(), &mut ())
-                    .with_context(|| format!("p/(E* g) = {r}"))?;
-                keep(r, &s.gap);
-                points.push(LoadPoint {
-                    reduced: r,
-                    mean_pressure: rep.mean_pressure,
-                    contact_area_fraction: rep.contact_area_fraction,
-                    mean_gap: mean(&s.gap),
-                    converged: rep.converged(),
-                    iterations: rep.iterations,
-                    wall_time_s: rep.wall_time_s,
-                });
-                state = Some(s);
-            }
+    /// The run's sweep of its study: its loads as mean pressures \[Pa\] (the reduced ones times
+    /// E* and the surface's measured RMS gradient `g`), loading then unloading, the step of
+    /// the profile kept.
+    fn sweep(&self, g: f64) -> Result<crate::series::Sweep> {
+        let mut keys = toml::Table::try_from(&self.case)?;
+        let loads: Vec<toml::Value> = self
+            .reduced
+            .iter()
+            .chain(&self.unloading)
+            .map(|r| (r * MODULUS * g).into())
+            .collect();
+        keys.insert("mean_pressures".into(), loads.into());
+        if let Some(k) = self.profile_step() {
+            keys.insert("keep_steps".into(), vec![toml::Value::from(k as i64)].into());
         }
+        let adhesive = self.case.law.is_some();
+        let file = self.case.surface.is_some();
+        let n = self.case.n.map_or("file".into(), |n| n.to_string());
+        let name = match self.case.work_of_adhesion.filter(|_| adhesive) {
+            Some(w0) => format!("n{n}_g{g:.6}_w0{w0:.6e}"),
+            None => format!("n{n}_g{g:.6}"),
+        };
+        Ok(crate::series::Sweep {
+            study: format!(
+                "challenge-{}{}",
+                if file { "file-" } else { "" },
+                if adhesive { "adhesive" } else { "plain" }
+            ),
+            name,
+            keys,
+        })
+    }
+
+    /// The loading step whose gap gives the profile.
+    fn profile_step(&self) -> Option<usize> {
+        self.profile_at
+            .and_then(|p| self.reduced.iter().position(|&r| r == p))
+    }
+
+    /// What the sweep in `dir` found, from its curve (and the kept step's gap).
+    fn outcome(&self, dir: &Path, stats: (f64, f64, f64, f64)) -> Result<Outcome> {
+        let (_, local_radius, rms_height, cell) = stats;
+        let p = self.case.build()?;
+        let mean_g0 = p.initial_gap.mean().unwrap_or(0.0);
+        let path = dir.join("curve.csv");
+        let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().context("an empty curve")?.split(',').collect();
+        let column = |name: &str| header.iter().position(|&c| c == name).context(name.to_string());
+        let [approach, pressure, area, converged, iterations, time] = [
+            "approach",
+            "mean_pressure",
+            "contact_area_fraction",
+            "converged",
+            "iterations",
+            "wall_time_s",
+        ]
+        .map(column);
+        let (approach, pressure, area, converged, iterations, time) =
+            (approach?, pressure?, area?, converged?, iterations?, time?);
+        let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+        let reduced: Vec<f64> = self.reduced.iter().chain(&self.unloading).copied().collect();
+        if rows.len() != reduced.len() {
+            bail!(
+                "{} holds {} loads, not {}",
+                path.display(),
+                rows.len(),
+                reduced.len()
+            );
+        }
+        let number = |r: &[&str], c: usize| -> Result<f64> { Ok(r[c].parse::<f64>()?) };
+        let mut points = rows
+            .iter()
+            .zip(reduced)
+            .map(|(r, reduced)| {
+                Ok(LoadPoint {
+                    reduced,
+                    mean_pressure: number(r, pressure)?,
+                    contact_area_fraction: number(r, area)?,
+                    // Periodic: the mean displacement is zero.
+                    mean_gap: mean_g0 - number(r, approach)?,
+                    converged: r[converged] == "true",
+                    iterations: number(r, iterations)? as usize,
+                    wall_time_s: number(r, time)?,
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let unloading = points.split_off(self.reduced.len());
+        let profile = match self.profile_step() {
+            Some(k) => {
+                let file = dir.join("states").join(format!("step-{k:04}")).join("gap.npy");
+                let gap: ndarray::Array2<f64> =
+                    ndarray_npy::read_npy(&file).with_context(|| format!("reading {}", file.display()))?;
+                let (ny, nx) = gap.dim();
+                (0..ny).map(|j| gap[(j, nx / 2)]).collect()
+            }
+            None => Vec::new(),
+        };
         Ok(Outcome {
             points,
             unloading,
             profile,
-            rms_gradient,
+            rms_gradient: stats.0,
             local_radius,
             rms_height,
             cell,
             warnings: p.warnings,
         })
     }
+}
+
+/// Runs the challenge's `runs` as studies of sweeps (`OUT/studies/challenge-*`; see
+/// [`crate::series`]), each load warm-started from the last.
+pub fn outcomes(ctx: &crate::Context, runs: &[Run]) -> Result<Vec<Outcome>> {
+    let stats = runs
+        .iter()
+        .map(|r| crate::surface_statistics(&r.case))
+        .collect::<Result<Vec<_>>>()?;
+    let sweeps = runs
+        .iter()
+        .zip(&stats)
+        .map(|(r, s)| r.sweep(s.0))
+        .collect::<Result<Vec<_>>>()?;
+    let dirs = crate::series::run(&ctx.options.out.join("studies"), &sweeps)?;
+    runs.iter()
+        .zip(&dirs)
+        .zip(stats)
+        .map(|((r, d), s)| r.outcome(d, s))
+        .collect()
 }
 
 /// The challenge case with its exponential adhesion of work `w0` [J/m^2].

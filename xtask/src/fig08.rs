@@ -74,7 +74,7 @@ pub fn computed(ctx: &Context, o: &challenge::Outcome) -> Vec<String> {
 
 pub fn run(ctx: &Context) -> Result<FigureReport> {
     let runs = runs(ctx);
-    let out = ctx.run("Fig. 8", "challenge", &runs, |r| r.solve(ctx.options.progress))?;
+    let out = challenge::outcomes(ctx, &runs)?;
     let (plain, sticky) = (&out[0], &out[1]);
     let mut report = FigureReport::new(
         8,

@@ -8,7 +8,7 @@ use anyhow::Result;
 
 pub fn run(ctx: &Context) -> Result<FigureReport> {
     let runs = fig08::runs(ctx);
-    let out = ctx.run("Fig. 9", "challenge", &runs, |r| r.solve(ctx.options.progress))?;
+    let out = crate::challenge::outcomes(ctx, &runs)?;
     let (plain, sticky) = (&out[0], &out[1]);
     let mut report = FigureReport::new(
         9,

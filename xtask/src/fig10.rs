@@ -32,7 +32,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             });
         }
     }
-    let out = ctx.run("Fig. 10", "challenge", &runs, |r| r.solve(ctx.options.progress))?;
+    let out = challenge::outcomes(ctx, &runs)?;
     let mut report = FigureReport::new(
         10,
         "Adhesive rough contact (μ = 3): relative contact area vs mean pressure",

@@ -3,8 +3,10 @@
 //! how well each figure agrees with its reference (docs/method.md section 7).
 //!
 //! Each figure is a module (`fig05` ... `fig14`) that asks for its runs, draws itself and
-//! reports. The runs are shared physics (`sphere`, `challenge`, `rough_sphere`): cached on
-//! disk by their inputs ([`cache`]) and run in parallel with a progress bar ([`Context::run`]).
+//! reports. The runs are shared physics (`sphere`, `challenge`, `rough_sphere`): the spheres'
+//! cached on disk by their inputs ([`cache`]) and run in parallel with a progress bar
+//! ([`Context::run`]), the challenge's and the rough spheres' run as studies of the command
+//! line in `OUT/studies/` ([`series`]), resumable and runnable across machines.
 //! Quick mode uses small grids (a few minutes, run by the test suite); full mode the largest
 //! this machine affords, stated in each figure's report.
 
@@ -27,6 +29,7 @@ pub mod fig14;
 pub mod plot;
 pub mod report;
 pub mod rough_sphere;
+pub mod series;
 pub mod sphere;
 pub mod study;
 
@@ -55,11 +58,12 @@ pub struct Options {
     pub quick: bool,
     /// Figure numbers to build (all of 5-14 when empty).
     pub only: Vec<u32>,
-    /// Output directory (figures, CSV, FIGURES.md, and the run cache in `cache/`).
+    /// Output directory (figures, CSV, FIGURES.md, the run cache in `cache/`, the studies in
+    /// `studies/`).
     pub out: PathBuf,
     /// The contact-mechanics challenge's own topography, if the user has it (Figs. 8-9).
     pub challenge_surface: Option<PathBuf>,
-    /// Recompute every run instead of reading the cache.
+    /// Recompute every run instead of reading the cache and the studies' finished runs.
     pub fresh: bool,
     /// Show progress bars.
     pub progress: bool,

@@ -30,7 +30,8 @@ enum Command {
         /// reads; a bare .npy is taken as 100 um square) for Figs. 8-10.
         #[arg(long, value_name = "FILE")]
         challenge_surface: Option<PathBuf>,
-        /// Recompute every run instead of reusing the cache in OUT/cache.
+        /// Recompute every run instead of reusing the cache in OUT/cache and the finished
+        /// runs of the studies in OUT/studies.
         #[arg(long)]
         fresh: bool,
     },

@@ -7,7 +7,7 @@
 //! ([`solver::ContactProblem::pull_off`]).
 
 use crate::case::{Case, Law};
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::path::Path;
@@ -156,10 +156,20 @@ impl Job {
     /// from two z0 apart in five steps, then the pull-off search: coarse unloading steps until
     /// the load has come back up from its minimum (or the sphere is far beyond the smooth
     /// sphere's pull-off distance), refined in fifths around it.
-    fn keys(&self) -> Vec<(&'static str, toml::Value)> {
+    fn keys(&self) -> toml::Table {
         let top = self.preload();
         let scale = (PI * PI * self.w0().powi(2) * RADIUS / MODULUS.powi(2)).cbrt() / Z0;
         let mut keys = vec![
+            ("sphere_radius", RADIUS.into()),
+            ("modulus", MODULUS.into()),
+            ("law", "point".into()),
+            ("z0", Z0.into()),
+            ("tolerance", self.tolerance.into()),
+            ("max_iterations", 5000.into()),
+            ("from", (-2.0 * Z0).into()),
+            ("steps", 5.into()),
+            // Unsplit steps, as the figures have always taken them.
+            ("max_step", 1.0.into()),
             ("work_of_adhesion", self.w0().into()),
             ("n", (self.n as i64).into()),
             ("length", self.length().into()),
@@ -173,6 +183,7 @@ impl Job {
         if self.rq > 0.0 {
             let case = self.case();
             keys.extend([
+                ("hurst", 0.8.into()),
                 ("rms_height", case.rms_height.expect("rough").into()),
                 (
                     "rolloff_wavelength",
@@ -182,7 +193,7 @@ impl Job {
                 ("seed", (self.seed as i64).into()),
             ]);
         }
-        keys
+        keys.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
     }
 
     /// What the run in `dir` found, from its summary.
@@ -209,65 +220,6 @@ impl Job {
             wall_time_s: number("wall_time_s").unwrap_or(0.0),
         })
     }
-}
-
-/// Runs `jobs` (all smooth or all rough) as one study of `roughcontact`, each job a sweep
-/// with a pull-off search in `dir/runs/<name>`: finished runs are kept, so that building the
-/// figure again resumes, and the study file `dir.toml` can be run by hand, across machines
-/// with `mpirun -n K roughcontact study` or as a job array (`--shard`), before the figures
-/// read its runs (`docs/studies.md`).
-fn study(dir: &Path, jobs: &[Job]) -> Result<Vec<Outcome>> {
-    let Some(first) = jobs.first() else {
-        return Ok(Vec::new());
-    };
-    let rough = first.rq > 0.0;
-    let mut case = toml::Table::new();
-    let mut set = |k: &str, v: toml::Value| {
-        case.insert(k.into(), v);
-    };
-    set("sphere_radius", RADIUS.into());
-    set("modulus", MODULUS.into());
-    set("law", "point".into());
-    set("z0", Z0.into());
-    set("tolerance", first.tolerance.into());
-    set("max_iterations", 5000.into());
-    set("from", (-2.0 * Z0).into());
-    set("steps", 5.into());
-    // Unsplit steps, as the figures have always taken them.
-    set("max_step", 1.0.into());
-    if rough {
-        set("hurst", 0.8.into());
-    }
-    let mut axes = toml::Table::new();
-    for job in jobs {
-        for (k, v) in job.keys() {
-            match axes.entry(k).or_insert_with(|| toml::Value::Array(Vec::new())) {
-                toml::Value::Array(a) => a.push(v),
-                _ => unreachable!("axes are lists"),
-            }
-        }
-    }
-    let names: Vec<toml::Value> = jobs.iter().map(|j| j.name().into()).collect();
-    let mut file = toml::Table::new();
-    file.insert("command".into(), "sweep".into());
-    file.insert("combine".into(), "zip".into());
-    file.insert("names".into(), names.into());
-    file.insert("case".into(), case.into());
-    file.insert("axes".into(), axes.into());
-    let path = dir.with_extension("toml");
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    std::fs::write(&path, toml::to_string(&file)?).with_context(|| format!("writing {}", path.display()))?;
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    roughcontact::study::run(&path, dir, cores.min(jobs.len()), 1)?;
-    jobs.iter()
-        .map(|job| {
-            let run = dir.join("runs").join(job.name());
-            if let Ok(error) = std::fs::read_to_string(run.join("error.txt")) {
-                bail!("the run {} failed: {error}", run.display());
-            }
-            job.outcome(&run)
-        })
-        .collect()
 }
 
 /// Mean and sample standard deviation.
@@ -478,13 +430,20 @@ pub fn points(ctx: &crate::Context, wanted: &[Spec]) -> Result<Vec<Point>> {
             jobs.push(job);
         }
     }
-    let (smooth, rough): (Vec<Job>, Vec<Job>) = jobs.into_iter().partition(|j| j.rq == 0.0);
-    let studies = ctx.options.out.join("studies");
-    let mut found: Vec<(Job, Outcome)> = Vec::new();
-    for (kind, jobs) in [("smooth", smooth), ("rough", rough)] {
-        let outcomes = study(&studies.join(format!("rough-spheres-{kind}")), &jobs)?;
-        found.extend(jobs.into_iter().zip(outcomes));
-    }
+    let sweeps: Vec<crate::series::Sweep> = jobs
+        .iter()
+        .map(|j| crate::series::Sweep {
+            study: format!("rough-spheres-{}", if j.rq > 0.0 { "rough" } else { "smooth" }),
+            name: j.name(),
+            keys: j.keys(),
+        })
+        .collect();
+    let dirs = crate::series::run(&ctx.options.out.join("studies"), &sweeps)?;
+    let found: Vec<(Job, Outcome)> = jobs
+        .iter()
+        .zip(&dirs)
+        .map(|(j, d)| Ok((*j, j.outcome(d)?)))
+        .collect::<Result<_>>()?;
     let outcome = |job: &Job| {
         found
             .iter()

@@ -705,6 +705,10 @@ pub struct SweepPath {
     /// lowest, in (0, 1] [default: 0.5].
     #[cfg_attr(feature = "clap", arg(long))]
     pub pull_off_recovery: Option<f64>,
+    /// Steps (counted from 0, comma-separated) whose fields are also kept in
+    /// states/step-NNNN, as --save-states keeps every step's.
+    #[cfg_attr(feature = "clap", arg(long, value_delimiter = ','))]
+    pub keep_steps: Option<Vec<usize>>,
 }
 
 /// The memory a step of a sweep keeps until the end [bytes]: its control, its report and its

@@ -235,7 +235,9 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         done,
         steps: total,
         save_states: args.save_states,
-        keep_step: search.map(|_| controls.len() - 1),
+        keep: (path.keep_steps.iter().flatten().copied())
+            .chain(search.map(|_| controls.len() - 1))
+            .collect(),
         curve: run.curve_writer()?,
         bar: &bar,
         last: String::new(),
@@ -526,8 +528,9 @@ struct StepWriter<'a> {
     done: usize,
     steps: usize,
     save_states: bool,
-    /// A step whose state is kept whatever `save_states` says: the pull-off search's start.
-    keep_step: Option<usize>,
+    /// Steps whose states are kept whatever `save_states` says: those asked for, and the
+    /// pull-off search's start.
+    keep: Vec<usize>,
     curve: CurveWriter,
     bar: &'a ProgressBar,
     /// The last finished step, shown beside the running solve's iteration and residual.
@@ -573,7 +576,7 @@ impl Observer for StepWriter<'_> {
         }
         let saved = self
             .run
-            .save_state(k, state, self.save_states || self.keep_step == Some(k))
+            .save_state(k, state, self.save_states || self.keep.contains(&k))
             .and_then(|_| self.curve.append(k, p));
         let message = format!("last: approach {:.4e} m, load {:.4e} N", r.approach, r.load);
         if self.bar.is_hidden() {

@@ -385,17 +385,26 @@ fn sweep<'py>(
             "`start_from` reads a command-line run directory; give the path from apart instead",
         ));
     }
+    if path.keep_steps.is_some() {
+        return Err(PyValueError::new_err(
+            "`keep_steps` keeps step directories of a command-line run; here the last state's \
+             fields come back, and `progress` sees every step",
+        ));
+    }
     path.fill_defaults();
+    let search = path.pull_off().py()?;
     let problem = &built.problem;
     let controls = path.controls().py()?;
     let max_step = path.max_step(problem, &controls).py()?;
     case.validate_settings(problem.adhesive()).py()?;
     let settings = case.settings();
     let mut observer = Progress::new(progress, cancel);
-    /// Keeps the last state of the sweep for the caller.
+    /// Keeps the last state of the sweep for the caller, and numbers the steps on through the
+    /// pull-off search.
     struct Last<'a> {
         inner: &'a mut Progress,
         state: Option<AdhesiveState>,
+        done: usize,
     }
     impl Observer for Last<'_> {
         fn iteration(&mut self, step: usize, iteration: usize, residual: f64) {
@@ -404,20 +413,34 @@ fn sweep<'py>(
         fn interrupted(&mut self) -> bool {
             self.inner.interrupted()
         }
-        fn step(&mut self, index: usize, point: &SweepPoint, state: &AdhesiveState) -> bool {
+        fn step(&mut self, _: usize, point: &SweepPoint, state: &AdhesiveState) -> bool {
             self.state = Some(state.clone());
-            self.inner.step(index, point, state)
+            self.done += 1;
+            self.inner.step(self.done - 1, point, state)
         }
     }
     let mut last = Last {
         inner: &mut observer,
         state: None,
+        done: 0,
     };
     let outcome = py.detach(|| {
         on_pool(threads, || {
-            problem
+            let mut points = problem
                 .sweep(&controls, max_step, &settings, None, &mut last)
-                .context("sweeping")
+                .context("sweeping")?;
+            // The pull-off search from the path's last state, when asked for and reached.
+            if let (Some(search), Some(from)) = (&search, last.state.clone())
+                && points.len() == controls.len()
+                && !last.inner.interrupted()
+            {
+                let pull = problem
+                    .pull_off(search, &settings, from, &mut last)
+                    .context("searching for the pull-off")?;
+                points.extend(pull.coarse);
+                points.extend(pull.refined);
+            }
+            Ok(points)
         })
         .and_then(|r| r)
     });

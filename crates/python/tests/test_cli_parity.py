@@ -57,3 +57,14 @@ def test_sweep_with_a_surface_in_memory(cli, tmp_path):
     rows = (tmp_path / "run" / "curve.csv").read_text().splitlines()[1:]
     assert [float(r.split(",")[2]) for r in rows] == list(result.curve["load"])
     assert [float(r.split(",")[4]) for r in rows] == list(result.curve["contact_area_fraction"])
+
+
+def test_pull_off_search_as_on_the_command_line(cli, tmp_path):
+    """A path in, then the pull-off search: the same loads, step for step, and the same force."""
+    keys = dict(SPHERE, n=32, law="point", from_=-3e-9, to=1e-9, steps=4, pull_off_step=1e-9, pull_off_floor=-8e-9)
+    cli_keys = {("from" if k == "from_" else k): v for k, v in keys.items()}
+    summary = run(cli, "sweep", cli_keys, tmp_path)
+    result = rc.sweep(**keys)
+    rows = (tmp_path / "curve.csv").read_text().splitlines()[1:]
+    assert [float(r.split(",")[2]) for r in rows] == list(result.curve["load"])
+    assert result.pull_off_force == summary["pull_off_force"] < 0

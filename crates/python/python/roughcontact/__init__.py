@@ -409,7 +409,9 @@ def sweep(
 
     The path: ``from_`` and ``to`` [m] with ``steps`` (a cycle there and back; ``from_``
     is the case file's ``from``, a Python keyword), or ``approaches`` [m], ``mean_pressures`` [Pa] or
-    ``central_gaps`` [m] as lists; ``max_step`` [m] splits longer steps. The other keys,
+    ``central_gaps`` [m] as lists; ``max_step`` [m] splits longer steps. With ``pull_off_step``
+    [m] and ``pull_off_floor`` [m] the path goes in only and the pull-off search follows it
+    (``pull_off_refinement``, ``pull_off_recovery``; ``cycle['pull_off_force']`` [N]). The other keys,
     ``case``, ``progress`` (also called with ``{'step', 'done': True, 'approach', 'load',
     'converged'}`` after every step), ``threads``, Ctrl-C and errors as in :func:`solve`.
     """

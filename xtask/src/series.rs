@@ -1,0 +1,70 @@
+//! Series of runs through `roughcontact study`: the figures' rough-sphere and challenge runs
+//! are studies of sweeps in `OUT/studies/`, so that a figure built again resumes where its
+//! runs stopped, and a study file can be run by hand across machines (`mpirun -n K
+//! roughcontact study FILE`, or a Slurm job array with `--shard`) before the figures read
+//! its finished runs (`docs/studies.md`).
+
+use anyhow::{Context as _, Result, bail};
+use std::path::{Path, PathBuf};
+
+/// One sweep of a series: its study, its run's directory name and its case keys.
+pub struct Sweep {
+    pub study: String,
+    pub name: String,
+    pub keys: toml::Table,
+}
+
+/// Runs `sweeps`, grouped by study, as `roughcontact study` would (each study file
+/// `dir/<study>.toml`, its runs in `dir/<study>/runs/`); the keys every run of a study shares
+/// form its base case, the others its zipped axes. Returns each sweep's run directory, in
+/// order; a failed run is an error.
+pub fn run(dir: &Path, sweeps: &[Sweep]) -> Result<Vec<PathBuf>> {
+    let mut studies: Vec<&str> = sweeps.iter().map(|s| s.study.as_str()).collect();
+    studies.dedup();
+    studies.sort();
+    studies.dedup();
+    for study in studies {
+        let runs: Vec<&Sweep> = sweeps.iter().filter(|s| s.study == study).collect();
+        let first = &runs[0].keys;
+        if let Some(odd) = runs.iter().find(|r| !r.keys.keys().eq(first.keys())) {
+            bail!(
+                "the runs {} and {} of study {study} set different keys",
+                runs[0].name,
+                odd.name
+            );
+        }
+        let (mut case, mut axes) = (toml::Table::new(), toml::Table::new());
+        for (key, value) in first {
+            let values: Vec<toml::Value> = runs.iter().map(|r| r.keys[key].clone()).collect();
+            if values.iter().all(|v| v == value) {
+                case.insert(key.clone(), value.clone());
+            } else {
+                axes.insert(key.clone(), values.into());
+            }
+        }
+        let mut file = toml::Table::new();
+        file.insert("command".into(), "sweep".into());
+        file.insert("combine".into(), "zip".into());
+        let names: Vec<toml::Value> = runs.iter().map(|r| r.name.clone().into()).collect();
+        file.insert("names".into(), names.into());
+        file.insert("case".into(), case.into());
+        file.insert("axes".into(), axes.into());
+        let out = dir.join(study);
+        std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+        let path = dir.join(format!("{study}.toml"));
+        std::fs::write(&path, toml::to_string(&file)?)
+            .with_context(|| format!("writing {}", path.display()))?;
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        roughcontact::study::run(&path, &out, cores.min(runs.len()), 1)?;
+    }
+    sweeps
+        .iter()
+        .map(|s| {
+            let run = dir.join(&s.study).join("runs").join(&s.name);
+            match std::fs::read_to_string(run.join("error.txt")) {
+                Ok(error) => bail!("the run {} failed: {error}", run.display()),
+                Err(_) => Ok(run),
+            }
+        })
+        .collect()
+}
