@@ -1584,9 +1584,12 @@ fn sweep_pull_off_search_is_the_library_search_and_resumes() {
         assert!(o.status.success(), "{}", stderr(&o));
         o
     };
-    sweep(&[]);
+    sweep(&["--keep-steps", "1"]);
     let s = json(&out.join("summary.json"));
     let force = s["pull_off_force"].as_f64().unwrap();
+    // The steps kept: the one asked for, and the path's last (the search's start).
+    let kept = |k: usize| out.join(format!("states/step-{k:04}/gap.npy")).exists();
+    assert!(kept(1) && kept(4) && !kept(2) && !kept(5));
 
     let mut case: case::Case = toml::from_str(CASE).unwrap();
     case.fill_defaults("unused");
@@ -1629,7 +1632,7 @@ fn sweep_pull_off_search_is_the_library_search_and_resumes() {
     let kept: Vec<&str> = csv.lines().take(1 + 7).collect();
     std::fs::write(out.join("curve.csv"), kept.join("\n") + "\n").unwrap();
     std::fs::remove_file(out.join("summary.json")).unwrap();
-    let o = sweep(&["--resume"]);
+    let o = sweep(&["--keep-steps", "1", "--resume"]);
     assert!(
         stderr(&o).contains("resuming after 5 of 5 steps"),
         "{}",
