@@ -150,11 +150,15 @@ fn solve<'a>(
             mixing = MIXING;
             velocity.fill(0.0);
         }
-        velocity.zip_mut_with(&pull, |v, &a| *v -= dt * a);
+        Zip::from(&mut velocity)
+            .and(&pull)
+            .par_for_each(|v, &a| *v -= dt * a);
         // Turn the velocity towards the force, keeping its kinetic energy (mass-weighted).
         if force_weight > 0.0 {
             let turn = mixing * (problem.kinetic(&x, &velocity) / force_weight).sqrt();
-            velocity.zip_mut_with(&pull, |v, &a| *v = (1.0 - mixing) * *v - turn * a);
+            Zip::from(&mut velocity)
+                .and(&pull)
+                .par_for_each(|v, &a| *v = (1.0 - mixing) * *v - turn * a);
         }
         // No cell of the block moves against the force on it: a cell that would climb stops
         // (inelastically, like one meeting the wall), so that inertia carries no cell over a
@@ -163,7 +167,7 @@ fn solve<'a>(
         let block = s![..problem.ny, ..problem.nx];
         Zip::from(velocity.slice_mut(block))
             .and(pull.slice(block))
-            .for_each(|v, &a| {
+            .par_for_each(|v, &a| {
                 if *v * a > 0.0 {
                     *v = 0.0
                 }
@@ -171,7 +175,7 @@ fn solve<'a>(
         problem.step_and_project(&x.gap, &velocity, dt, &mut trial.gap, None);
         Zip::from(velocity.slice_mut(block))
             .and(trial.gap.slice(block))
-            .for_each(|v, &g| {
+            .par_for_each(|v, &g| {
                 if g <= 0.0 && *v < 0.0 {
                     *v = 0.0
                 }
