@@ -1571,7 +1571,7 @@ fn sweep_pull_off_search_is_the_library_search_and_resumes() {
     let path = "from = -3e-9\nto = 1e-9\nsteps = 4\npull_off_step = 1e-9\npull_off_floor = -8e-9\n";
     std::fs::write(&config, format!("{CASE}{path}")).unwrap();
     let out = d.join("run");
-    let sweep = |extra: &[&str]| {
+    let run = |extra: &[&str]| {
         let mut a = vec![
             "sweep",
             "--config",
@@ -1580,7 +1580,10 @@ fn sweep_pull_off_search_is_the_library_search_and_resumes() {
             out.to_str().unwrap(),
         ];
         a.extend(extra);
-        let o = roughcontact(&a);
+        roughcontact(&a)
+    };
+    let sweep = |extra: &[&str]| {
+        let o = run(extra);
         assert!(o.status.success(), "{}", stderr(&o));
         o
     };
@@ -1668,16 +1671,7 @@ fn sweep_pull_off_search_is_the_library_search_and_resumes() {
             "the pull-off search follows an approach path",
         ),
     ] {
-        let mut a = vec![
-            "sweep",
-            "--config",
-            config.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--overwrite",
-        ];
-        a.extend(&extra);
-        let o = roughcontact(&a);
+        let o = run(&[&extra[..], &["--overwrite"]].concat());
         assert!(
             !o.status.success() && stderr(&o).contains(message),
             "{extra:?}: {}",
