@@ -1,8 +1,9 @@
 //! Rough spheres (Figs. 11-14): a rigid sphere R* = 100 um carrying a self-affine roughness,
 //! pressed into an elastic flat (E* = 50 GPa) with the Lennard-Jones point law (z0 = 0.3 nm)
 //! and pulled off. The paper used its surface law; the point law stands in for it because the
-//! energy descent solves it far faster, and on resolved grids the two laws' pull-offs differ by
-//! 0.3 % (docs/validation.md has both measurements). The pull-off force is the most negative
+//! energy descent solves it far faster; on resolved grids the two laws' pull-offs differ by
+//! 0.3-3 % on smooth spheres but by about 12 % on a rough one (mu = 5, Rq = 2 z0;
+//! docs/validation.md has the measurements). The pull-off force is the most negative
 //! load of a displacement-controlled unloading from a fixed preload
 //! ([`solver::ContactProblem::pull_off`]).
 
@@ -145,14 +146,13 @@ impl Job {
 
     /// The run's directory name in its study.
     fn name(&self) -> String {
-        let name = format!(
+        format!(
             "mu{}_n{}_rq{}_cutoff{}_rolloff{}_seed{}",
             self.mu, self.n, self.rq, self.cutoff_cells, self.rolloff, self.seed
-        );
-        name.replace(['/', ' '], "-")
+        )
     }
 
-    /// The run's own keys of its study: what varies between jobs. A sweep in to the preload
+    /// The run's case keys as a sweep of the command line's: in to the preload
     /// from two z0 apart in five steps, then the pull-off search: coarse unloading steps until
     /// the load has come back up from its minimum (or the sphere is far beyond the smooth
     /// sphere's pull-off distance), refined in fifths around it.
