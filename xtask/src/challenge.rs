@@ -97,9 +97,13 @@ impl Run {
             .map(|r| (r * MODULUS * g).into())
             .collect();
         keys.insert("mean_pressures".into(), loads.into());
-        if let Some(k) = self.profile_step() {
-            keys.insert("keep_steps".into(), vec![toml::Value::from(k as i64)].into());
-        }
+        // Every run sets the key, so that a study's runs set the same keys.
+        let kept: Vec<toml::Value> = self
+            .profile_step()
+            .map(|k| (k as i64).into())
+            .into_iter()
+            .collect();
+        keys.insert("keep_steps".into(), kept.into());
         let adhesive = self.case.law.is_some();
         let file = self.case.surface.is_some();
         let n = self.case.n.map_or("file".into(), |n| n.to_string());
@@ -196,23 +200,72 @@ impl Run {
     }
 }
 
-/// Runs the challenge's `runs` as studies of sweeps (`OUT/studies/challenge-*`; see
-/// [`crate::series`]), each load warm-started from the last.
+/// Every challenge run the figures being built ask for (Figs. 8-10 among `--only`).
+fn all_runs(ctx: &crate::Context) -> Result<Vec<Run>> {
+    let only = &ctx.options.only;
+    let built = |n: u32| only.is_empty() || only.contains(&n);
+    let mut all = Vec::new();
+    if built(8) || built(9) {
+        all.extend(crate::fig08::runs(ctx));
+    }
+    if built(10) {
+        all.extend(crate::fig10::runs(ctx)?.0);
+    }
+    Ok(all)
+}
+
+/// The sweeps of `runs` and of every run of the figures being built, each once: a run asked
+/// for twice (Figs. 8 and 10 share the plain one in quick mode) keeps the steps either keeps.
+pub fn sweeps(ctx: &crate::Context, runs: &[Run]) -> Result<Vec<crate::series::Sweep>> {
+    let mut sweeps: Vec<crate::series::Sweep> = Vec::new();
+    for run in all_runs(ctx)?.iter().chain(runs) {
+        let (g, ..) = crate::surface_statistics(&run.case)?;
+        let sweep = run.sweep(g)?;
+        match sweeps
+            .iter_mut()
+            .find(|s| s.study == sweep.study && s.name == sweep.name)
+        {
+            Some(same) => {
+                let steps = |s: &crate::series::Sweep| match s.keys.get("keep_steps") {
+                    Some(toml::Value::Array(a)) => a.clone(),
+                    _ => unreachable!("every sweep keeps its steps' list"),
+                };
+                let mut kept = steps(same);
+                for k in steps(&sweep) {
+                    if !kept.contains(&k) {
+                        kept.push(k);
+                    }
+                }
+                let mut keys = sweep.keys.clone();
+                keys.insert("keep_steps".into(), kept.clone().into());
+                same.keys.insert("keep_steps".into(), kept.into());
+                if keys != same.keys {
+                    bail!("two challenge runs named {} differ", sweep.name);
+                }
+            }
+            None => sweeps.push(sweep),
+        }
+    }
+    Ok(sweeps)
+}
+
+/// Runs the challenge's `runs` as studies of sweeps (`OUT/studies/challenge-*`, with every
+/// other challenge run of the figures being built; see [`crate::series`]), each load
+/// warm-started from the last.
 pub fn outcomes(ctx: &crate::Context, runs: &[Run]) -> Result<Vec<Outcome>> {
-    let stats = runs
-        .iter()
-        .map(|r| crate::surface_statistics(&r.case))
-        .collect::<Result<Vec<_>>>()?;
-    let sweeps = runs
-        .iter()
-        .zip(&stats)
-        .map(|(r, s)| r.sweep(s.0))
-        .collect::<Result<Vec<_>>>()?;
+    let sweeps = sweeps(ctx, runs)?;
     let dirs = crate::series::run(&ctx.options.out.join("studies"), &sweeps)?;
     runs.iter()
-        .zip(&dirs)
-        .zip(stats)
-        .map(|((r, d), s)| r.outcome(d, s))
+        .map(|r| {
+            let stats = crate::surface_statistics(&r.case)?;
+            let own = r.sweep(stats.0)?;
+            let (_, dir) = sweeps
+                .iter()
+                .zip(&dirs)
+                .find(|(s, _)| s.study == own.study && s.name == own.name)
+                .context("every run was swept")?;
+            r.outcome(dir, stats)
+        })
         .collect()
 }
 

@@ -9,16 +9,20 @@ use theory::rough::muser_area;
 
 const MU: f64 = 3.0;
 
-pub fn run(ctx: &Context) -> Result<FigureReport> {
+/// Each RMS gradient's work of adhesion [J/m^2] and local radius \[m\].
+pub type Works = Vec<(f64, f64)>;
+
+/// The figure's runs, without and with adhesion at each RMS gradient, and the gradients'
+/// [`Works`].
+pub fn runs(ctx: &Context) -> Result<(Vec<Run>, Works)> {
     let n = ctx.pick(256, 512);
-    let gradients = [1.0, 0.5];
     let reduced: Vec<f64> = ctx.pick(
         vec![0.0025, 0.005, 0.01, 0.02, 0.04],
         vec![0.00125, 0.0025, 0.005, 0.01, 0.02, 0.04, 0.08],
     );
     let mut runs = Vec::new();
     let mut works = Vec::new();
-    for &g in &gradients {
+    for g in [1.0, 0.5] {
         let base = challenge::case(n, g, ctx.options.challenge_surface.as_ref().filter(|_| g == 1.0));
         let (_, radius, _, _) = crate::surface_statistics(&base)?;
         let w0 = challenge::work_for_tabor(radius, MU);
@@ -32,6 +36,13 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             });
         }
     }
+    Ok((runs, works))
+}
+
+pub fn run(ctx: &Context) -> Result<FigureReport> {
+    let (n, gradients) = (ctx.pick(256, 512), [1.0, 0.5]);
+    let (runs, works) = runs(ctx)?;
+    let reduced = runs[0].reduced.clone();
     let out = challenge::outcomes(ctx, &runs)?;
     let mut report = FigureReport::new(
         10,

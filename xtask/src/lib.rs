@@ -124,8 +124,9 @@ impl Context {
     }
 }
 
-/// Builds the requested figures into `options.out` and writes `FIGURES.md` there.
-pub fn figures(options: Options) -> Result<Vec<FigureReport>> {
+/// The figures asked for, checked, and their context: the output directory made, the cache
+/// opened, the studies cleared when `fresh`.
+fn context(options: Options) -> Result<(Vec<u32>, Context)> {
     let only = if options.only.is_empty() {
         ALL.to_vec()
     } else {
@@ -140,7 +141,21 @@ pub fn figures(options: Options) -> Result<Vec<FigureReport>> {
     if options.fresh && studies.exists() {
         std::fs::remove_dir_all(&studies).with_context(|| format!("removing {}", studies.display()))?;
     }
-    let ctx = Context { options, cache };
+    Ok((only, Context { options, cache }))
+}
+
+/// Writes the study files of the requested figures' rough-sphere and challenge series into
+/// `options.out/studies` without running them; returns each file, its directory and its runs.
+pub fn write_studies(options: Options) -> Result<Vec<(PathBuf, PathBuf, usize)>> {
+    let (_, ctx) = context(options)?;
+    let mut sweeps = rough_sphere::sweeps(&ctx, &[]).1;
+    sweeps.extend(challenge::sweeps(&ctx, &[])?);
+    series::write(&ctx.options.out.join("studies"), &sweeps)
+}
+
+/// Builds the requested figures into `options.out` and writes `FIGURES.md` there.
+pub fn figures(options: Options) -> Result<Vec<FigureReport>> {
+    let (only, ctx) = context(options)?;
     let mut reports = Vec::new();
     for n in only {
         let start = Instant::now();

@@ -34,6 +34,11 @@ enum Command {
         /// runs of the studies in OUT/studies.
         #[arg(long)]
         fresh: bool,
+        /// Only write the study files of the figures' series into OUT/studies, to run them
+        /// elsewhere (`mpirun -n K roughcontact study FILE --out DIR`, or a job array with
+        /// --shard); building the figures afterwards draws from their finished runs.
+        #[arg(long)]
+        studies_only: bool,
     },
     /// Run a study that prints a table of docs/validation.md (`--list` names them).
     Study {
@@ -57,14 +62,15 @@ fn main() -> ExitCode {
 }
 
 fn run() -> Result<()> {
-    let (quick, only, out, challenge_surface, fresh) = match Cli::parse().command {
+    let (quick, only, out, challenge_surface, fresh, studies_only) = match Cli::parse().command {
         Command::Figures {
             quick,
             only,
             out,
             challenge_surface,
             fresh,
-        } => (quick, only, out, challenge_surface, fresh),
+            studies_only,
+        } => (quick, only, out, challenge_surface, fresh, studies_only),
         Command::Study { name, list } => {
             if list {
                 for (name, what) in xtask::study::STUDIES {
@@ -76,14 +82,26 @@ fn run() -> Result<()> {
         }
     };
     let out = out.unwrap_or_else(|| PathBuf::from(if quick { "figures-quick" } else { "figures" }));
-    let reports = xtask::figures(xtask::Options {
+    let options = xtask::Options {
         quick,
         only,
         out: out.clone(),
         challenge_surface,
         fresh,
         progress: true,
-    })?;
+    };
+    if studies_only {
+        for (file, dir, runs) in xtask::write_studies(options)? {
+            println!(
+                "{} ({runs} runs): roughcontact study {} --out {}",
+                file.display(),
+                file.display(),
+                dir.display()
+            );
+        }
+        return Ok(());
+    }
+    let reports = xtask::figures(options)?;
     eprintln!(
         "wrote {} figure(s) and {}",
         reports.len(),

@@ -415,10 +415,9 @@ fn all_wanted(ctx: &crate::Context) -> Vec<Spec> {
     all
 }
 
-/// The outcomes of `wanted`'s realisations. Every job of the figures being built runs in two
-/// studies (`OUT/studies/rough-spheres-smooth` and `-rough`), the first time a figure asks;
-/// later figures find their runs finished.
-pub fn points(ctx: &crate::Context, wanted: &[Spec]) -> Result<Vec<Point>> {
+/// The jobs of `wanted`'s realisations and of every point the figures being built ask for,
+/// each once, and their sweeps.
+pub fn sweeps(ctx: &crate::Context, wanted: &[Spec]) -> (Vec<Job>, Vec<crate::series::Sweep>) {
     let plan = plan(ctx);
     let mut jobs: Vec<Job> = Vec::new();
     for job in all_wanted(ctx)
@@ -430,7 +429,7 @@ pub fn points(ctx: &crate::Context, wanted: &[Spec]) -> Result<Vec<Point>> {
             jobs.push(job);
         }
     }
-    let sweeps: Vec<crate::series::Sweep> = jobs
+    let sweeps = jobs
         .iter()
         .map(|j| crate::series::Sweep {
             study: format!("rough-spheres-{}", if j.rq > 0.0 { "rough" } else { "smooth" }),
@@ -438,6 +437,15 @@ pub fn points(ctx: &crate::Context, wanted: &[Spec]) -> Result<Vec<Point>> {
             keys: j.keys(),
         })
         .collect();
+    (jobs, sweeps)
+}
+
+/// The outcomes of `wanted`'s realisations. Every job of the figures being built runs in two
+/// studies (`OUT/studies/rough-spheres-smooth` and `-rough`), the first time a figure asks;
+/// later figures find their runs finished.
+pub fn points(ctx: &crate::Context, wanted: &[Spec]) -> Result<Vec<Point>> {
+    let plan = plan(ctx);
+    let (jobs, sweeps) = sweeps(ctx, wanted);
     let dirs = crate::series::run(&ctx.options.out.join("studies"), &sweeps)?;
     let found: Vec<(Job, Outcome)> = jobs
         .iter()

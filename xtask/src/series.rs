@@ -14,15 +14,14 @@ pub struct Sweep {
     pub keys: toml::Table,
 }
 
-/// Runs `sweeps`, grouped by study, as `roughcontact study` would (each study file
-/// `dir/<study>.toml`, its runs in `dir/<study>/runs/`); the keys every run of a study shares
-/// form its base case, the others its zipped axes. Returns each sweep's run directory, in
-/// order; a failed run is an error.
-pub fn run(dir: &Path, sweeps: &[Sweep]) -> Result<Vec<PathBuf>> {
+/// Writes the study files of `sweeps`, grouped by study (`dir/<study>.toml`, its runs to go
+/// in `dir/<study>/runs/`): the keys every run of a study shares form its base case, the
+/// others its zipped axes. Returns each study's file, directory and number of runs.
+pub fn write(dir: &Path, sweeps: &[Sweep]) -> Result<Vec<(PathBuf, PathBuf, usize)>> {
     let mut studies: Vec<&str> = sweeps.iter().map(|s| s.study.as_str()).collect();
-    studies.dedup();
     studies.sort();
     studies.dedup();
+    let mut written = Vec::new();
     for study in studies {
         let runs: Vec<&Sweep> = sweeps.iter().filter(|s| s.study == study).collect();
         let first = &runs[0].keys;
@@ -54,8 +53,17 @@ pub fn run(dir: &Path, sweeps: &[Sweep]) -> Result<Vec<PathBuf>> {
         let path = dir.join(format!("{study}.toml"));
         std::fs::write(&path, toml::to_string(&file)?)
             .with_context(|| format!("writing {}", path.display()))?;
-        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-        roughcontact::study::run(&path, &out, cores.min(runs.len()), 1)?;
+        written.push((path, out, runs.len()));
+    }
+    Ok(written)
+}
+
+/// Runs `sweeps` as the studies [`write()`] writes, as `roughcontact study` would. Returns each
+/// sweep's run directory, in order; a failed run is an error.
+pub fn run(dir: &Path, sweeps: &[Sweep]) -> Result<Vec<PathBuf>> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    for (file, out, runs) in write(dir, sweeps)? {
+        roughcontact::study::run(&file, &out, cores.min(runs), 1)?;
     }
     sweeps
         .iter()
