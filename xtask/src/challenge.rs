@@ -5,7 +5,6 @@
 
 use crate::case::{Case, Law};
 use anyhow::{Context as _, Result, bail};
-use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// The challenge's box \[m\], modulus \[Pa\], and adhesion (work [J/m^2], exponential range \[m\]).
@@ -43,20 +42,19 @@ pub fn cutoff(n: usize) -> f64 {
 }
 
 /// A loading sequence on one surface.
-#[derive(Clone, Debug, Serialize, Deserialize)]
+#[derive(Clone, Debug)]
 pub struct Run {
     pub case: Case,
     /// Reduced pressures p/(E* g_bar), increasing.
     pub reduced: Vec<f64>,
     /// Reduced pressures of the unloading branch that follows, decreasing, each warm-started
     /// from the last (adhesive runs only: without adhesion the solution is unique).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub unloading: Vec<f64>,
     /// Reduced pressure at which to keep the gap along the mid cross-section.
     pub profile_at: Option<f64>,
 }
 
-#[derive(Clone, Debug, Serialize, Deserialize)]
+#[derive(Clone, Debug)]
 pub struct LoadPoint {
     pub reduced: f64,
     pub mean_pressure: f64,
@@ -68,11 +66,10 @@ pub struct LoadPoint {
     pub wall_time_s: f64,
 }
 
-#[derive(Clone, Debug, Serialize, Deserialize)]
+#[derive(Clone, Debug)]
 pub struct Outcome {
     pub points: Vec<LoadPoint>,
     /// The unloading branch (empty unless asked for).
-    #[serde(default)]
     pub unloading: Vec<LoadPoint>,
     /// Gap \[m\] along the mid cross-section x = L/2 (column nx/2), against y.
     pub profile: Vec<f64>,

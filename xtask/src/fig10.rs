@@ -8,6 +8,13 @@ use anyhow::Result;
 use theory::rough::muser_area;
 
 const MU: f64 = 3.0;
+/// The RMS gradients compared.
+const GRADIENTS: [f64; 2] = [1.0, 0.5];
+
+/// The grid (cells per side).
+fn grid(ctx: &Context) -> usize {
+    ctx.pick(256, 512)
+}
 
 /// Each RMS gradient's work of adhesion [J/m^2] and local radius \[m\].
 pub type Works = Vec<(f64, f64)>;
@@ -15,14 +22,14 @@ pub type Works = Vec<(f64, f64)>;
 /// The figure's runs, without and with adhesion at each RMS gradient, and the gradients'
 /// [`Works`].
 pub fn runs(ctx: &Context) -> Result<(Vec<Run>, Works)> {
-    let n = ctx.pick(256, 512);
+    let n = grid(ctx);
     let reduced: Vec<f64> = ctx.pick(
         vec![0.0025, 0.005, 0.01, 0.02, 0.04],
         vec![0.00125, 0.0025, 0.005, 0.01, 0.02, 0.04, 0.08],
     );
     let mut runs = Vec::new();
     let mut works = Vec::new();
-    for g in [1.0, 0.5] {
+    for g in GRADIENTS {
         let base = challenge::case(n, g, ctx.options.challenge_surface.as_ref().filter(|_| g == 1.0));
         let (_, radius, _, _) = crate::surface_statistics(&base)?;
         let w0 = challenge::work_for_tabor(radius, MU);
@@ -40,7 +47,7 @@ pub fn runs(ctx: &Context) -> Result<(Vec<Run>, Works)> {
 }
 
 pub fn run(ctx: &Context) -> Result<FigureReport> {
-    let (n, gradients) = (ctx.pick(256, 512), [1.0, 0.5]);
+    let (n, gradients) = (grid(ctx), GRADIENTS);
     let (runs, works) = runs(ctx)?;
     let reduced = runs[0].reduced.clone();
     let out = challenge::outcomes(ctx, &runs)?;

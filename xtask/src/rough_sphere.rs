@@ -9,7 +9,6 @@
 
 use crate::case::{Case, Law};
 use anyhow::{Context, Result};
-use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -42,7 +41,7 @@ pub fn process_zone(mu: u32) -> f64 {
 }
 
 /// One rough sphere.
-#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Job {
     /// Nominal Tabor parameter (2, 5, 7).
     pub mu: u32,
@@ -50,9 +49,7 @@ pub struct Job {
     pub rq: f64,
     /// Short-wavelength cutoff \[cells\].
     pub cutoff_cells: f64,
-    /// Roll-off wavelength [box sides]. Left out of the serialised job at the usual half box,
-    /// so that runs cached before it existed keep their keys.
-    #[serde(default = "half_box", skip_serializing_if = "is_half_box")]
+    /// Roll-off wavelength [box sides].
     pub rolloff: f64,
     pub seed: u64,
     pub n: usize,
@@ -60,15 +57,12 @@ pub struct Job {
     pub tolerance: f64,
 }
 
+/// The usual roll-off: half the box.
 fn half_box() -> f64 {
     0.5
 }
 
-fn is_half_box(rolloff: &f64) -> bool {
-    *rolloff == 0.5
-}
-
-#[derive(Clone, Debug, Serialize, Deserialize)]
+#[derive(Clone, Debug)]
 pub struct Outcome {
     /// Pull-off force \[N\] (positive: the tensile force needed).
     pub pull_off: f64,

@@ -210,15 +210,12 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             max_step.unwrap_or(f64::NAN)
         );
     }
-    // Steps in all: the search's coarse steps at most, and its fine ones.
-    let searched = search.map_or(0, |s| {
-        let last = match controls.last() {
-            Some(Control::Approach(a)) => *a,
-            _ => s.floor,
-        };
-        ((last - s.floor) / s.step).round().max(1.0) as usize + 2 * s.refinement - 1
-    });
-    let total = controls.len() + searched;
+    // The path's last approach, where a pull-off search starts.
+    let last = match controls.last() {
+        Some(&Control::Approach(a)) => a,
+        _ => f64::NAN,
+    };
+    let total = controls.len() + search.map_or(0, |s| s.most_steps(last));
     let bar = if crate::quiet() {
         ProgressBar::hidden()
     } else {
@@ -258,10 +255,6 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             .iter()
             .all(|p| p.report.termination != Termination::Interrupted)
     {
-        let last = match controls.last() {
-            Some(&Control::Approach(a)) => a,
-            _ => unreachable!("a pull-off path is one of approaches"),
-        };
         let from = run.resume_state(controls.len() - 1, last)?;
         let pull = on_workers(|| problem.pull_off(search, &settings, from, &mut writer))?;
         points.extend(pull.coarse);

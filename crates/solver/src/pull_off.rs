@@ -39,6 +39,16 @@ pub struct PullOff {
 }
 
 impl PullOffSearch {
+    /// The steps a search from approach `from` \[m\] solves at most: its coarse steps to the
+    /// floor and its fine ones.
+    pub fn most_steps(&self, from: f64) -> usize {
+        self.coarse_steps(from) + 2 * self.refinement.max(1) - 1
+    }
+
+    fn coarse_steps(&self, from: f64) -> usize {
+        ((from - self.floor) / self.step).round().max(1.0) as usize
+    }
+
     fn check(&self, from: f64) -> Result<()> {
         if !(self.step.is_finite() && self.step > 0.0) {
             return Err(invalid(
@@ -126,7 +136,7 @@ impl ContactProblem {
     ) -> Result<PullOff> {
         let from = start.contact.approach;
         search.check(from)?;
-        let steps = ((from - search.floor) / search.step).round().max(1.0) as usize;
+        let steps = search.coarse_steps(from);
         let path: Vec<Control> = (1..=steps)
             .map(|k| Control::Approach(from - k as f64 * search.step))
             .collect();
