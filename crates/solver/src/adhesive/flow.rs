@@ -28,12 +28,11 @@
 //! without a local potential, whose stiffness is probed).
 
 use super::driver::Driver;
-use super::gap_problem::{Energy, Point, Setup, check_control, finish, setup};
+use super::gap_problem::{Energy, Point, Problem, Setup, check_control, finish, setup};
 use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job};
 use crate::error::{Result, SolverError};
 use crate::report::Termination;
-use crate::sum::dot_rows;
-use ndarray::{Array2, Zip, s};
+use ndarray::Array2;
 use std::time::Instant;
 
 /// The first time step, in units of a cell's period `sqrt(M / S_ii)` over `2 pi`.
@@ -129,61 +128,88 @@ fn solve<'a>(
         }
         steps += 1;
         let [force_weight, _] = problem.precondition(&x, &x.gradient, &mut pull);
+        let mut stopped = false;
         if driver.since_progress(steps, sums.max * scale) > STALL {
             // Cells chattering about a state the step is too long to settle in.
             max_step = (max_step * CUT).max(SAFE_STEP);
             dt = dt.min(max_step);
-            velocity.fill(0.0);
+            stopped = true;
             driver.restart_stall_count(steps);
         }
+        let moments = Moments::of(&problem, &x, &velocity, &pull);
         // The force's power on the velocity: stop when it turns against it.
-        let power = -dot_rows(x.gradient.view(), velocity.view());
-        if power > 0.0 {
+        if stopped {
+        } else if moments.power > 0.0 {
             working += 1;
             if working > DELAY {
                 dt = (dt * GROWTH).min(max_step);
                 mixing *= MIXING_DECAY;
             }
-        } else if power < 0.0 {
+        } else if moments.power < 0.0 {
             working = 0;
             dt = (dt * CUT).max(MIN_STEP);
             mixing = MIXING;
-            velocity.fill(0.0);
+            stopped = true;
         }
-        Zip::from(&mut velocity)
-            .and(&pull)
-            .par_for_each(|v, &a| *v -= dt * a);
-        // Turn the velocity towards the force, keeping its kinetic energy (mass-weighted).
-        if force_weight > 0.0 {
-            let turn = mixing * (problem.kinetic(&x, &velocity) / force_weight).sqrt();
-            Zip::from(&mut velocity)
-                .and(&pull)
-                .par_for_each(|v, &a| *v = (1.0 - mixing) * *v - turn * a);
-        }
-        // No cell of the block moves against the force on it: a cell that would climb stops
-        // (inelastically, like one meeting the wall), so that inertia carries no cell over a
-        // barrier of its own, and a cell falling into the law's well does not bounce off its
-        // core, whose stiffness the mass of the step before does not know.
-        let block = s![..problem.ny, ..problem.nx];
-        Zip::from(velocity.slice_mut(block))
-            .and(pull.slice(block))
-            .par_for_each(|v, &a| {
-                if *v * a > 0.0 {
-                    *v = 0.0
-                }
-            });
-        problem.step_and_project(&x.gap, &velocity, dt, &mut trial.gap, None);
-        Zip::from(velocity.slice_mut(block))
-            .and(trial.gap.slice(block))
-            .par_for_each(|v, &g| {
-                if g <= 0.0 && *v < 0.0 {
-                    *v = 0.0
-                }
-            });
+        // The velocity `v - dt M^-1 r`, turned towards the force keeping its kinetic energy
+        // (mass-weighted).
+        let (keep, turn) = if force_weight > 0.0 {
+            let kinetic = moments.kinetic_after(dt, stopped);
+            (1.0 - mixing, mixing * (kinetic / force_weight).sqrt())
+        } else {
+            (1.0, 0.0)
+        };
+        let pulls = crate::fields::flat(&pull);
+        problem.move_cells(&x.gap, &mut velocity, dt, &mut trial.gap, |v, k, inside| {
+            let a = pulls[k];
+            let v = keep * (if stopped { 0.0 } else { v } - dt * a) - turn * a;
+            // No cell of the block moves against the force on it: a cell that would climb
+            // stops (inelastically, like one meeting the wall), so that inertia carries no
+            // cell over a barrier of its own, and a cell falling into the law's well does not
+            // bounce off its core, whose stiffness the mass of the step before does not know.
+            if inside && v * a > 0.0 { 0.0 } else { v }
+        });
         problem.evaluate(&mut trial)?;
         std::mem::swap(&mut x, &mut trial);
         sums = problem.project_gradient(&mut x);
     }
     let outcome = driver.finish(Iterations::Flow { steps }, problem.calls);
     Ok(finish(job, &problem, x, &sums, (delta, load), outcome))
+}
+
+/// The sums over the cells a step needs of the velocity `v` and the pull `a = M^-1 r`.
+struct Moments {
+    /// The force's power on the velocity, `-<r, v>`.
+    power: f64,
+    /// `sum m v^2`, `sum m v a` and `sum m a^2`.
+    vv: f64,
+    va: f64,
+    aa: f64,
+}
+
+impl Moments {
+    fn of(problem: &Problem, x: &Point, velocity: &Array2<f64>, pull: &Array2<f64>) -> Moments {
+        use crate::fields::flat;
+        let mx = problem.mx;
+        let (rs, cs, vs, ps) = (flat(&x.gradient), flat(&x.curvature), flat(velocity), flat(pull));
+        let [power, vv, va, aa] = crate::sum::ordered(problem.my, |j| {
+            let mut sums = [0.0; 4];
+            for i in 0..mx {
+                let k = j * mx + i;
+                let (m, v, a) = (problem.mass(cs, j, i, k), vs[k], ps[k]);
+                sums[0] -= rs[k] * v;
+                sums[1] += m * v * v;
+                sums[2] += m * v * a;
+                sums[3] += m * a * a;
+            }
+            sums
+        });
+        Moments { power, vv, va, aa }
+    }
+
+    /// `sum m (v - dt a)^2`, with `v = 0` if `stopped`.
+    fn kinetic_after(&self, dt: f64, stopped: bool) -> f64 {
+        let (vv, va) = if stopped { (0.0, 0.0) } else { (self.vv, self.va) };
+        (vv - 2.0 * dt * va + dt * dt * self.aa).max(0.0)
+    }
 }

@@ -243,6 +243,62 @@ impl Problem<'_> {
             });
     }
 
+    /// Updates each cell's velocity \[m per time unit\] to `new(v, k, inside)` (`k` its flat
+    /// index, `inside` whether it is on the domain's block) and moves the cells by `step` times
+    /// it, as [`Problem::step_and_project`] would; a cell that ends on the wall keeps no
+    /// velocity into it. Without a prescribed mean gap this is one pass over the fields.
+    pub(super) fn move_cells(
+        &mut self,
+        from: &Array2<f64>,
+        velocity: &mut Array2<f64>,
+        step: f64,
+        gap: &mut Array2<f64>,
+        new: impl Fn(f64, usize, bool) -> f64 + Sync,
+    ) {
+        let (mx, nx, ny) = (self.mx, self.nx, self.ny);
+        if self.mean_gap.is_some() {
+            // The shift that keeps the mean needs every cell's step first.
+            flat_mut(velocity)
+                .par_chunks_mut(mx)
+                .enumerate()
+                .for_each(|(j, vr)| {
+                    for (i, v) in vr.iter_mut().enumerate() {
+                        *v = new(*v, j * mx + i, j < ny && i < nx);
+                    }
+                });
+            self.step_and_project(from, velocity, step, gap, None);
+            Zip::from(velocity.slice_mut(s![..ny, ..nx]))
+                .and(gap.slice(s![..ny, ..nx]))
+                .par_for_each(|v, &g| {
+                    if g <= 0.0 && *v < 0.0 {
+                        *v = 0.0
+                    }
+                });
+            return;
+        }
+        let (fs, bs) = (flat(from), flat(&self.base));
+        flat_mut(gap)
+            .par_chunks_mut(mx)
+            .zip(flat_mut(&mut self.scratch).par_chunks_mut(mx))
+            .zip(flat_mut(velocity).par_chunks_mut(mx))
+            .enumerate()
+            .for_each(|(j, ((gr, ur), vr))| {
+                for i in 0..mx {
+                    let (k, inside) = (j * mx + i, j < ny && i < nx);
+                    let (f, v) = (fs[k], new(vr[i], k, inside));
+                    gr[i] = if !inside {
+                        f + step * v
+                    } else if f <= 0.0 && v == 0.0 {
+                        f
+                    } else {
+                        (f + step * v).max(0.0)
+                    };
+                    vr[i] = if inside && gr[i] <= 0.0 && v < 0.0 { 0.0 } else { v };
+                    ur[i] = gr[i] - bs[k];
+                }
+            });
+    }
+
     /// Fills `at`'s fields, energy and raw gradient from its admissible gap, just made by
     /// [`Problem::step_and_project`].
     pub(super) fn evaluate(&mut self, at: &mut Point) -> Result<()> {
@@ -366,6 +422,24 @@ impl Problem<'_> {
             0.0
         };
         let gs = flat(&at.gap);
+        if self.mean_gap.is_none() {
+            // No multiplier and no mean to keep: one pass.
+            let max = flat_mut(&mut at.gradient)
+                .par_chunks_mut(mx)
+                .enumerate()
+                .map(|(j, row)| {
+                    let mut max: f64 = 0.0;
+                    for (i, (r, &g)) in row.iter_mut().zip(&gs[j * mx..][..mx]).enumerate() {
+                        if on_wall(j, i, g, nx, ny) && *r >= 0.0 {
+                            *r = 0.0;
+                        }
+                        max = max.max(r.abs());
+                    }
+                    max
+                })
+                .reduce(|| 0.0, f64::max);
+            return GradientSums { lambda, max };
+        }
         let [sum, moving] = {
             let rs = flat_mut(&mut at.gradient);
             let parts: Vec<[f64; 2]> = rs
@@ -456,24 +530,9 @@ impl Problem<'_> {
         parts.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
     }
 
-    /// `sum m v^2` over the unknown, with `m` the mass of [`Problem::precondition`]: twice the
-    /// kinetic energy of `velocity` (in the flow's units), summed in a fixed order.
-    pub(super) fn kinetic(&self, at: &Point, velocity: &Array2<f64>) -> f64 {
-        let mx = self.mx;
-        let (cs, vs) = (flat(&at.curvature), flat(velocity));
-        let [sum] = crate::sum::ordered(self.my, |j| {
-            let row = (0..mx).map(|i| {
-                let k = j * mx + i;
-                self.mass(cs, j, i, k) * vs[k] * vs[k]
-            });
-            [row.sum()]
-        });
-        sum
-    }
-
     /// Cell `(j, i)`'s mass \[Pa/m\], `k` its flat index and `curvature` the law's stiffness
     /// field: `S_ii + max(V'', 0)` on the domain's block, `S_ii` in the padding.
-    fn mass(&self, curvature: &[f64], j: usize, i: usize, k: usize) -> f64 {
+    pub(super) fn mass(&self, curvature: &[f64], j: usize, i: usize, k: usize) -> f64 {
         if j < self.ny && i < self.nx {
             self.diagonal + curvature[k].max(0.0)
         } else {
