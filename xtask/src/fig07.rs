@@ -158,14 +158,27 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         .map(|((j, i), &p)| (p - total[(n - 1 - j, n - 1 - i)]).abs())
         .fold(0.0, f64::max)
         / scale;
+    // Where the attraction sits: the centroid of the adhesive pressure, in cells from the apex.
+    let centre = (n - 1) as f64 / 2.0;
+    let (mut weight, mut sx, mut sy) = (0.0, 0.0, 0.0);
+    for ((j, i), &p) in total.indexed_iter() {
+        let w = (compressive[(j, i)] - p).max(0.0);
+        (weight, sx, sy) = (
+            weight + w,
+            sx + w * (i as f64 - centre),
+            sy + w * (j as f64 - centre),
+        );
+    }
+    let (lean_x, lean_y) = (sx / weight, sy / weight);
     report.agreement.push(format!(
-        "Symmetry about the apex: largest difference between mirror cells {:.1} % of the largest |pressure|{}.",
+        "Symmetry about the apex: largest difference between mirror cells {:.1} % of the largest |pressure|; the \
+         adhesive pressure's centroid lies {lean_x:+.3} cells along x and {lean_y:+.3} along y from the apex{}.",
         100.0 * asymmetry,
         if asymmetry > 0.01 {
-            " — the paper's surface law (Eq. 11) averages each cell's pressure between its node and the +x \
-             neighbour, half a cell off the node, so the adhesive ring leans towards +x and +y (largest at \
-             the contact edge, where the gap rises by about z0 within a cell); the point law gives the same \
-             problem a field symmetric to 6e-6 (measured at 128², α = 1 z0)"
+            " — the paper's surface law (Eq. 11) gives each node the mean of the law between its gap and its +x \
+             neighbour's and an area factor from both slopes, a one-sided difference, so the field is not \
+             mirror-symmetric (largest at the contact edge, where the gap rises by about z0 within a cell); the \
+             point law gives the same problem a field symmetric to 6e-6 (measured at 128², α = 1 z0)"
         } else {
             ""
         }

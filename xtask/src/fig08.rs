@@ -84,12 +84,12 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
     let mut table = Table::new(
         "fig08",
         &[
-            "reduced_pressure",
-            "area_no_adhesion",
-            "area_adhesion",
-            "area_adhesion_unloading",
-            "persson",
-            "muser_k2",
+            "p_over_e_star_g_bar",
+            "area_fraction_no_adhesion",
+            "area_fraction_adhesion",
+            "area_fraction_adhesion_unloading",
+            "area_fraction_persson",
+            "area_fraction_muser_k2",
             "converged_both",
         ],
     );
@@ -156,7 +156,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         PALETTE[3],
     ));
     chart.curves.push(Curve::solved(
-        "BEM, adhesion, unloading",
+        "BEM, adhesion, unloading (lattice-trapped: cells far coarser than the process zone)",
         back.iter()
             .map(|p| (p.reduced, p.contact_area_fraction, p.converged))
             .collect(),

@@ -60,9 +60,9 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         &[
             "rms_gradient",
             "mean_pressure_pa",
-            "area_no_adhesion",
-            "area_adhesion",
-            "muser_k2",
+            "area_fraction_no_adhesion",
+            "area_fraction_adhesion",
+            "area_fraction_muser_k2",
             "converged",
         ],
     );
@@ -140,6 +140,25 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             sticky.points.len()
         ));
     }
+    let lightest: Vec<String> = gradients
+        .iter()
+        .enumerate()
+        .map(|(i, g)| {
+            let (plain, sticky) = (&out[2 * i].points[0], &out[2 * i + 1].points[0]);
+            format!(
+                "ḡ = {g}: {:.2} over Müser's curve, {:.2} over our non-adhesive run",
+                sticky.contact_area_fraction / muser_area(sticky.reduced, 2.0),
+                sticky.contact_area_fraction / plain.contact_area_fraction
+            )
+        })
+        .collect();
+    report.agreement.push(format!(
+        "The paper states that at small pressures adhesion raises the contact area by a factor of 2 to 3. Here, at \
+         the lightest load: {}. Not reproduced; what differs from the paper is the law (the exponential law \
+         stands in for Lennard-Jones), the grid (cells far coarser than the process zone, where a cell holds on \
+         or lets go whole) and the surface's short cutoff; which of them accounts for the gap is not measured.",
+        lightest.join("; ")
+    ));
     report.computed.insert(
         0,
         format!(

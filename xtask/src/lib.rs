@@ -29,6 +29,27 @@ pub mod fig14;
 pub mod plot;
 pub mod report;
 pub mod rough_sphere;
+
+/// The colour of Tabor parameter `mu` (the paper's 0.1-7), the same in every figure.
+pub fn tabor_colour(mu: f64) -> plotters::style::RGBColor {
+    use plot::PALETTE;
+    use plotters::style::RGBColor;
+    const COLOURS: [(f64, RGBColor); 8] = [
+        (0.1, RGBColor(23, 190, 207)),
+        (0.2, RGBColor(188, 189, 34)),
+        (0.3, RGBColor(227, 119, 194)),
+        (1.0, PALETTE[4]),
+        (2.0, PALETTE[0]),
+        (3.0, PALETTE[1]),
+        (5.0, PALETTE[5]),
+        (7.0, PALETTE[2]),
+    ];
+    COLOURS
+        .iter()
+        .min_by(|a, b| (a.0 - mu).abs().total_cmp(&(b.0 - mu).abs()))
+        .expect("colours")
+        .1
+}
 pub mod series;
 pub mod sphere;
 pub mod study;

@@ -386,6 +386,11 @@ impl Point {
         mean_std(&v)
     }
 
+    /// The standard error of the mean pull-off [pi R w0] over the realisations.
+    pub fn standard_error(&self) -> f64 {
+        self.pull_off().1 / (self.outcomes.len() as f64).sqrt()
+    }
+
     pub fn mean(&self, f: impl Fn(&Outcome) -> f64) -> f64 {
         self.outcomes.iter().map(f).sum::<f64>() / self.outcomes.len() as f64
     }
@@ -515,7 +520,7 @@ impl PullOffFigure<'_> {
         x: impl Fn(&Point) -> f64,
         extra: Vec<crate::plot::Curve>,
     ) -> Result<(crate::FigureReport, Vec<MuCurve>)> {
-        use crate::plot::{Chart, Curve, Mark, PALETTE};
+        use crate::plot::{Chart, Curve, Mark};
         let mut report = crate::FigureReport::new(self.number, self.title);
         let mut table = crate::Table::new(
             format!("fig{}", self.number),
@@ -524,10 +529,25 @@ impl PullOffFigure<'_> {
                 "rq_nominal_z0",
                 self.roughness_column.0,
                 self.x_name,
-                "pull_off_over_pi_r_w0",
-                "std",
+                "pull_off_pi_r_w0",
+                "std_pi_r_w0",
+                "standard_error_pi_r_w0",
                 "realisations",
                 "all_converged",
+            ],
+        );
+        let mut each = crate::Table::new(
+            format!("fig{}_realisations", self.number),
+            &[
+                "mu",
+                "rq_nominal_z0",
+                self.roughness_column.0,
+                "seed",
+                self.x_name,
+                "rq_measured_nm",
+                "rms_gradient_measured",
+                "pull_off_pi_r_w0",
+                "converged",
             ],
         );
         let mut chart = Chart::new(self.title, self.x_label, "pull-off force F/(πRw0)");
@@ -537,20 +557,23 @@ impl PullOffFigure<'_> {
         let mut mus: Vec<u32> = points.iter().map(|p| p.spec.mu).collect();
         mus.dedup();
         let mut curves = Vec::new();
-        for (i, &mu) in mus.iter().enumerate() {
+        for &mu in &mus {
             // A point is converged when every realisation's sweep is.
             let mut pts: Vec<(f64, f64, f64, bool)> = points
                 .iter()
                 .filter(|p| p.spec.mu == mu)
                 .map(|p| {
-                    let (m, s) = p.pull_off();
-                    (x(p), m, s, p.outcomes.iter().all(|o| o.all_converged))
+                    let all = p.outcomes.iter().all(|o| o.all_converged);
+                    (x(p), p.pull_off().0, p.standard_error(), all)
                 })
                 .collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let color = PALETTE[[0, 3, 2][i % 3]];
+            let color = crate::tabor_colour(mu as f64);
             chart.curves.push(Curve::solved(
-                format!("μ = {mu} (w0 = {} J/m²)", work_of_adhesion(mu)),
+                format!(
+                    "μ = {mu} (w0 = {} J/m²): mean ± standard error",
+                    work_of_adhesion(mu)
+                ),
                 pts.iter().map(|p| (p.0, p.1, p.3)).collect(),
                 Mark::ErrorBars(pts.iter().map(|p| p.2).collect()),
                 color,
@@ -563,31 +586,49 @@ impl PullOffFigure<'_> {
             ));
             curves.push((mu, pts.iter().map(|p| (p.0, p.1)).collect()));
         }
+        let plan = plan(ctx);
         for p in points {
             let (m, s) = p.pull_off();
+            let (mu, rq, roughness) = (p.spec.mu as f64, p.spec.rq, (self.roughness_column.1)(&p.spec));
             table.push(vec![
-                p.spec.mu as f64,
-                p.spec.rq,
-                (self.roughness_column.1)(&p.spec),
+                mu,
+                rq,
+                roughness,
                 x(p),
                 m,
                 s,
+                p.standard_error(),
                 p.outcomes.len() as f64,
                 p.outcomes.iter().all(|o| o.all_converged) as u8 as f64,
             ]);
+            for (job, o) in realisations(&plan, p.spec).iter().zip(&p.outcomes) {
+                each.push(vec![
+                    mu,
+                    rq,
+                    roughness,
+                    job.seed as f64,
+                    x(p),
+                    o.rq * 1e9,
+                    o.rms_gradient,
+                    o.pull_off / job.force_unit(),
+                    o.all_converged as u8 as f64,
+                ]);
+            }
             report.solver_seconds += p.outcomes.iter().map(|o| o.wall_time_s).sum::<f64>();
         }
         report.save(&[chart], &ctx.options.out, &format!("fig{}", self.number))?;
         report.tables.push(table);
-        let plan = plan(ctx);
+        report.tables.push(each);
         report.computed.push(format!(
             "Rigid sphere R* = 100 µm with self-affine roughness (H = 0.8, roll-off at half the box and short \
              cutoff at 4 cells unless said otherwise, Rq as on the axis) on a free grid of side 3.5 JKR zero-load \
              contact radii a0, E* = 50 GPa, z0 = 0.3 nm, Lennard-Jones point law solved by the energy descent \
              (the paper's surface law has no energy, and its dual loop needs 20-40 min a run at μ = 5: see \
-             docs/validation.md), tolerance {:e} z0; {} seeds per rough point (error bars: ± one standard deviation).",
+             docs/validation.md), tolerance {:e} z0; {} seeds per rough point (error bars: ± one standard error of the mean; each realisation's pull-off in \
+             fig{}_realisations.csv).",
             plan.tolerance,
             plan.seeds.len(),
+            self.number,
         ));
         report.computed.push(format!("Grids: {}.", plan.resolution(&mus)));
         let skipped: Vec<String> = plan

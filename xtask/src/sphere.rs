@@ -338,9 +338,9 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
         &[
             "mu",
             "control",
-            "approach",
-            "load",
-            "central_gap",
+            "approach_z0",
+            "load_2pi_r_w0",
+            "central_gap_z0",
             "contact_area_fraction",
             "unloading",
             "converged",
@@ -348,10 +348,10 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
     );
     let mut theory_table = Table::new(
         format!("fig{number:02}_greenwood"),
-        &["mu", "approach", "load", "central_separation"],
+        &["mu", "approach_z0", "load_2pi_r_w0", "central_separation_z0"],
     );
     for (i, (&mu, g)) in mus.iter().zip(&theory).enumerate() {
-        let color = PALETTE[i];
+        let color = crate::tabor_colour(mu);
         let st = setup(mu, n);
         let mut chart = Chart::new(
             format!("Smooth sphere, μ = {mu}"),
