@@ -184,5 +184,13 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         }
     ));
     report.tables.push(table);
+    report.claim = "The contact pressure of a smooth adhesive sphere: a compressive core ringed by a narrow \
+                    tensile zone at the law's peak stress (map and mid-plane section)."
+        .into();
+    report.verdict = format!(
+        "Reproduced: a compressive core ringed by tension peaking at {:.2} times the law's peak stress; the ring \
+         is not mirror-symmetric with the paper's surface law (see above).",
+        -min / field.peak_adhesive_stress
+    );
     Ok(report)
 }

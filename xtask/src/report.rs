@@ -49,10 +49,16 @@ pub struct FigureReport {
     pub mode: String,
     /// Image stems (each written as PNG and SVG).
     pub images: Vec<String>,
+    /// The paper's claim for the figure, in a sentence.
+    #[serde(default)]
+    pub claim: String,
     /// What was computed: grids, parameters, seeds, deviations from the paper.
     pub computed: Vec<String>,
     /// Measured agreement with the reference, with numbers.
     pub agreement: Vec<String>,
+    /// Reproduced, partly or not, and why, from the numbers above.
+    #[serde(default)]
+    pub verdict: String,
     pub tables: Vec<Table>,
     /// Plotted points whose solve did not converge (drawn hollow).
     #[serde(default)]
@@ -99,8 +105,8 @@ impl FigureReport {
 }
 
 /// Writes `FIGURES.md` into the output directory from every figure report found there
-/// (`figNN.json`): per figure, the picture, what was computed and how well it agrees with its
-/// reference.
+/// (`figNN.json`): per figure, the paper's claim, the picture, what was computed, how well it
+/// agrees with its reference and the verdict.
 pub fn write_markdown(options: &Options) -> Result<()> {
     let mut reports = Vec::new();
     for n in crate::ALL {
@@ -125,6 +131,9 @@ pub fn write_markdown(options: &Options) -> Result<()> {
         writeln!(s, "## Figure {}: {} ({} mode)\n", r.number, r.title, r.mode)?;
         for img in &r.images {
             writeln!(s, "![Figure {} ({img})]({img}.png)\n", r.number)?;
+        }
+        if !r.claim.is_empty() {
+            writeln!(s, "**The paper.** {}\n", r.claim)?;
         }
         writeln!(s, "**Computed.**\n")?;
         for line in &r.computed {
@@ -152,6 +161,9 @@ pub fn write_markdown(options: &Options) -> Result<()> {
             writeln!(s, "- {line}")?;
         }
         writeln!(s)?;
+        if !r.verdict.is_empty() {
+            writeln!(s, "**Verdict.** {}\n", r.verdict)?;
+        }
     }
     let path = options.out.join("FIGURES.md");
     std::fs::write(&path, s).with_context(|| format!("writing {}", path.display()))?;

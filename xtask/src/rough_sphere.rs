@@ -51,6 +51,8 @@ pub struct Job {
     pub cutoff_cells: f64,
     /// Roll-off wavelength [box sides].
     pub rolloff: f64,
+    /// Hurst exponent of the roughness.
+    pub hurst: f64,
     pub seed: u64,
     pub n: usize,
     /// Outer tolerance (mean gap error \[z0\]).
@@ -61,6 +63,9 @@ pub struct Job {
 fn half_box() -> f64 {
     0.5
 }
+
+/// The paper's Hurst exponent.
+pub const HURST: f64 = 0.8;
 
 #[derive(Clone, Debug)]
 pub struct Outcome {
@@ -85,6 +90,7 @@ impl Job {
             rq: 0.0,
             cutoff_cells: 0.0,
             rolloff: half_box(),
+            hurst: HURST,
             seed: 0,
             n,
             tolerance,
@@ -130,7 +136,7 @@ impl Job {
         };
         if self.rq > 0.0 {
             c.rms_height = Some(self.rq * Z0);
-            c.hurst = Some(0.8);
+            c.hurst = Some(self.hurst);
             c.rolloff_wavelength = Some(self.rolloff * l);
             c.cutoff_wavelength = Some(self.cutoff_cells * l / self.n as f64);
             c.seed = Some(self.seed);
@@ -141,8 +147,8 @@ impl Job {
     /// The run's directory name in its study.
     fn name(&self) -> String {
         format!(
-            "mu{}_n{}_rq{}_cutoff{}_rolloff{}_seed{}",
-            self.mu, self.n, self.rq, self.cutoff_cells, self.rolloff, self.seed
+            "mu{}_n{}_rq{}_cutoff{}_rolloff{}_h{}_seed{}",
+            self.mu, self.n, self.rq, self.cutoff_cells, self.rolloff, self.hurst, self.seed
         )
     }
 
@@ -177,7 +183,7 @@ impl Job {
         if self.rq > 0.0 {
             let case = self.case();
             keys.extend([
-                ("hurst", 0.8.into()),
+                ("hurst", self.hurst.into()),
                 ("rms_height", case.rms_height.expect("rough").into()),
                 (
                     "rolloff_wavelength",
@@ -245,8 +251,8 @@ pub struct Plan {
     pub seeds: Vec<u64>,
     /// RMS roughnesses \[z0\] of Figs. 11, 13, 14.
     pub rqs: Vec<f64>,
-    /// Roll-off wavelengths [box sides] of Fig. 12 (at Rq = 2 z0).
-    pub rolloffs: Vec<f64>,
+    /// Hurst exponents of Fig. 12 (at Rq = 2 z0): they set the RMS gradient.
+    pub hursts: Vec<f64>,
     /// Outer tolerance \[z0\]: 1e-5 (the paper's 1e-6 stalls on some steps of these bistable
     /// problems and moves the pull-off by less than 1e-4 relative where both converge).
     pub tolerance: f64,
@@ -261,7 +267,7 @@ pub fn plan(ctx: &crate::Context) -> Plan {
         max_n: ctx.pick(64, 512),
         seeds: ctx.pick(vec![1, 2], vec![1, 2, 3]),
         rqs: ctx.pick(vec![0.0, 1.0, 2.0, 4.0, 8.0], vec![0.0, 1.0, 2.0, 4.0, 8.0]),
-        rolloffs: ctx.pick(vec![0.5, 0.25, 0.125], vec![0.5, 0.25, 0.125, 0.0625]),
+        hursts: ctx.pick(vec![0.8, 0.5, 0.2], vec![0.8, 0.6, 0.4, 0.2]),
         tolerance: 1e-5,
         mus: ctx.pick(
             [vec![2], vec![2], vec![2]],
@@ -331,6 +337,8 @@ pub struct Spec {
     pub cutoff_cells: f64,
     /// Roll-off wavelength [box sides].
     pub rolloff: f64,
+    /// Hurst exponent.
+    pub hurst: f64,
 }
 
 impl Spec {
@@ -341,6 +349,7 @@ impl Spec {
             rq,
             cutoff_cells: 4.0,
             rolloff: half_box(),
+            hurst: HURST,
         }
     }
 }
@@ -358,6 +367,7 @@ pub fn realisations(plan: &Plan, spec: Spec) -> Vec<Job> {
                     rq: spec.rq,
                     cutoff_cells: spec.cutoff_cells,
                     rolloff: spec.rolloff,
+                    hurst: spec.hurst,
                     seed,
                     ..smooth
                 }
@@ -620,7 +630,7 @@ impl PullOffFigure<'_> {
         report.tables.push(table);
         report.tables.push(each);
         report.computed.push(format!(
-            "Rigid sphere R* = 100 µm with self-affine roughness (H = 0.8, roll-off at half the box and short \
+            "Rigid sphere R* = 100 µm with self-affine roughness (H = 0.8 unless said otherwise, roll-off at half the box and short \
              cutoff at 4 cells unless said otherwise, Rq as on the axis) on a free grid of side 3.5 JKR zero-load \
              contact radii a0, E* = 50 GPa, z0 = 0.3 nm, Lennard-Jones point law solved by the energy descent \
              (the paper's surface law has no energy, and its dual loop needs 20-40 min a run at μ = 5: see \
@@ -672,6 +682,54 @@ impl PullOffFigure<'_> {
     }
 }
 
+/// How [`largest_spread`] measures the collapse of curves, for the reports.
+pub const SPREAD: &str = "largest (max - min) / mean of the curves over the range of the abscissa they all cover, \
+                          at 16 points evenly in its logarithm";
+
+/// `curve`'s value at `x`, linear in `ln x` between its points (sorted by x, x > 0); `None`
+/// outside them.
+pub fn at_log(curve: &[(f64, f64)], x: f64) -> Option<f64> {
+    curve.windows(2).find_map(|w| {
+        let ((x0, y0), (x1, y1)) = (w[0], w[1]);
+        (x0 > 0.0 && x0 <= x && x <= x1).then(|| {
+            let t = if x1 > x0 {
+                (x / x0).ln() / (x1 / x0).ln()
+            } else {
+                0.0
+            };
+            y0 + t * (y1 - y0)
+        })
+    })
+}
+
+/// The largest `(max - min) / mean` of the curves' values over the x range they all cover,
+/// sampled at 16 points evenly in `ln x`; `None` when they share no range.
+pub fn largest_spread(curves: &[Vec<(f64, f64)>]) -> Option<f64> {
+    let positive = |c: &Vec<(f64, f64)>| c.iter().map(|p| p.0).filter(|&x| x > 0.0).collect::<Vec<_>>();
+    let lo = curves
+        .iter()
+        .map(|c| positive(c).into_iter().fold(f64::INFINITY, f64::min))
+        .fold(0.0, f64::max);
+    let hi = curves
+        .iter()
+        .map(|c| positive(c).into_iter().fold(0.0, f64::max))
+        .fold(f64::INFINITY, f64::min);
+    if !(lo > 0.0 && hi > lo) {
+        return None;
+    }
+    (0..16)
+        .map(|k| {
+            let x = lo * (hi / lo).powf(k as f64 / 15.0);
+            let ys: Vec<f64> = curves.iter().filter_map(|c| at_log(c, x)).collect();
+            let mean = ys.iter().sum::<f64>() / ys.len() as f64;
+            let (min, max) = ys.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &y| {
+                (a.min(y), b.max(y))
+            });
+            (max - min) / mean
+        })
+        .reduce(f64::max)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -701,7 +759,7 @@ mod tests {
             max_n: 256,
             seeds: vec![1],
             rqs: vec![],
-            rolloffs: vec![],
+            hursts: vec![],
             tolerance: 1e-5,
             mus: [vec![2, 5], vec![5, 7], vec![2, 5, 7]],
         };
@@ -718,5 +776,19 @@ mod tests {
         assert_eq!(plan.n_for(7), 256);
         assert_eq!(plan.mus_run(12), vec![5]);
         assert_eq!(plan.mus_run(13), vec![2, 5]);
+    }
+
+    #[test]
+    fn spread_at_equal_abscissa() {
+        let a = vec![(1.0, 2.0), (4.0, 1.0)];
+        // Linear in ln x: halfway in the logarithm at x = 2.
+        assert!((at_log(&a, 2.0).unwrap() - 1.5).abs() < 1e-12);
+        assert_eq!(at_log(&a, 8.0), None);
+        // Identical curves do not spread; a curve twice as high spreads by 2/3 of the mean.
+        assert_eq!(largest_spread(&[a.clone(), a.clone()]), Some(0.0));
+        let b: Vec<(f64, f64)> = a.iter().map(|&(x, y)| (x, 2.0 * y)).collect();
+        assert!((largest_spread(&[a.clone(), b]).unwrap() - 2.0 / 3.0).abs() < 1e-12);
+        // Disjoint ranges share nothing.
+        assert_eq!(largest_spread(&[a, vec![(5.0, 1.0), (6.0, 1.0)]]), None);
     }
 }

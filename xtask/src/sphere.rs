@@ -350,6 +350,7 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
         format!("fig{number:02}_greenwood"),
         &["mu", "approach_z0", "load_2pi_r_w0", "central_separation_z0"],
     );
+    let mut worst_pull_off: f64 = 0.0;
     for (i, (&mu, g)) in mus.iter().zip(&theory).enumerate() {
         let color = crate::tabor_colour(mu);
         let st = setup(mu, n);
@@ -465,6 +466,7 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
             ),
             None => String::new(),
         };
+        worst_pull_off = worst_pull_off.max((pull_off / g.pull_off_load_control - 1.0).abs());
         report.agreement.push(format!(
             "μ = {mu}: pull-off {pull_off:.4} (BEM) vs {:.4} (Greenwood), {:+.1} %; tensile unloading branch \
              (α ≤ -0.5 z0) within {tensile:.4} of Greenwood{deepest}; {compressive}{jump}{}.",
@@ -584,6 +586,29 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
     report.save(&panels, &ctx.options.out, &format!("fig{number:02}"))?;
     report.tables.push(table);
     report.tables.push(theory_table);
+    report.claim = if s_curves {
+        "For μ = 1-3 the BEM's loading and unloading branches follow Greenwood's (1997) Lennard-Jones sphere, \
+         the jumps into and out of contact included."
+    } else {
+        "For μ = 0.1-0.3 the BEM load-approach curves with the surface law agree with Greenwood's (1997) \
+         Lennard-Jones sphere."
+    }
+    .into();
+    let unconverged = report.unconverged_points;
+    report.verdict = format!(
+        "{}: the pull-offs within {:.1} % of Greenwood's{}.",
+        if worst_pull_off <= 0.01 && unconverged == 0 {
+            "Reproduced"
+        } else {
+            "Partly reproduced"
+        },
+        100.0 * worst_pull_off,
+        if unconverged > 0 {
+            format!("; {unconverged} plotted point(s) did not converge")
+        } else {
+            String::new()
+        }
+    );
     Ok(report)
 }
 

@@ -128,24 +128,24 @@ fn solve<'a>(
         }
         steps += 1;
         let [force_weight, _] = problem.precondition(&x, &x.gradient, &mut pull);
-        let mut stopped = false;
-        if driver.since_progress(steps, sums.max * scale) > STALL {
+        // Whether the velocity is zeroed before this step's update.
+        let mut stopped = driver.since_progress(steps, sums.max * scale) > STALL;
+        if stopped {
             // Cells chattering about a state the step is too long to settle in.
             max_step = (max_step * CUT).max(SAFE_STEP);
             dt = dt.min(max_step);
-            stopped = true;
             driver.restart_stall_count(steps);
         }
         let moments = Moments::of(&problem, &x, &velocity, &pull);
         // The force's power on the velocity: stop when it turns against it.
-        if stopped {
-        } else if moments.power > 0.0 {
+        let power = if stopped { 0.0 } else { moments.power };
+        if power > 0.0 {
             working += 1;
             if working > DELAY {
                 dt = (dt * GROWTH).min(max_step);
                 mixing *= MIXING_DECAY;
             }
-        } else if moments.power < 0.0 {
+        } else if power < 0.0 {
             working = 0;
             dt = (dt * CUT).max(MIN_STEP);
             mixing = MIXING;
