@@ -81,9 +81,14 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         "The gap along the challenge's mid cross-section (x = 50 µm) at p/(E* ḡ) = 0.01 agrees with \
                     the GFMD reference."
             .into();
-    report.verdict = "Not tested: the GFMD reference profile is not available here, and the surface is generated \
-                      from the specification rather than the challenge's own; the figure shows the profiles and \
-                      what adhesion changes."
-        .into();
+    report.verdict = format!(
+        "Not tested: the GFMD reference profile is not available here{}; the figure shows the profiles and what \
+         adhesion changes.",
+        if ctx.options.challenge_surface.is_some() {
+            ""
+        } else {
+            ", and the surface is generated from the specification rather than the challenge's own"
+        }
+    );
     Ok(report)
 }

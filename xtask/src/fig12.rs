@@ -91,6 +91,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
 fn ends_error(points: &[Point], mu: u32) -> f64 {
     let mut of_mu: Vec<&Point> = points.iter().filter(|p| p.spec.mu == mu).collect();
     of_mu.sort_by(|a, b| a.mean(|o| o.rms_gradient).total_cmp(&b.mean(|o| o.rms_gradient)));
-    let variance_of_mean = |p: &Point| p.pull_off().1.powi(2) / p.outcomes.len() as f64;
-    (variance_of_mean(of_mu[0]) + variance_of_mean(of_mu[of_mu.len() - 1])).sqrt()
+    of_mu[0]
+        .standard_error()
+        .hypot(of_mu[of_mu.len() - 1].standard_error())
 }

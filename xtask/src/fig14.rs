@@ -75,13 +75,13 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             .map(|(mu, _)| curve_of(&pts, *mu, |p| (p.mean(|o| o.rq), p.pull_off().0)))
             .collect();
         let show = |s: Option<f64>| s.map_or("no common range".into(), |s| format!("{:.0} %", 100.0 * s));
-        let spread = largest_spread(&against_x);
+        let (spread, in_rq) = (largest_spread(&against_x), show(largest_spread(&against_rq)));
         report.agreement.push(format!(
             "Spread between the Tabor parameters' mean pull-offs ({}): {} at equal Ciavarella variable, {} at \
              equal Rq.",
             crate::rough_sphere::SPREAD,
             show(spread),
-            show(largest_spread(&against_rq))
+            in_rq
         ));
         report.verdict = match spread {
             Some(s) if s <= 0.1 => format!(
@@ -92,7 +92,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
                 "Partly reproduced: the variable brings the Tabor parameters together ({:.0} % against {} at \
                  equal Rq), but not \"almost perfectly\" as the paper says.",
                 100.0 * s,
-                show(largest_spread(&against_rq))
+                in_rq
             ),
             None => "Not tested: the Tabor parameters share no range of the variable.".into(),
         };

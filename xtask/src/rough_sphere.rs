@@ -49,8 +49,6 @@ pub struct Job {
     pub rq: f64,
     /// Short-wavelength cutoff \[cells\].
     pub cutoff_cells: f64,
-    /// Roll-off wavelength [box sides].
-    pub rolloff: f64,
     /// Hurst exponent of the roughness.
     pub hurst: f64,
     pub seed: u64,
@@ -59,10 +57,8 @@ pub struct Job {
     pub tolerance: f64,
 }
 
-/// The usual roll-off: half the box.
-fn half_box() -> f64 {
-    0.5
-}
+/// The roll-off wavelength [box sides]: half the box.
+pub const ROLLOFF: f64 = 0.5;
 
 /// The paper's Hurst exponent.
 pub const HURST: f64 = 0.8;
@@ -89,7 +85,6 @@ impl Job {
             mu,
             rq: 0.0,
             cutoff_cells: 0.0,
-            rolloff: half_box(),
             hurst: HURST,
             seed: 0,
             n,
@@ -137,7 +132,7 @@ impl Job {
         if self.rq > 0.0 {
             c.rms_height = Some(self.rq * Z0);
             c.hurst = Some(self.hurst);
-            c.rolloff_wavelength = Some(self.rolloff * l);
+            c.rolloff_wavelength = Some(ROLLOFF * l);
             c.cutoff_wavelength = Some(self.cutoff_cells * l / self.n as f64);
             c.seed = Some(self.seed);
         }
@@ -147,8 +142,8 @@ impl Job {
     /// The run's directory name in its study.
     fn name(&self) -> String {
         format!(
-            "mu{}_n{}_rq{}_cutoff{}_rolloff{}_h{}_seed{}",
-            self.mu, self.n, self.rq, self.cutoff_cells, self.rolloff, self.hurst, self.seed
+            "mu{}_n{}_rq{}_cutoff{}_h{}_seed{}",
+            self.mu, self.n, self.rq, self.cutoff_cells, self.hurst, self.seed
         )
     }
 
@@ -335,8 +330,6 @@ pub struct Spec {
     pub rq: f64,
     /// Short-wavelength cutoff \[cells\].
     pub cutoff_cells: f64,
-    /// Roll-off wavelength [box sides].
-    pub rolloff: f64,
     /// Hurst exponent.
     pub hurst: f64,
 }
@@ -348,7 +341,6 @@ impl Spec {
             mu,
             rq,
             cutoff_cells: 4.0,
-            rolloff: half_box(),
             hurst: HURST,
         }
     }
@@ -366,7 +358,6 @@ pub fn realisations(plan: &Plan, spec: Spec) -> Vec<Job> {
                 Job {
                     rq: spec.rq,
                     cutoff_cells: spec.cutoff_cells,
-                    rolloff: spec.rolloff,
                     hurst: spec.hurst,
                     seed,
                     ..smooth
