@@ -1,9 +1,9 @@
 //! Fig. 12: pull-off force against the RMS gradient at a fixed RMS roughness (Rq = 2 z0),
 //! Tabor parameters 5 and 7. The gradient is varied through the Hurst exponent, the roll-off
-//! (half the box) and the cutoff (4 cells) held: at fixed Rq a lower H moves the roughness
+//! (half the box) and the cutoff held: at fixed Rq a lower H moves the roughness
 //! towards short wavelengths and raises the gradient, while the largest wavelength, which
 //! Ciavarella's criterion (Fig. 14) turns on, stays. Moving the cutoff instead barely moves
-//! the gradient (H = 0.8: 0.0042 to 0.0061 over cutoffs of 16 to 4 cells); moving the roll-off
+//! the gradient (H = 0.8: 0.0042 to 0.0061 over cutoffs of 205 to 51 nm); moving the roll-off
 //! moves the largest wavelength with it.
 
 use crate::rough_sphere::{Point, PullOffFigure, Spec, curve_of, falling, plan, points};
@@ -34,7 +34,6 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_name: "rms_gradient",
         x_log: false,
         legend: crate::plot::Legend::UpperRight,
-        roughness_column: ("hurst", |s| s.hurst),
     };
     let (mut report, curves) = fig.draw(ctx, &pts, |pt| pt.mean(|o| o.rms_gradient), Vec::new())?;
     let all_fall = curves.iter().all(|(_, c)| falling(c, 0.02));
@@ -48,7 +47,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
     }
     .into();
     report.computed.push(format!(
-        "ḡ varied through the Hurst exponent H = {:?} at fixed Rq, roll-off (half the box) and cutoff (4 cells): \
+        "ḡ varied through the Hurst exponent H = {:?} at fixed Rq, roll-off (half the box) and cutoff: \
          the largest wavelength stays; what changes with ḡ besides is the spectrum's shape (a lower H puts more \
          of Rq in short wavelengths).",
         p.hursts

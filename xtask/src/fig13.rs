@@ -29,7 +29,6 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_name: "johnson_parameter",
         x_log: true,
         legend: crate::plot::Legend::LowerRight,
-        roughness_column: ("cutoff_cells", |s| s.cutoff_cells),
     };
     let johnson = |pt: &crate::rough_sphere::Point| {
         let o = &pt.outcomes[0];

@@ -17,7 +17,6 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_name: "ciavarella_variable",
         x_log: true,
         legend: crate::plot::Legend::UpperRight,
-        roughness_column: ("cutoff_cells", |s| s.cutoff_cells),
     };
     let x = |pt: &crate::rough_sphere::Point| {
         theory::rough::ciavarella_variable(

@@ -141,8 +141,10 @@ pub fn write_markdown(options: &Options) -> Result<()> {
         }
         writeln!(
             s,
-            "- Solver time {:.0} s summed over the runs; data: {}.\n",
+            "- Solver time {:.0} s summed over the runs; wall time of the build that wrote this entry {:.0} s \
+             (one run a core at a time; runs found in the cache cost nothing); data: {}.\n",
             r.solver_seconds,
+            r.seconds,
             r.tables
                 .iter()
                 .map(|t| format!("[{0}.csv]({0}.csv)", t.name))

@@ -47,12 +47,14 @@ pub struct Job {
     pub mu: u32,
     /// RMS roughness \[z0\]; 0 for the smooth sphere.
     pub rq: f64,
-    /// Short-wavelength cutoff \[cells\].
-    pub cutoff_cells: f64,
+    /// Short-wavelength cutoff \[m\].
+    pub cutoff: f64,
     /// Hurst exponent of the roughness.
     pub hurst: f64,
     pub seed: u64,
     pub n: usize,
+    /// Box side \[m\].
+    pub length: f64,
     /// Outer tolerance (mean gap error \[z0\]).
     pub tolerance: f64,
 }
@@ -79,15 +81,16 @@ pub struct Outcome {
 }
 
 impl Job {
-    /// The smooth sphere of `mu` on an `n`^2 grid.
-    pub fn smooth(mu: u32, n: usize, tolerance: f64) -> Job {
+    /// The smooth sphere of `mu` on an `n`^2 grid of side `length` \[m\].
+    pub fn smooth(mu: u32, n: usize, length: f64, tolerance: f64) -> Job {
         Job {
             mu,
             rq: 0.0,
-            cutoff_cells: 0.0,
+            cutoff: 0.0,
             hurst: HURST,
             seed: 0,
             n,
+            length,
             tolerance,
         }
     }
@@ -96,20 +99,9 @@ impl Job {
         work_of_adhesion(self.mu)
     }
 
-    /// The JKR contact radius at zero load, (9 pi w0 R^2 / (2 E*))^(1/3) \[m\]: sets the box.
-    pub fn jkr_radius(&self) -> f64 {
-        (9.0 * PI * self.w0() * RADIUS * RADIUS / (2.0 * MODULUS)).cbrt()
-    }
-
-    /// Box side: 3.5 JKR radii \[m\]; at the preload the undeformed gap at the box's edge is
-    /// still about ten z0 for mu = 2 and more for the stickier cases.
-    pub fn length(&self) -> f64 {
-        3.5 * self.jkr_radius()
-    }
-
     /// Preload approach \[z0\]: the smooth sphere's a0^2/(2R), plus three RMS roughnesses.
     pub fn preload(&self) -> f64 {
-        self.jkr_radius().powi(2) / (2.0 * RADIUS) / Z0 + 3.0 * self.rq
+        jkr_radius(self.mu).powi(2) / (2.0 * RADIUS) / Z0 + 3.0 * self.rq
     }
 
     /// The pull-off scale pi R w0 \[N\].
@@ -118,7 +110,7 @@ impl Job {
     }
 
     pub fn case(&self) -> Case {
-        let l = self.length();
+        let l = self.length;
         let mut c = Case {
             sphere_radius: Some(RADIUS),
             modulus: MODULUS,
@@ -133,7 +125,7 @@ impl Job {
             c.rms_height = Some(self.rq * Z0);
             c.hurst = Some(self.hurst);
             c.rolloff_wavelength = Some(ROLLOFF * l);
-            c.cutoff_wavelength = Some(self.cutoff_cells * l / self.n as f64);
+            c.cutoff_wavelength = Some(self.cutoff);
             c.seed = Some(self.seed);
         }
         c
@@ -142,8 +134,14 @@ impl Job {
     /// The run's directory name in its study.
     fn name(&self) -> String {
         format!(
-            "mu{}_n{}_rq{}_cutoff{}_h{}_seed{}",
-            self.mu, self.n, self.rq, self.cutoff_cells, self.hurst, self.seed
+            "mu{}_n{}_l{:.0}nm_rq{}_cutoff{:.0}nm_h{}_seed{}",
+            self.mu,
+            self.n,
+            self.length * 1e9,
+            self.rq,
+            self.cutoff * 1e9,
+            self.hurst,
+            self.seed
         )
     }
 
@@ -167,7 +165,7 @@ impl Job {
             ("max_step", 1.0.into()),
             ("work_of_adhesion", self.w0().into()),
             ("n", (self.n as i64).into()),
-            ("length", self.length().into()),
+            ("length", self.length.into()),
             ("to", (top * Z0).into()),
             ("pull_off_step", ((top / 8.0).max(0.5) * Z0).into()),
             (
@@ -208,8 +206,8 @@ impl Job {
             pull_off: -number("pull_off_force").unwrap_or(0.0).min(0.0),
             rq,
             rms_gradient,
-            length: self.length(),
-            cutoff: self.cutoff_cells * self.length() / self.n as f64,
+            length: self.length,
+            cutoff: self.cutoff,
             steps: number("steps").context("the summary has no steps")? as usize,
             all_converged: summary.get("converged").and_then(serde_json::Value::as_bool) == Some(true),
             wall_time_s: number("wall_time_s").unwrap_or(0.0),
@@ -229,19 +227,41 @@ pub fn mean_std(v: &[f64]) -> (f64, f64) {
     (m, s)
 }
 
-/// The smallest grid, a power of two from 32 on, whose cells are no larger than `mu`'s process
-/// zone.
-pub fn needed_n(mu: u32) -> usize {
-    let probe = Job::smooth(mu, 1, 0.0);
-    let needed = (probe.length() / process_zone(mu)).ceil() as usize;
-    needed.next_power_of_two().max(32)
+/// The JKR contact radius at zero load of `mu`'s smooth sphere, (9 pi w0 R^2 / (2 E*))^(1/3)
+/// \[m\]: sets the box.
+pub fn jkr_radius(mu: u32) -> f64 {
+    (9.0 * PI * work_of_adhesion(mu) * RADIUS * RADIUS / (2.0 * MODULUS)).cbrt()
 }
 
-/// Settings shared by Figs. 11-14.
+/// The smallest grid on a box of side `length` \[m\], from 32 cells on and with no prime
+/// factor above 5 (cheap FFTs), whose cells are no larger than `mu`'s process zone.
+pub fn needed_n(mu: u32, length: f64) -> usize {
+    let needed = ((length / process_zone(mu)).ceil() as usize).max(32);
+    (needed..)
+        .find(|&n| {
+            let mut m = n;
+            for p in [2, 3, 5] {
+                while m % p == 0 {
+                    m /= p;
+                }
+            }
+            m == 1
+        })
+        .expect("5-smooth numbers are unbounded")
+}
+
+/// The short cutoff \[cells of the coarsest grid\]: the roughness's shortest wavelength is
+/// resolved on every Tabor parameter's grid.
+pub const CUTOFF_CELLS: f64 = 4.0;
+
+/// Settings shared by Figs. 11-14. Every Tabor parameter (set by the work of adhesion) sees
+/// one roughness spectrum in physical units: one box ([`Plan::length`]), roll-off at half of
+/// it, one cutoff ([`Plan::cutoff`]); only the grid, which must resolve each one's process
+/// zone, differs.
 pub struct Plan {
-    /// Largest grid (cells per side); below it, the smallest power of two whose cells resolve
-    /// the process zone ([`Plan::n_for`]). Full mode: 512, which resolves mu = 2, 5 and 7
-    /// (mu = 7 needs it: about 4 min a run here); quick mode: 64, mu = 2 only.
+    /// Largest grid (cells per side); below it, the smallest FFT-friendly size whose cells
+    /// resolve the process zone ([`Plan::n_for`]). Full mode: 512, which resolves mu = 2, 5
+    /// and 7 (mu = 7 needs 450 cells a side); quick mode: 64, mu = 2 only.
     pub max_n: usize,
     pub seeds: Vec<u64>,
     /// RMS roughnesses \[z0\] of Figs. 11, 13, 14.
@@ -260,7 +280,7 @@ pub struct Plan {
 pub fn plan(ctx: &crate::Context) -> Plan {
     Plan {
         max_n: ctx.pick(64, 512),
-        seeds: ctx.pick(vec![1, 2], vec![1, 2, 3]),
+        seeds: ctx.pick(vec![1, 2], (1..=10).collect()),
         rqs: ctx.pick(vec![0.0, 1.0, 2.0, 4.0, 8.0], vec![0.0, 1.0, 2.0, 4.0, 8.0]),
         hursts: ctx.pick(vec![0.8, 0.5, 0.2], vec![0.8, 0.6, 0.4, 0.2]),
         tolerance: 1e-5,
@@ -294,12 +314,33 @@ impl Plan {
     }
 
     fn resolves(&self, mu: u32) -> bool {
-        needed_n(mu) <= self.max_n
+        needed_n(mu, self.length()) <= self.max_n
     }
 
     /// The grid for `mu`: [`needed_n`] up to `max_n`.
     pub fn n_for(&self, mu: u32) -> usize {
-        needed_n(mu).min(self.max_n)
+        needed_n(mu, self.length()).min(self.max_n)
+    }
+
+    /// The plan's Tabor parameters, least sticky first.
+    fn all_mus(&self) -> Vec<u32> {
+        let mut all: Vec<u32> = self.mus.concat();
+        all.sort_unstable();
+        all.dedup();
+        all
+    }
+
+    /// The box side \[m\]: 3.5 zero-load JKR radii of the stickiest Tabor parameter of the plan,
+    /// whose contact is the widest; at the preload the undeformed gap at the box's edge is then
+    /// more than ten z0 for every one.
+    pub fn length(&self) -> f64 {
+        3.5 * jkr_radius(*self.all_mus().last().expect("the plan has Tabor parameters"))
+    }
+
+    /// The short cutoff wavelength \[m\]: [`CUTOFF_CELLS`] cells of the coarsest grid, that of
+    /// the least sticky Tabor parameter (the widest process zone).
+    pub fn cutoff(&self) -> f64 {
+        CUTOFF_CELLS * self.length() / self.n_for(self.all_mus()[0]) as f64
     }
 
     /// How well each of `mus` is resolved, for the reports.
@@ -307,11 +348,11 @@ impl Plan {
         mus.iter()
             .map(|&mu| {
                 let n = self.n_for(mu);
-                let j = Job::smooth(mu, n, self.tolerance);
+                let cell = self.length() / n as f64;
                 format!(
                     "μ = {mu}: {n}² cells of {:.1} nm, {:.2} process zones (E* w0/σ0² = {:.1} nm)",
-                    j.length() / n as f64 * 1e9,
-                    j.length() / n as f64 / process_zone(mu),
+                    cell * 1e9,
+                    cell / process_zone(mu),
                     process_zone(mu) * 1e9
                 )
             })
@@ -328,21 +369,14 @@ pub struct Spec {
     pub mu: u32,
     /// RMS roughness \[z0\]; 0 for the smooth sphere.
     pub rq: f64,
-    /// Short-wavelength cutoff \[cells\].
-    pub cutoff_cells: f64,
     /// Hurst exponent.
     pub hurst: f64,
 }
 
 impl Spec {
-    /// Roughness `rq` \[z0\] cut off at 4 cells and rolled off at half the box (Figs. 11, 13, 14).
+    /// Roughness `rq` \[z0\] of the paper's Hurst exponent (Figs. 11, 13, 14).
     pub fn new(mu: u32, rq: f64) -> Spec {
-        Spec {
-            mu,
-            rq,
-            cutoff_cells: 4.0,
-            hurst: HURST,
-        }
+        Spec { mu, rq, hurst: HURST }
     }
 }
 
@@ -350,14 +384,14 @@ impl Spec {
 pub fn realisations(plan: &Plan, spec: Spec) -> Vec<Job> {
     let rough = spec.rq > 0.0;
     let seeds: &[u64] = if rough { &plan.seeds } else { &[0] };
-    let smooth = Job::smooth(spec.mu, plan.n_for(spec.mu), plan.tolerance);
+    let smooth = Job::smooth(spec.mu, plan.n_for(spec.mu), plan.length(), plan.tolerance);
     seeds
         .iter()
         .map(|&seed| {
             if rough {
                 Job {
                     rq: spec.rq,
-                    cutoff_cells: spec.cutoff_cells,
+                    cutoff: plan.cutoff(),
                     hurst: spec.hurst,
                     seed,
                     ..smooth
@@ -507,8 +541,6 @@ pub struct PullOffFigure<'a> {
     pub x_name: &'a str,
     pub x_log: bool,
     pub legend: crate::plot::Legend,
-    /// The table's column after Rq: the roughness parameter the figure varies besides Rq.
-    pub roughness_column: (&'a str, fn(&Spec) -> f64),
 }
 
 impl PullOffFigure<'_> {
@@ -528,7 +560,7 @@ impl PullOffFigure<'_> {
             &[
                 "mu",
                 "rq_nominal_z0",
-                self.roughness_column.0,
+                "hurst",
                 self.x_name,
                 "pull_off_pi_r_w0",
                 "std_pi_r_w0",
@@ -542,7 +574,7 @@ impl PullOffFigure<'_> {
             &[
                 "mu",
                 "rq_nominal_z0",
-                self.roughness_column.0,
+                "hurst",
                 "seed",
                 self.x_name,
                 "rq_measured_nm",
@@ -590,7 +622,7 @@ impl PullOffFigure<'_> {
         let plan = plan(ctx);
         for p in points {
             let (m, s) = p.pull_off();
-            let (mu, rq, roughness) = (p.spec.mu as f64, p.spec.rq, (self.roughness_column.1)(&p.spec));
+            let (mu, rq, roughness) = (p.spec.mu as f64, p.spec.rq, p.spec.hurst);
             table.push(vec![
                 mu,
                 rq,
@@ -621,9 +653,8 @@ impl PullOffFigure<'_> {
         report.tables.push(table);
         report.tables.push(each);
         report.computed.push(format!(
-            "Rigid sphere R* = 100 µm with self-affine roughness (H = 0.8 unless said otherwise, roll-off at half the box and short \
-             cutoff at 4 cells unless said otherwise, Rq as on the axis) on a free grid of side 3.5 JKR zero-load \
-             contact radii a0, E* = 50 GPa, z0 = 0.3 nm, Lennard-Jones point law solved by the energy descent \
+            "Rigid sphere R* = 100 µm with self-affine roughness (H = 0.8 unless said otherwise, Rq as on the axis) on \
+             a free grid, E* = 50 GPa, z0 = 0.3 nm, Lennard-Jones point law solved by the energy descent \
              (the paper's surface law has no energy, and its dual loop needs 20-40 min a run at μ = 5: see \
              docs/validation.md), tolerance {:e} z0; {} seeds per rough point (error bars: ± one standard error of the mean; each realisation's pull-off in \
              fig{}_realisations.csv).",
@@ -631,12 +662,20 @@ impl PullOffFigure<'_> {
             plan.seeds.len(),
             self.number,
         ));
-        report.computed.push(format!("Grids: {}.", plan.resolution(&mus)));
+        report.computed.push(format!(
+            "One roughness spectrum for every Tabor parameter (μ set by w0 alone): box {:.3} µm (3.5 zero-load JKR \
+             radii of μ = {}), roll-off at half the box, short cutoff {:.1} nm ({CUTOFF_CELLS} cells of the coarsest \
+             grid). Grids: {}.",
+            plan.length() * 1e6,
+            plan.all_mus().last().expect("the plan has Tabor parameters"),
+            plan.cutoff() * 1e9,
+            plan.resolution(&mus)
+        ));
         let skipped: Vec<String> = plan
             .mus_of(self.number)
             .iter()
             .filter(|mu| !mus.contains(mu))
-            .map(|&mu| format!("μ = {mu} (needs {}² cells)", needed_n(mu)))
+            .map(|&mu| format!("μ = {mu} (needs {}² cells)", needed_n(mu, plan.length())))
             .collect();
         if !skipped.is_empty() {
             report.computed.push(format!(
@@ -745,28 +784,50 @@ mod tests {
     }
 
     #[test]
-    fn grids_resolve_the_process_zone_up_to_the_cap() {
+    fn one_spectrum_on_grids_that_resolve_each_process_zone_up_to_the_cap() {
         let plan = Plan {
-            max_n: 256,
+            max_n: 400,
             seeds: vec![1],
             rqs: vec![],
             hursts: vec![],
             tolerance: 1e-5,
             mus: [vec![2, 5], vec![5, 7], vec![2, 5, 7]],
         };
+        // The box of the stickiest: mu = 7's contact is the widest.
+        let l = plan.length();
+        assert_eq!(l, 3.5 * jkr_radius(7));
+        assert!(jkr_radius(7) > jkr_radius(5) && jkr_radius(5) > jkr_radius(2));
         for mu in [2, 5, 7] {
-            let n = needed_n(mu);
-            let j = Job::smooth(mu, n, 1e-5);
-            assert!(j.length() / n as f64 <= process_zone(mu), "{mu}");
+            let n = needed_n(mu, l);
+            assert!(l / n as f64 <= process_zone(mu), "{mu}");
+            // Every smaller size from 32 on that resolves it has a prime factor above 5.
+            let five_smooth = |m: usize| {
+                [2, 3, 5].iter().fold(m, |m, p| {
+                    let mut m = m;
+                    while m % p == 0 {
+                        m /= p;
+                    }
+                    m
+                }) == 1
+            };
             assert!(
-                j.length() / (n / 2) as f64 > process_zone(mu),
+                (32..n).all(|m| l / m as f64 > process_zone(mu) || !five_smooth(m)),
                 "{mu}: {n} is not the smallest"
             );
         }
-        assert_eq!(plan.n_for(5), 256);
-        assert_eq!(plan.n_for(7), 256);
+        assert_eq!([needed_n(2, l), needed_n(5, l), needed_n(7, l)], [72, 270, 450]);
+        assert_eq!(needed_n(2, 1e-9), 32);
+        // mu = 7 needs more than the cap: not run, and the grids of the others as needed.
+        assert_eq!(plan.n_for(5), 270);
         assert_eq!(plan.mus_run(12), vec![5]);
         assert_eq!(plan.mus_run(13), vec![2, 5]);
+        // The cutoff is four cells of mu = 2's grid, the coarsest, on every grid.
+        assert_eq!(plan.cutoff(), 4.0 * l / 72.0);
+        let jobs = realisations(&plan, Spec::new(5, 2.0));
+        assert!(
+            jobs.iter()
+                .all(|j| j.length == l && j.cutoff == plan.cutoff() && j.n == 270)
+        );
     }
 
     #[test]
