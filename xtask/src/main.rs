@@ -12,6 +12,12 @@ struct Cli {
     command: Command,
 }
 
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum RoughLaw {
+    Point,
+    Surface,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Regenerate Figures 5-14 of Ghanbarzadeh, Faraji & Neville (2020) as PNG + SVG + CSV,
@@ -39,6 +45,11 @@ enum Command {
         /// --shard); building the figures afterwards draws from their finished runs.
         #[arg(long)]
         studies_only: bool,
+        /// The Lennard-Jones law of the rough spheres (Figs. 11-14): `point` (by the energy
+        /// descent) or the paper's `surface` law, Eq. 11 (by the flow, about 2.5 times the
+        /// time).
+        #[arg(long, value_enum, default_value = "point")]
+        rough_law: RoughLaw,
     },
     /// Run a study that prints a table of docs/validation.md (`--list` names them).
     Study {
@@ -62,7 +73,7 @@ fn main() -> ExitCode {
 }
 
 fn run() -> Result<()> {
-    let (quick, only, out, challenge_surface, fresh, studies_only) = match Cli::parse().command {
+    let (quick, only, out, challenge_surface, fresh, studies_only, rough_law) = match Cli::parse().command {
         Command::Figures {
             quick,
             only,
@@ -70,7 +81,16 @@ fn run() -> Result<()> {
             challenge_surface,
             fresh,
             studies_only,
-        } => (quick, only, out, challenge_surface, fresh, studies_only),
+            rough_law,
+        } => (
+            quick,
+            only,
+            out,
+            challenge_surface,
+            fresh,
+            studies_only,
+            rough_law,
+        ),
         Command::Study { name, list } => {
             if list {
                 for (name, what) in xtask::study::STUDIES {
@@ -89,6 +109,10 @@ fn run() -> Result<()> {
         challenge_surface,
         fresh,
         progress: true,
+        rough_law: match rough_law {
+            RoughLaw::Point => xtask::case::Law::Point,
+            RoughLaw::Surface => xtask::case::Law::Surface,
+        },
     };
     if studies_only {
         for (file, dir, runs) in xtask::write_studies(options)? {

@@ -44,6 +44,7 @@ fn quick_mode_regenerates_every_figure() {
                 challenge_surface: None,
                 fresh: true,
                 progress: false,
+                rough_law: xtask::case::Law::Point,
             })
         })
         .unwrap();
@@ -93,6 +94,7 @@ fn quick_mode_regenerates_every_figure() {
         challenge_surface: None,
         fresh: false,
         progress: false,
+        rough_law: xtask::case::Law::Point,
     })
     .unwrap();
     let first = reports.iter().find(|r| r.number == 8).unwrap();

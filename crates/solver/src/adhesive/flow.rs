@@ -9,7 +9,11 @@
 //! zeroed, with the time step cut, when it stops doing work. The mass `M = S_ii + max(K_ii,
 //! 0)` is the cell's own elastic stiffness and the stable part of the law's (`K = -dp/dg`,
 //! just above the wall many times a cell's), so that every cell has about the same natural
-//! period. Each step is projected onto `g >= 0` (and the prescribed mean gap); a cell that
+//! period. For the line and surface laws, whose cell pressure is a mean over the gaps from
+//! the node to its +x neighbour, the mass also couples each cell to that neighbour as the
+//! law does (`Problem::precondition_rows`, solved along each row): with the diagonal alone,
+//! the law's one-sided coupling, as stiff as a cell's own just above the wall, took twice the
+//! steps. Each step is projected onto `g >= 0` (and the prescribed mean gap); a cell that
 //! meets the wall stops there, and so does a cell that would move against the force on it.
 //! Where the residual stops falling the longest step is cut ([`STALL`]). Only a stable state
 //! is a state of rest: perturbed, the dynamics carries it back; a saddle or an unstable
@@ -24,8 +28,9 @@
 //! fraction of its steps (a fifth on the challenge at 256^2): the inertia carries the long
 //! wavelengths, which the overdamped flow moves slowly.
 //!
-//! Cost: one application of the stiffness and one evaluation of the law a step (two for laws
-//! without a local potential, whose stiffness is probed).
+//! Cost: one application of the stiffness and one evaluation of the law a step (three for laws
+//! without a local potential, whose stiffness by a cell's own gap and by its neighbour's is
+//! probed).
 
 use super::driver::Driver;
 use super::gap_problem::{Energy, Point, Problem, Setup, check_control, finish, setup};
@@ -106,6 +111,7 @@ fn solve<'a>(
         delta,
         load,
     } = setup(job, energy)?;
+    problem.couple_rows(&mut x)?;
     let unknown = x.gap.dim();
     let mut sums = problem.project_gradient(&mut x);
     // `M^-1 r` (the acceleration's opposite) and the velocity [m per time unit].
@@ -127,7 +133,11 @@ fn solve<'a>(
             break;
         }
         steps += 1;
-        let [force_weight, _] = problem.precondition(&x, &x.gradient, &mut pull);
+        let force_weight = if problem.coupled() {
+            problem.precondition_rows(&x, &mut pull)
+        } else {
+            problem.precondition(&x, &x.gradient, &mut pull)[0]
+        };
         // Whether the velocity is zeroed before this step's update.
         let mut stopped = driver.since_progress(steps, sums.max * scale) > STALL;
         if stopped {

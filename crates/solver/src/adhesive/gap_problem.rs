@@ -35,7 +35,9 @@ pub(super) struct Point {
     pub(super) elastic: Array2<f64>,
     /// `p(g)` \[Pa\].
     pub(super) law: Array2<f64>,
-    /// `V''(g)`, or without a potential the law's probed stiffness `-dp/dg` [Pa/m].
+    /// `V''(g)`, or without a potential the law's probed stiffness `-dp/dg` [Pa/m]: for a
+    /// uniform change of the gaps, or of the cell's own gap alone where the problem couples
+    /// rows ([`Problem::couple_rows`]).
     pub(super) curvature: Array2<f64>,
     /// The gradient `S (g - g0) - p(g)` \[Pa\], then projected ([`Problem::project_gradient`]).
     pub(super) gradient: Array2<f64>,
@@ -161,6 +163,9 @@ pub(super) struct Problem<'a> {
     pub(super) calls: usize,
     /// The stiffness's diagonal `S_ii` [Pa/m] (the same for every cell).
     pub(super) diagonal: f64,
+    /// Without a potential, once [`Problem::couple_rows`] asked for it: `-dp_i/dg_j` [Pa/m] of
+    /// each cell `i` of the block by its +x neighbour `j`; else empty.
+    coupling: Array2<f64>,
 }
 
 impl Problem<'_> {
@@ -397,6 +402,31 @@ impl Problem<'_> {
         self.law
             .pressure_field(gap, &self.cells, at.law.slice_mut(block))?;
         let probe = 1e-3 * self.law.range();
+        if !self.coupling.is_empty() {
+            // Every other column probed at a time: a cell's pressure depends on its own gap and
+            // its +x neighbour's (and on its +y neighbour's only through the area factor, whose
+            // column is probed with its own).
+            for parity in 0..2 {
+                let (shifted, shifted_law) = &mut self.probe;
+                Zip::indexed(&mut *shifted)
+                    .and(&gap)
+                    .par_for_each(|(_, i), s, &g| *s = if i % 2 == parity { g + probe } else { g });
+                self.law
+                    .pressure_field(shifted.view(), &self.cells, shifted_law.view_mut())?;
+                Zip::indexed(at.curvature.slice_mut(block))
+                    .and(&mut self.coupling)
+                    .and(&at.law.slice(block))
+                    .and(&self.probe.1)
+                    .par_for_each(|(_, i), own, next, &lo, &hi| {
+                        if i % 2 == parity {
+                            *own = (lo - hi) / probe;
+                        } else {
+                            *next = (lo - hi) / probe;
+                        }
+                    });
+            }
+            return Ok(());
+        }
         let (shifted, shifted_law) = &mut self.probe;
         Zip::from(&mut *shifted)
             .and(&gap)
@@ -530,6 +560,83 @@ impl Problem<'_> {
         parts.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
     }
 
+    /// Probes, for a law without a potential, each cell's stiffness by its own gap and by its
+    /// +x neighbour's apart (one more evaluation of the law a step), for
+    /// [`Problem::precondition_rows`], and evaluates `at` (the point [`setup`] made) again so.
+    pub(super) fn couple_rows(&mut self, at: &mut Point) -> Result<()> {
+        if matches!(self.energy, Energy::None) {
+            self.coupling = Array2::zeros((self.ny, self.nx));
+            self.evaluate(at)?;
+        }
+        Ok(())
+    }
+
+    /// Whether [`Problem::couple_rows`] took effect.
+    pub(super) fn coupled(&self) -> bool {
+        !self.coupling.is_empty()
+    }
+
+    /// As [`Problem::precondition`], with the mass `m` coupled to the +x neighbour as the law
+    /// couples the cells (the line and surface laws): `z = P^-1 (r - mu)` with `P_ii = m_i` and
+    /// `P_ij = -dp_i/dg_j` for `j` the +x neighbour (at most `ROW_COUPLING` times `m_i`; none
+    /// across the block's edge or a periodic wrap), solved by back substitution along each row;
+    /// `mu` as there, from a second solve with `r = 1`. Returns `<z, r>`.
+    pub(super) fn precondition_rows(&self, at: &Point, out: &mut Array2<f64>) -> f64 {
+        const ROW_COUPLING: f64 = 0.9;
+        let (mx, nx, ny) = (self.mx, self.nx, self.ny);
+        let (rs, cs, ds) = (flat(&at.gradient), flat(&at.curvature), flat(&self.coupling));
+        // `P^-1 v` on row `j` into `zr`, `v(k)` the right-hand side at flat index `k`; the sum of
+        // the moving cells' `z`.
+        let solve_row = |j: usize, zr: &mut [f64], v: &dyn Fn(usize) -> f64| {
+            let mut sum = 0.0;
+            let mut next = 0.0;
+            for i in (0..mx).rev() {
+                let k = j * mx + i;
+                let z = if rs[k] == 0.0 {
+                    0.0
+                } else if j < ny && i < nx {
+                    let m = self.mass(cs, j, i, k);
+                    let c = if i + 1 < nx {
+                        ds[j * nx + i].clamp(-ROW_COUPLING * m, ROW_COUPLING * m)
+                    } else {
+                        0.0
+                    };
+                    (v(k) - c * next) / m
+                } else {
+                    v(k) / self.diagonal
+                };
+                zr[i] = z;
+                next = z;
+                sum += z;
+            }
+            sum
+        };
+        let mu = if self.mean_gap.is_some() {
+            let [a, b] = crate::sum::ordered(self.my, |j| {
+                // Each row's solves on a scratch row of its own: `out` is written below.
+                let mut row = vec![0.0; mx];
+                let a = solve_row(j, &mut row, &|k| rs[k]);
+                let b = solve_row(j, &mut row, &|_| 1.0);
+                [a, b]
+            });
+            if b > 0.0 { a / b } else { 0.0 }
+        } else {
+            0.0
+        };
+        let parts: Vec<f64> = flat_mut(out)
+            .par_chunks_mut(mx)
+            .enumerate()
+            .map(|(j, zr)| {
+                solve_row(j, zr, &|k| rs[k] - mu);
+                zr.iter()
+                    .zip(&rs[j * mx..][..mx])
+                    .map(|(z, r)| z * r)
+                    .sum::<f64>()
+            })
+            .collect();
+        parts.iter().sum()
+    }
+
     /// Cell `(j, i)`'s mass \[Pa/m\], `k` its flat index and `curvature` the law's stiffness
     /// field: `S_ii + max(V'', 0)` on the domain's block, `S_ii` in the padding.
     pub(super) fn mass(&self, curvature: &[f64], j: usize, i: usize, k: usize) -> f64 {
@@ -640,6 +747,7 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
             cells,
             domain,
             probe: (probe_shape(true), probe_shape(false)),
+            coupling: Array2::zeros((0, 0)),
             base: g0.to_owned(),
             mx: nx,
             my: ny,
@@ -692,6 +800,7 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
             cells,
             domain,
             probe: (probe_shape(true), probe_shape(false)),
+            coupling: Array2::zeros((0, 0)),
             base,
             mx: padded.1,
             my: padded.0,
