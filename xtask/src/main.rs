@@ -18,39 +18,43 @@ enum RoughLaw {
     Surface,
 }
 
+/// The flags of `figures`.
+#[derive(clap::Args)]
+struct FiguresArgs {
+    /// Small grids and few points (a few minutes); what CI runs.
+    #[arg(long)]
+    quick: bool,
+    /// Only these figures, e.g. --only 5,6,11.
+    #[arg(long, value_delimiter = ',')]
+    only: Vec<u32>,
+    /// Output directory (default: figures, or figures-quick with --quick).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// The contact-mechanics challenge's own topography (any format `roughcontact`
+    /// reads; a bare .npy is taken as 100 um square) for Figs. 8-10.
+    #[arg(long, value_name = "FILE")]
+    challenge_surface: Option<PathBuf>,
+    /// Recompute every run instead of reusing the cache in OUT/cache and the finished
+    /// runs of the studies in OUT/studies.
+    #[arg(long)]
+    fresh: bool,
+    /// Only write the study files of the figures' series into OUT/studies, to run them
+    /// elsewhere (`mpirun -n K roughcontact study FILE --out DIR`, or a job array with
+    /// --shard); building the figures afterwards draws from their finished runs.
+    #[arg(long)]
+    studies_only: bool,
+    /// The Lennard-Jones law of the rough spheres (Figs. 11-14): `point` (by the energy
+    /// descent) or the paper's `surface` law, Eq. 11 (by the flow, about 2.5 times the
+    /// time).
+    #[arg(long, value_enum, default_value = "point")]
+    rough_law: RoughLaw,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Regenerate Figures 5-14 of Ghanbarzadeh, Faraji & Neville (2020) as PNG + SVG + CSV,
     /// with FIGURES.md reporting the agreement with each reference.
-    Figures {
-        /// Small grids and few points (a few minutes); what CI runs.
-        #[arg(long)]
-        quick: bool,
-        /// Only these figures, e.g. --only 5,6,11.
-        #[arg(long, value_delimiter = ',')]
-        only: Vec<u32>,
-        /// Output directory (default: figures, or figures-quick with --quick).
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// The contact-mechanics challenge's own topography (any format `roughcontact`
-        /// reads; a bare .npy is taken as 100 um square) for Figs. 8-10.
-        #[arg(long, value_name = "FILE")]
-        challenge_surface: Option<PathBuf>,
-        /// Recompute every run instead of reusing the cache in OUT/cache and the finished
-        /// runs of the studies in OUT/studies.
-        #[arg(long)]
-        fresh: bool,
-        /// Only write the study files of the figures' series into OUT/studies, to run them
-        /// elsewhere (`mpirun -n K roughcontact study FILE --out DIR`, or a job array with
-        /// --shard); building the figures afterwards draws from their finished runs.
-        #[arg(long)]
-        studies_only: bool,
-        /// The Lennard-Jones law of the rough spheres (Figs. 11-14): `point` (by the energy
-        /// descent) or the paper's `surface` law, Eq. 11 (by the flow, about 2.5 times the
-        /// time).
-        #[arg(long, value_enum, default_value = "point")]
-        rough_law: RoughLaw,
-    },
+    Figures(FiguresArgs),
     /// Run a study that prints a table of docs/validation.md (`--list` names them).
     Study {
         /// The study's name.
@@ -73,24 +77,16 @@ fn main() -> ExitCode {
 }
 
 fn run() -> Result<()> {
-    let (quick, only, out, challenge_surface, fresh, studies_only, rough_law) = match Cli::parse().command {
-        Command::Figures {
-            quick,
-            only,
-            out,
-            challenge_surface,
-            fresh,
-            studies_only,
-            rough_law,
-        } => (
-            quick,
-            only,
-            out,
-            challenge_surface,
-            fresh,
-            studies_only,
-            rough_law,
-        ),
+    let FiguresArgs {
+        quick,
+        only,
+        out,
+        challenge_surface,
+        fresh,
+        studies_only,
+        rough_law,
+    } = match Cli::parse().command {
+        Command::Figures(args) => args,
         Command::Study { name, list } => {
             if list {
                 for (name, what) in xtask::study::STUDIES {
