@@ -39,6 +39,9 @@ pub(super) struct Point {
     /// uniform change of the gaps, or of the cell's own gap alone where the problem couples
     /// rows ([`Problem::couple_rows`]).
     pub(super) curvature: Array2<f64>,
+    /// Where the problem couples rows: `-dp_i/dg_j` [Pa/m] of each cell `i` of the block by its
+    /// +x neighbour `j`; else empty.
+    pub(super) coupling: Array2<f64>,
     /// The gradient `S (g - g0) - p(g)` \[Pa\], then projected ([`Problem::project_gradient`]).
     pub(super) gradient: Array2<f64>,
     /// Elastic energy, and interaction energy plus the load's potential `p_mean mean(g)`, per
@@ -58,6 +61,7 @@ impl Point {
             elastic: Array2::zeros(shape),
             law: Array2::zeros(shape),
             curvature: Array2::zeros(shape),
+            coupling: Array2::zeros((0, 0)),
             gradient: Array2::zeros(shape),
             energy: (0.0, 0.0),
             free: (0.0, 0.0),
@@ -163,9 +167,9 @@ pub(super) struct Problem<'a> {
     pub(super) calls: usize,
     /// The stiffness's diagonal `S_ii` [Pa/m] (the same for every cell).
     pub(super) diagonal: f64,
-    /// Without a potential, once [`Problem::couple_rows`] asked for it: `-dp_i/dg_j` [Pa/m] of
-    /// each cell `i` of the block by its +x neighbour `j`; else empty.
-    coupling: Array2<f64>,
+    /// Whether the law's stiffness is probed by a cell's own gap and by its +x neighbour's
+    /// apart ([`Problem::couple_rows`]).
+    couple: bool,
 }
 
 impl Problem<'_> {
@@ -402,7 +406,10 @@ impl Problem<'_> {
         self.law
             .pressure_field(gap, &self.cells, at.law.slice_mut(block))?;
         let probe = 1e-3 * self.law.range();
-        if !self.coupling.is_empty() {
+        if self.couple {
+            if at.coupling.dim() != (self.ny, self.nx) {
+                at.coupling = Array2::zeros((self.ny, self.nx));
+            }
             // Every other column probed at a time: a cell's pressure depends on its own gap and
             // its +x neighbour's (and on its +y neighbour's only through the area factor, whose
             // column is probed with its own).
@@ -414,7 +421,7 @@ impl Problem<'_> {
                 self.law
                     .pressure_field(shifted.view(), &self.cells, shifted_law.view_mut())?;
                 Zip::indexed(at.curvature.slice_mut(block))
-                    .and(&mut self.coupling)
+                    .and(&mut at.coupling)
                     .and(&at.law.slice(block))
                     .and(&self.probe.1)
                     .par_for_each(|(_, i), own, next, &lo, &hi| {
@@ -565,7 +572,7 @@ impl Problem<'_> {
     /// [`Problem::precondition_rows`], and evaluates `at` (the point [`setup`] made) again so.
     pub(super) fn couple_rows(&mut self, at: &mut Point) -> Result<()> {
         if matches!(self.energy, Energy::None) {
-            self.coupling = Array2::zeros((self.ny, self.nx));
+            self.couple = true;
             self.evaluate(at)?;
         }
         Ok(())
@@ -573,37 +580,55 @@ impl Problem<'_> {
 
     /// Whether [`Problem::couple_rows`] took effect.
     pub(super) fn coupled(&self) -> bool {
-        !self.coupling.is_empty()
+        self.couple
     }
 
     /// As [`Problem::precondition`], with the mass `m` coupled to the +x neighbour as the law
-    /// couples the cells (the line and surface laws): `z = P^-1 (r - mu)` with `P_ii = m_i` and
-    /// `P_ij = -dp_i/dg_j` for `j` the +x neighbour (at most `ROW_COUPLING` times `m_i`; none
-    /// across the block's edge or a periodic wrap), solved by back substitution along each row;
-    /// `mu` as there, from a second solve with `r = 1`. Returns `<z, r>`.
+    /// couples the cells (the line and surface laws), for the flow. Returns `<z, r>`.
     pub(super) fn precondition_rows(&self, at: &Point, out: &mut Array2<f64>) -> f64 {
+        let (rs, cs) = (flat(&at.gradient), flat(&at.curvature));
+        let weight = |j: usize, i: usize, k: usize| {
+            if rs[k] == 0.0 {
+                0.0
+            } else {
+                1.0 / self.mass(cs, j, i, k)
+            }
+        };
+        self.solve_rows(at, &weight, &at.gradient, out)
+    }
+
+    /// `z = P^-1 (v - mu)` into `out`, with `P` the diagonal `1 / weight(j, i, k)` (held cells
+    /// have weight 0 and get 0) plus the law's stiffness at `at` by the +x neighbour,
+    /// `-dp_i/dg_j` ([`Problem::couple_rows`]; at most `ROW_COUPLING` times the diagonal, so that the back
+    /// substitution along a row stays bounded; none across the block's edge or a periodic
+    /// wrap), and `mu` the multiple of `P^-1 1` that keeps the moving cells' sum at zero where
+    /// the mean gap is prescribed. Returns `<z, v>`.
+    pub(super) fn solve_rows(
+        &self,
+        at: &Point,
+        weight: &(dyn Fn(usize, usize, usize) -> f64 + Sync),
+        v: &Array2<f64>,
+        out: &mut Array2<f64>,
+    ) -> f64 {
         const ROW_COUPLING: f64 = 0.9;
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
-        let (rs, cs, ds) = (flat(&at.gradient), flat(&at.curvature), flat(&self.coupling));
-        // `P^-1 v` on row `j` into `zr`, `v(k)` the right-hand side at flat index `k`; the sum of
-        // the moving cells' `z`.
-        let solve_row = |j: usize, zr: &mut [f64], v: &dyn Fn(usize) -> f64| {
+        let (vs, ds) = (flat(v), flat(&at.coupling));
+        // `P^-1 rhs` on row `j` into `zr`; returns the sum of `z`.
+        let solve_row = |j: usize, zr: &mut [f64], rhs: &dyn Fn(usize) -> f64| {
             let mut sum = 0.0;
             let mut next = 0.0;
             for i in (0..mx).rev() {
                 let k = j * mx + i;
-                let z = if rs[k] == 0.0 {
+                let w = weight(j, i, k);
+                let z = if w == 0.0 {
                     0.0
-                } else if j < ny && i < nx {
-                    let m = self.mass(cs, j, i, k);
-                    let c = if i + 1 < nx {
-                        ds[j * nx + i].clamp(-ROW_COUPLING * m, ROW_COUPLING * m)
+                } else {
+                    let c = if j < ny && i + 1 < nx {
+                        ds[j * nx + i].clamp(-ROW_COUPLING / w, ROW_COUPLING / w)
                     } else {
                         0.0
                     };
-                    (v(k) - c * next) / m
-                } else {
-                    v(k) / self.diagonal
+                    (rhs(k) - c * next) * w
                 };
                 zr[i] = z;
                 next = z;
@@ -615,7 +640,7 @@ impl Problem<'_> {
             let [a, b] = crate::sum::ordered(self.my, |j| {
                 // Each row's solves on a scratch row of its own: `out` is written below.
                 let mut row = vec![0.0; mx];
-                let a = solve_row(j, &mut row, &|k| rs[k]);
+                let a = solve_row(j, &mut row, &|k| vs[k]);
                 let b = solve_row(j, &mut row, &|_| 1.0);
                 [a, b]
             });
@@ -627,10 +652,10 @@ impl Problem<'_> {
             .par_chunks_mut(mx)
             .enumerate()
             .map(|(j, zr)| {
-                solve_row(j, zr, &|k| rs[k] - mu);
+                solve_row(j, zr, &|k| vs[k] - mu);
                 zr.iter()
-                    .zip(&rs[j * mx..][..mx])
-                    .map(|(z, r)| z * r)
+                    .zip(&vs[j * mx..][..mx])
+                    .map(|(z, v)| z * v)
                     .sum::<f64>()
             })
             .collect();
@@ -747,7 +772,7 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
             cells,
             domain,
             probe: (probe_shape(true), probe_shape(false)),
-            coupling: Array2::zeros((0, 0)),
+            couple: false,
             base: g0.to_owned(),
             mx: nx,
             my: ny,
@@ -800,7 +825,7 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
             cells,
             domain,
             probe: (probe_shape(true), probe_shape(false)),
-            coupling: Array2::zeros((0, 0)),
+            couple: false,
             base,
             mx: padded.1,
             my: padded.0,

@@ -102,7 +102,9 @@ struct Linear {
     /// at the moving cells' gaps: where the law is nowhere stiffer than a cell, the work
     /// is the elastic solve, which the stiffness's inverse (one more FFT a Krylov iteration)
     /// does in far fewer iterations; where the law is stiffer, its stiff cells set the pace and
-    /// the diagonal wins (measured in `docs/decisions.md`).
+    /// the diagonal wins (measured in `docs/decisions.md`). For the line and surface laws the
+    /// diagonal one also holds the law's stiffness by each cell's +x neighbour, solved along
+    /// the rows ([`Problem::solve_rows`]).
     elastic: bool,
     /// The diagonal preconditioner on moving cells, 0 on held ones.
     inverse: Array2<f64>,
@@ -164,7 +166,13 @@ impl Linear {
 
     /// `out = M^-1 v`, with the mean that keeps the moving cells' sum at zero where the mean
     /// gap is prescribed (see [`Linear::elastic`]).
-    fn precondition(&mut self, problem: &mut Problem, v: &Array2<f64>, out: &mut Array2<f64>) -> Result<()> {
+    fn precondition(
+        &mut self,
+        problem: &mut Problem,
+        x: &Point,
+        v: &Array2<f64>,
+        out: &mut Array2<f64>,
+    ) -> Result<()> {
         if self.elastic {
             let factor = 1.0 / self.elastic_factor;
             Zip::from(&mut self.weighted)
@@ -181,6 +189,11 @@ impl Linear {
             if problem.mean_gap.is_some() {
                 remove_moving_mean(out, &self.weight);
             }
+            return Ok(());
+        }
+        if problem.coupled() {
+            let inverse = flat(&self.inverse);
+            problem.solve_rows(x, &|_, _, k| inverse[k], v, out);
             return Ok(());
         }
         let mu = if problem.mean_gap.is_some() {
@@ -258,7 +271,7 @@ impl LinearOperator for Linearised<'_, '_> {
     }
 
     fn precondition(&mut self, v: &Array2<f64>, out: &mut Array2<f64>) -> Result<()> {
-        self.linear.precondition(self.problem, v, out)
+        self.linear.precondition(self.problem, self.x, v, out)
     }
 }
 
@@ -357,6 +370,11 @@ fn iterate(
         delta,
         load,
     } = gap_problem::setup(job, gap_problem::Energy::None)?;
+    if law.local_potential().is_none() {
+        // The line and surface laws: the preconditioner couples each cell to its +x
+        // neighbour as their cell means do.
+        problem.couple_rows(&mut x)?;
+    }
     let unknown = x.gap.dim();
     let mut sums: GradientSums = problem.project_gradient(&mut x);
     let mut norm = dot(&x.gradient, &x.gradient).sqrt();
