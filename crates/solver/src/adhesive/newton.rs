@@ -163,99 +163,6 @@ impl Linear {
         // `sqrt(1/2)` everywhere exactly when the law is nowhere stiffer.
         self.elastic = self.weight.iter().all(|&w| w == 0.0 || w * w >= 0.5);
     }
-
-    /// `out = M^-1 v`, with the mean that keeps the moving cells' sum at zero where the mean
-    /// gap is prescribed (see [`Linear::elastic`]).
-    fn precondition(
-        &mut self,
-        problem: &mut Problem,
-        x: &Point,
-        v: &Array2<f64>,
-        out: &mut Array2<f64>,
-    ) -> Result<()> {
-        if self.elastic {
-            let factor = 1.0 / self.elastic_factor;
-            Zip::from(&mut self.weighted)
-                .and(v)
-                .and(&self.weight)
-                .par_for_each(|t, &v, &w| *t = w * v);
-            problem
-                .stiffness
-                .invert(self.weighted.view(), out.view_mut(), &mut problem.ws)?;
-            problem.calls += 1;
-            Zip::from(&mut *out)
-                .and(&self.weight)
-                .par_for_each(|o, &w| *o *= w * factor);
-            if problem.mean_gap.is_some() {
-                remove_moving_mean(out, &self.weight);
-            }
-            return Ok(());
-        }
-        if problem.coupled() {
-            let inverse = flat(&self.inverse);
-            problem.solve_rows(x, &|_, _, k| inverse[k], v, out);
-            return Ok(());
-        }
-        let mu = if problem.mean_gap.is_some() {
-            dot(&self.inverse, v) / self.inverse.sum().max(f64::MIN_POSITIVE)
-        } else {
-            0.0
-        };
-        Zip::from(out)
-            .and(v)
-            .and(&self.inverse)
-            .par_for_each(|o, &v, &m| *o = (v - mu) * m);
-        Ok(())
-    }
-
-    /// `out = A v`: the linearised balance `(M/dt + S + K) v` at `x` on the moving cells,
-    /// zero on the held ones, less its mean over the moving cells where the mean gap is
-    /// prescribed (the multiplier's change).
-    fn apply(
-        &mut self,
-        problem: &mut Problem,
-        x: &Point,
-        v: &Array2<f64>,
-        out: &mut Array2<f64>,
-    ) -> Result<()> {
-        problem
-            .stiffness
-            .apply(v.view(), out.view_mut(), &mut problem.ws)?;
-        problem.calls += 1;
-        if self.elastic_factor != 1.0 {
-            let factor = self.elastic_factor;
-            out.par_mapv_inplace(|o| o * factor);
-        }
-        let block = s![..problem.ny, ..problem.nx];
-        let largest = v.slice(block).iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        if largest > 0.0 {
-            // A forward difference of the whole field: the law's neighbours move too.
-            let h = 1e-6 * problem.law.range() / largest;
-            Zip::from(&mut self.perturbed)
-                .and(x.gap.slice(block))
-                .and(v.slice(block))
-                .par_for_each(|p, &g, &v| *p = g + h * v);
-            problem.law.pressure_field(
-                self.perturbed.view(),
-                &problem.cells,
-                self.perturbed_law.view_mut(),
-            )?;
-            Zip::from(out.slice_mut(block))
-                .and(&self.perturbed_law)
-                .and(x.law.slice(block))
-                .par_for_each(|o, &hi, &lo| *o -= (hi - lo) / h);
-        }
-        let moving = &self.inverse;
-        Zip::from(&mut *out)
-            .and(v)
-            .and(&self.shift)
-            .and(moving)
-            .par_for_each(|o, &v, &s, &m| *o = if m > 0.0 { *o + s * v } else { 0.0 });
-        if problem.mean_gap.is_some() {
-            remove_moving_mean(out, moving);
-        }
-        Ok(())
-    }
 }
 
 /// The linearised balance at `x` as GMRES sees it.
@@ -266,12 +173,89 @@ struct Linearised<'a, 'p> {
 }
 
 impl LinearOperator for Linearised<'_, '_> {
+    /// `out = A v`: the linearised balance `(M/dt + S + K) v` at `x` on the moving cells,
+    /// zero on the held ones, less its mean over the moving cells where the mean gap is
+    /// prescribed (the multiplier's change).
     fn apply(&mut self, v: &Array2<f64>, out: &mut Array2<f64>) -> Result<()> {
-        self.linear.apply(self.problem, self.x, v, out)
+        let Linearised { linear, problem, x } = self;
+        let problem = &mut **problem;
+        problem
+            .stiffness
+            .apply(v.view(), out.view_mut(), &mut problem.ws)?;
+        problem.calls += 1;
+        if linear.elastic_factor != 1.0 {
+            let factor = linear.elastic_factor;
+            out.par_mapv_inplace(|o| o * factor);
+        }
+        let block = s![..problem.ny, ..problem.nx];
+        let largest = v.slice(block).iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if largest > 0.0 {
+            // A forward difference of the whole field: the law's neighbours move too.
+            let h = 1e-6 * problem.law.range() / largest;
+            Zip::from(&mut linear.perturbed)
+                .and(x.gap.slice(block))
+                .and(v.slice(block))
+                .par_for_each(|p, &g, &v| *p = g + h * v);
+            problem.law.pressure_field(
+                linear.perturbed.view(),
+                &problem.cells,
+                linear.perturbed_law.view_mut(),
+            )?;
+            Zip::from(out.slice_mut(block))
+                .and(&linear.perturbed_law)
+                .and(x.law.slice(block))
+                .par_for_each(|o, &hi, &lo| *o -= (hi - lo) / h);
+        }
+        let moving = &linear.inverse;
+        Zip::from(&mut *out)
+            .and(v)
+            .and(&linear.shift)
+            .and(moving)
+            .par_for_each(|o, &v, &s, &m| *o = if m > 0.0 { *o + s * v } else { 0.0 });
+        if problem.mean_gap.is_some() {
+            remove_moving_mean(out, moving);
+        }
+        Ok(())
     }
 
+    /// `out = M^-1 v`, with the mean that keeps the moving cells' sum at zero where the mean
+    /// gap is prescribed (see [`Linear::elastic`]).
     fn precondition(&mut self, v: &Array2<f64>, out: &mut Array2<f64>) -> Result<()> {
-        self.linear.precondition(self.problem, self.x, v, out)
+        let Linearised { linear, problem, x } = self;
+        let problem = &mut **problem;
+        if linear.elastic {
+            let factor = 1.0 / linear.elastic_factor;
+            Zip::from(&mut linear.weighted)
+                .and(v)
+                .and(&linear.weight)
+                .par_for_each(|t, &v, &w| *t = w * v);
+            problem
+                .stiffness
+                .invert(linear.weighted.view(), out.view_mut(), &mut problem.ws)?;
+            problem.calls += 1;
+            Zip::from(&mut *out)
+                .and(&linear.weight)
+                .par_for_each(|o, &w| *o *= w * factor);
+            if problem.mean_gap.is_some() {
+                remove_moving_mean(out, &linear.weight);
+            }
+            return Ok(());
+        }
+        if problem.coupled() {
+            let inverse = flat(&linear.inverse);
+            problem.solve_rows(x, &|_, _, k| inverse[k], v, out);
+            return Ok(());
+        }
+        let mu = if problem.mean_gap.is_some() {
+            dot(&linear.inverse, v) / linear.inverse.sum().max(f64::MIN_POSITIVE)
+        } else {
+            0.0
+        };
+        Zip::from(out)
+            .and(v)
+            .and(&linear.inverse)
+            .par_for_each(|o, &v, &m| *o = (v - mu) * m);
+        Ok(())
     }
 }
 
