@@ -137,9 +137,10 @@ impl Job {
 
     /// The run's directory name in its study.
     fn name(&self) -> String {
+        // The point law's runs keep the names they always had.
         let law = match self.law {
-            Law::Point => "",
-            _ => "surface_",
+            Law::Point => String::new(),
+            _ => format!("{}_", self.law_name()),
         };
         format!(
             "{law}mu{}_n{}_l{:.0}nm_rq{}_cutoff{:.0}nm_h{}_seed{}",
@@ -201,16 +202,17 @@ impl Job {
     fn law_name(&self) -> &'static str {
         match self.law {
             Law::Point => "point",
-            _ => "surface",
+            Law::Surface => "surface",
+            Law::Exponential => "exponential",
         }
     }
 
-    /// The method: the energy descent for the point law, the flow for the surface law (which
-    /// has no energy).
+    /// The method: the energy descent for the laws with an energy, the flow for the surface
+    /// law (which has none).
     fn solver(&self) -> &'static str {
         match self.law {
-            Law::Point => "energy",
-            _ => "flow",
+            Law::Point | Law::Exponential => "energy",
+            Law::Surface => "flow",
         }
     }
 

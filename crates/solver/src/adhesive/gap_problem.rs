@@ -599,10 +599,10 @@ impl Problem<'_> {
 
     /// `z = P^-1 (v - mu)` into `out`, with `P` the diagonal `1 / weight(j, i, k)` (held cells
     /// have weight 0 and get 0) plus the law's stiffness at `at` by the +x neighbour,
-    /// `-dp_i/dg_j` ([`Problem::couple_rows`]; at most `ROW_COUPLING` times the diagonal, so that the back
-    /// substitution along a row stays bounded; none across the block's edge or a periodic
-    /// wrap), and `mu` the multiple of `P^-1 1` that keeps the moving cells' sum at zero where
-    /// the mean gap is prescribed. Returns `<z, v>`.
+    /// `-dp_i/dg_j` ([`Problem::couple_rows`]; at most `ROW_COUPLING` times the diagonal, so
+    /// that the back substitution along a row stays bounded; none across the block's edge or a
+    /// periodic wrap), and `mu` the multiple of `P^-1 1` that keeps the moving cells' sum at
+    /// zero where the mean gap is prescribed. Returns `<z, v>`.
     pub(super) fn solve_rows(
         &self,
         at: &Point,
@@ -613,8 +613,9 @@ impl Problem<'_> {
         const ROW_COUPLING: f64 = 0.9;
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
         let (vs, ds) = (flat(v), flat(&at.coupling));
-        // `P^-1 rhs` on row `j` into `zr`; returns the sum of `z`.
-        let solve_row = |j: usize, zr: &mut [f64], rhs: &dyn Fn(usize) -> f64| {
+        // `P^-1 rhs` on row `j` by back substitution, each `z_i` handed to `sink(i, z_i)`;
+        // returns the sum of the `z`.
+        let solve_row = |j: usize, rhs: &dyn Fn(usize) -> f64, sink: &mut dyn FnMut(usize, f64)| {
             let mut sum = 0.0;
             let mut next = 0.0;
             for i in (0..mx).rev() {
@@ -630,36 +631,53 @@ impl Problem<'_> {
                     };
                     (rhs(k) - c * next) * w
                 };
-                zr[i] = z;
+                sink(i, z);
                 next = z;
                 sum += z;
             }
             sum
         };
-        let mu = if self.mean_gap.is_some() {
-            let [a, b] = crate::sum::ordered(self.my, |j| {
-                // Each row's solves on a scratch row of its own: `out` is written below.
-                let mut row = vec![0.0; mx];
-                let a = solve_row(j, &mut row, &|k| vs[k]);
-                let b = solve_row(j, &mut row, &|_| 1.0);
-                [a, b]
-            });
-            if b > 0.0 { a / b } else { 0.0 }
-        } else {
-            0.0
+        let dot_row = |j: usize, zr: &[f64]| {
+            zr.iter()
+                .zip(&vs[j * mx..][..mx])
+                .map(|(z, v)| z * v)
+                .sum::<f64>()
         };
-        let parts: Vec<f64> = flat_mut(out)
+        let prescribed = self.mean_gap.is_some();
+        // `P^-1 v` into `out`, with each row's sum, that of `P^-1 1` (its values not kept) and
+        // `<z, v>`.
+        let rows: Vec<[f64; 3]> = flat_mut(out)
             .par_chunks_mut(mx)
             .enumerate()
             .map(|(j, zr)| {
-                solve_row(j, zr, &|k| vs[k] - mu);
-                zr.iter()
-                    .zip(&vs[j * mx..][..mx])
-                    .map(|(z, v)| z * v)
-                    .sum::<f64>()
+                let a = solve_row(j, &|k| vs[k], &mut |i, z| zr[i] = z);
+                let b = if prescribed {
+                    solve_row(j, &|_| 1.0, &mut |_, _| {})
+                } else {
+                    0.0
+                };
+                [a, b, dot_row(j, zr)]
             })
             .collect();
-        parts.iter().sum()
+        let [a, b, dot] = rows.iter().fold([0.0; 3], |mut acc, r| {
+            acc.iter_mut().zip(r).for_each(|(a, r)| *a += r);
+            acc
+        });
+        if !prescribed || b <= 0.0 {
+            return dot;
+        }
+        // Less `mu P^-1 1`, solved again row by row rather than kept.
+        let mu = a / b;
+        flat_mut(out)
+            .par_chunks_mut(mx)
+            .enumerate()
+            .map(|(j, zr)| {
+                solve_row(j, &|_| 1.0, &mut |i, z| zr[i] -= mu * z);
+                dot_row(j, zr)
+            })
+            .collect::<Vec<f64>>()
+            .iter()
+            .sum()
     }
 
     /// Cell `(j, i)`'s mass \[Pa/m\], `k` its flat index and `curvature` the law's stiffness
