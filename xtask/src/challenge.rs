@@ -7,7 +7,8 @@ use crate::case::{Case, Law};
 use anyhow::{Context as _, Result, bail};
 use std::path::{Path, PathBuf};
 
-/// The challenge's box \[m\], modulus \[Pa\], and adhesion (work [J/m^2], exponential range \[m\]).
+/// The challenge's box \[m\], modulus \[Pa\], and adhesion (work [J/m^2], and the range \[m\]:
+/// the exponential law's rho and Lennard-Jones' z0 alike).
 pub const LENGTH: f64 = 1e-4;
 pub const MODULUS: f64 = 25e6;
 pub const WORK: f64 = 0.05;
@@ -104,9 +105,11 @@ impl Run {
         let adhesive = self.case.law.is_some();
         let file = self.case.surface.is_some();
         let n = self.case.n.map_or("file".into(), |n| n.to_string());
-        let name = match self.case.work_of_adhesion.filter(|_| adhesive) {
-            Some(w0) => format!("n{n}_g{g:.6}_w0{w0:.6e}"),
-            None => format!("n{n}_g{g:.6}"),
+        // The exponential law's runs keep their names from before the law was a choice.
+        let name = match (self.case.law, self.case.work_of_adhesion) {
+            (Some(Law::Exponential), Some(w0)) => format!("n{n}_g{g:.6}_w0{w0:.6e}"),
+            (Some(law), Some(w0)) => format!("{}_n{n}_g{g:.6}_w0{w0:.6e}", name(law)),
+            _ => format!("n{n}_g{g:.6}"),
         };
         Ok(crate::series::Sweep {
             study: format!(
@@ -266,22 +269,64 @@ pub fn outcomes(ctx: &crate::Context, runs: &[Run]) -> Result<Vec<Outcome>> {
         .collect()
 }
 
-/// The challenge case with its exponential adhesion of work `w0` [J/m^2].
-pub fn adhesive(mut case: Case, w0: f64) -> Case {
-    case.law = Some(Law::Exponential);
+/// The challenge case with adhesion by `law` of work `w0` [J/m^2] and range [`RANGE`].
+pub fn adhesive(mut case: Case, w0: f64, law: Law) -> Case {
+    case.law = Some(law);
     case.work_of_adhesion = Some(w0);
-    case.range = Some(RANGE);
+    match law {
+        Law::Exponential => case.range = Some(RANGE),
+        Law::Surface | Law::Point => case.z0 = Some(RANGE),
+    }
     case
 }
 
-/// The adhesive process-zone length `E* w0 / sigma0^2` \[m\] of the exponential law of work `w0`
-/// (peak stress `sigma0 = w0 / rho`).
-pub fn process_zone(w0: f64) -> f64 {
-    MODULUS * RANGE * RANGE / w0
+/// The law's name in run names and CSV files.
+pub fn name(law: Law) -> &'static str {
+    match law {
+        Law::Exponential => "exponential",
+        Law::Surface => "surface",
+        Law::Point => "point",
+    }
 }
 
-/// Müser's Tabor-like parameter of the exponential law, `(R w0^2 / (E*^2 rho^3))^(1/3)`, with
-/// the local radius `R` \[m\].
+/// The law in a legend.
+pub fn label(law: Law) -> &'static str {
+    match law {
+        Law::Exponential => "challenge's exponential law",
+        Law::Surface => "LJ surface law",
+        Law::Point => "LJ point law",
+    }
+}
+
+/// The law in a sentence of FIGURES.md.
+pub fn describe(law: Law) -> &'static str {
+    match law {
+        Law::Exponential => {
+            "the challenge's own law, σ(g) = -(w0/ρ) exp(-g/ρ), ρ = 2.071 nm, with a hard wall (the paper \
+             used its Lennard-Jones surface law: `--challenge-law surface`)"
+        }
+        Law::Surface => {
+            "the paper's Lennard-Jones surface law (Eq. 11, each cell the mean of the law over its gaps), \
+             z0 = 2.071 nm, solved by the flow"
+        }
+        Law::Point => "Lennard-Jones at the nodes (the point law), z0 = 2.071 nm, with a hard wall at z0",
+    }
+}
+
+/// The adhesive process-zone length `E* w0 / sigma0^2` \[m\] of `law` with work `w0` (peak
+/// stress `sigma0`: `w0 / rho` for the exponential law, Lennard-Jones' largest tension).
+pub fn process_zone(w0: f64, law: Law) -> f64 {
+    let sigma0 = match law {
+        Law::Exponential => w0 / RANGE,
+        Law::Surface | Law::Point => {
+            ljadhesion::LennardJones::new(w0, RANGE).map_or(f64::NAN, |lj| -lj.min_pressure())
+        }
+    };
+    MODULUS * w0 / (sigma0 * sigma0)
+}
+
+/// The Tabor parameter `(R w0^2 / (E*^2 rho^3))^(1/3)` (Müser's Tabor-like parameter for the
+/// exponential law; Tabor's with z0 for Lennard-Jones), with the local radius `R` \[m\].
 pub fn tabor(local_radius: f64, w0: f64) -> f64 {
     (local_radius * w0 * w0 / (MODULUS * MODULUS * RANGE.powi(3))).cbrt()
 }

@@ -16,15 +16,18 @@ pub fn loads(ctx: &Context) -> Vec<f64> {
     )
 }
 
-/// The two runs of Figs. 8-9: without and with the challenge's adhesion; the adhesive one is
-/// unloaded again from the heaviest load through the others.
+/// The two runs of Figs. 8-9: without and with adhesion (`Options::challenge_law`); the
+/// adhesive one is unloaded again from the heaviest load through the others.
 pub fn runs(ctx: &Context) -> Vec<Run> {
     let n = ctx.pick(256, 1024);
     let base = challenge::case(n, 1.0, ctx.options.challenge_surface.as_ref());
     let back: Vec<f64> = loads(ctx).into_iter().rev().skip(1).collect();
     [
         (base.clone(), Vec::new()),
-        (challenge::adhesive(base, challenge::WORK), back),
+        (
+            challenge::adhesive(base, challenge::WORK, ctx.options.challenge_law),
+            back,
+        ),
     ]
     .into_iter()
     .map(|(case, unloading)| Run {
@@ -60,13 +63,16 @@ pub fn computed(ctx: &Context, o: &challenge::Outcome) -> Vec<String> {
             o.local_radius * 1e6
         ),
     }];
+    let law = ctx.options.challenge_law;
     v.push(format!(
-        "E* = 25 MPa; adhesion by the challenge's own law, σ(g) = -(w0/ρ) exp(-g/ρ) with w0 = 50 mJ/m², \
-         ρ = 2.071 nm and a hard wall (the paper used Lennard-Jones with z0 = 2.071 nm; that law does not \
-         converge on grids this coarse, see docs/validation.md); Tabor-like parameter here {:.1}. Load control, \
-         increasing loads, warm-started, then (adhesion) back down through the same loads; tolerances 1e-8 \
-         (no adhesion) and 1e-6 ρ (adhesion).",
-        challenge::tabor(o.local_radius, challenge::WORK)
+        "E* = 25 MPa; adhesion of w0 = 50 mJ/m² by {}; Tabor parameter (R w0²/(E*² z0³))^(1/3) = {:.1} with R the \
+         local radius; cells {:.0} process zones E* w0/σ0² = {:.2} nm wide. Load control, increasing loads, \
+         warm-started, then (adhesion) back down through the same loads; tolerances 1e-8 (no adhesion) and \
+         1e-6 of the range (adhesion).",
+        challenge::describe(law),
+        challenge::tabor(o.local_radius, challenge::WORK),
+        o.cell / challenge::process_zone(challenge::WORK, law),
+        challenge::process_zone(challenge::WORK, law) * 1e9
     ));
     v.extend(o.warnings.iter().map(|w| format!("Solver warning: {w}")));
     v
@@ -146,7 +152,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         PALETTE[0],
     ));
     chart.curves.push(Curve::solved(
-        "BEM, adhesion (challenge law)",
+        format!("BEM, adhesion ({})", challenge::label(ctx.options.challenge_law)),
         sticky
             .points
             .iter()
@@ -203,7 +209,9 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             Some(u.contact_area_fraction / on_loading.contact_area_fraction)
         })
         .collect();
-    let zones = sticky.cell / challenge::process_zone(challenge::WORK);
+    let law = ctx.options.challenge_law;
+    let zone = challenge::process_zone(challenge::WORK, law);
+    let zones = sticky.cell / zone;
     // Cells far larger than the process zone each snap in and hold on alone (docs/validation.md,
     // `roughcontact sweep`): the area is trapped, not the quasi-static answer.
     let trapped = held.last().is_some_and(|&h| h > 1.5) && zones > 1.0;
@@ -218,7 +226,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
                 "On cells {zones:.0} times the adhesive process zone E* w0/σ0² = {:.1} nm a cell once in \
                  contact holds on, so the area hardly shrinks: lattice trapping, not the hysteresis a resolved \
                  surface would show.",
-                challenge::process_zone(challenge::WORK) * 1e9
+                zone * 1e9
             )
         } else {
             format!("Cells are {zones:.1} times the adhesive process zone.")
@@ -231,8 +239,17 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             .into();
     report.verdict = format!(
         "Partly reproduced: the non-adhesive areas are (slope {slope:.2} against the references' near 2); the \
-         adhesive ones come from the challenge's exponential law on {n}² cells {zones:.0} process zones wide, \
-         not from the paper's law at its resolution, and the unloading line is a property of the grid.",
+         adhesive ones come from {} on {n}² cells {zones:.0} process zones wide{}, and the unloading line is a \
+         property of the grid.",
+        match law {
+            crate::case::Law::Surface => "the paper's law",
+            _ => "another law than the paper's",
+        },
+        if sticky.cell > challenge::LENGTH / 4096.0 {
+            ", not at the paper's 4096²"
+        } else {
+            ""
+        },
         n = ctx.pick(256, 1024)
     );
     Ok(report)

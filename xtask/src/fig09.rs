@@ -39,7 +39,10 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         PALETTE[0],
     ));
     chart.curves.push(Curve::new(
-        "adhesion (challenge law)",
+        format!(
+            "adhesion ({})",
+            crate::challenge::label(ctx.options.challenge_law)
+        ),
         table.rows.iter().map(|r| (r[0], r[2])).collect(),
         Mark::Line,
         PALETTE[3],

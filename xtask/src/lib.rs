@@ -91,6 +91,9 @@ pub struct Options {
     /// The rough spheres' law (Figs. 11-14): the point law (the default, by the energy
     /// descent) or the paper's surface law (by the flow, 2.5 times the time).
     pub rough_law: case::Law,
+    /// The adhesive law of the challenge's figures (Figs. 8-10): the paper's surface law (by
+    /// the flow) or the challenge's exponential law.
+    pub challenge_law: case::Law,
 }
 
 pub const ALL: [u32; 10] = [5, 6, 7, 8, 9, 10, 11, 12, 13, 14];

@@ -18,6 +18,12 @@ enum RoughLaw {
     Surface,
 }
 
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum ChallengeLaw {
+    Surface,
+    Exponential,
+}
+
 /// The flags of `figures`.
 #[derive(clap::Args)]
 struct FiguresArgs {
@@ -48,6 +54,11 @@ struct FiguresArgs {
     /// time).
     #[arg(long, value_enum, default_value = "point")]
     rough_law: RoughLaw,
+    /// The adhesive law of the challenge's figures (Figs. 8-10): the paper's `surface` law,
+    /// Eq. 11 with z0 = 2.071 nm (by the flow), or the challenge's `exponential` law of
+    /// range 2.071 nm.
+    #[arg(long, value_enum, default_value = "surface")]
+    challenge_law: ChallengeLaw,
 }
 
 #[derive(Subcommand)]
@@ -85,6 +96,7 @@ fn run() -> Result<()> {
         fresh,
         studies_only,
         rough_law,
+        challenge_law,
     } = match Cli::parse().command {
         Command::Figures(args) => args,
         Command::Study { name, list } => {
@@ -108,6 +120,10 @@ fn run() -> Result<()> {
         rough_law: match rough_law {
             RoughLaw::Point => xtask::case::Law::Point,
             RoughLaw::Surface => xtask::case::Law::Surface,
+        },
+        challenge_law: match challenge_law {
+            ChallengeLaw::Surface => xtask::case::Law::Surface,
+            ChallengeLaw::Exponential => xtask::case::Law::Exponential,
         },
     };
     if studies_only {

@@ -257,7 +257,7 @@ pub fn mean_std(v: &[f64]) -> (f64, f64) {
 /// The JKR contact radius at zero load of `mu`'s smooth sphere, (9 pi w0 R^2 / (2 E*))^(1/3)
 /// \[m\]: sets the box.
 pub fn jkr_radius(mu: u32) -> f64 {
-    (9.0 * PI * work_of_adhesion(mu) * RADIUS * RADIUS / (2.0 * MODULUS)).cbrt()
+    theory::jkr_dmt::jkr_zero_load_radius(RADIUS, work_of_adhesion(mu), MODULUS)
 }
 
 /// The smallest grid on a box of side `length` \[m\], from 32 cells on and with no prime

@@ -45,6 +45,7 @@ fn quick_mode_regenerates_every_figure() {
                 fresh: true,
                 progress: false,
                 rough_law: xtask::case::Law::Point,
+                challenge_law: xtask::case::Law::Surface,
             })
         })
         .unwrap();
@@ -95,6 +96,7 @@ fn quick_mode_regenerates_every_figure() {
         fresh: false,
         progress: false,
         rough_law: xtask::case::Law::Point,
+        challenge_law: xtask::case::Law::Surface,
     })
     .unwrap();
     let first = reports.iter().find(|r| r.number == 8).unwrap();

@@ -13,6 +13,12 @@ pub fn jkr_approach(a: f64, r: f64, w0: f64, e_star: f64) -> f64 {
     a * a / r - (2.0 * PI * w0 * a / e_star).sqrt()
 }
 
+/// JKR contact radius \[m\] at zero load: `a0 = (9 pi w0 R^2 / (2 E*))^(1/3)`, the root of
+/// [`jkr_load`].
+pub fn jkr_zero_load_radius(r: f64, w0: f64, e_star: f64) -> f64 {
+    (9.0 * PI * w0 * r * r / (2.0 * e_star)).cbrt()
+}
+
 /// JKR pull-off force \[N\] under load control: `-1.5 pi R w0`.
 pub fn jkr_pull_off_load_control(r: f64, w0: f64) -> f64 {
     -1.5 * PI * r * w0

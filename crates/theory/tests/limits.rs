@@ -93,6 +93,10 @@ fn hertz_jkr_and_dmt_relations() {
     );
     assert!((dmt_pull_off(r, w0) / (-2.0 * std::f64::consts::PI * r * w0) - 1.0).abs() < 1e-15);
     assert!((dmt_load(0.0, r, w0, e) - dmt_pull_off(r, w0)).abs() < 1e-20);
+    // The zero-load radius is the root of the JKR load (whose scale is pi R w0).
+    let a0 = jkr_zero_load_radius(r, w0, e);
+    assert!(jkr_load(a0, r, w0, e).abs() < 1e-12 * std::f64::consts::PI * r * w0);
+    assert!(jkr_load(0.99 * a0, r, w0, e) < 0.0 && jkr_load(1.01 * a0, r, w0, e) > 0.0);
 }
 
 #[test]
