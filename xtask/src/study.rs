@@ -337,7 +337,7 @@ fn challenge_mesh() -> Result<()> {
             let points = problem.sweep(&path, None, &settings, None, &mut ())?;
             let areas: Vec<String> = points
                 .iter()
-                .map(|p| format!("{:.4}", p.report.contact_area_fraction))
+                .map(|p| format!("{:.5}", p.report.contact_area_fraction))
                 .collect();
             println!(
                 "| {law} | {n} | {:.0} | {} | {:.1} | {} |",
