@@ -567,11 +567,12 @@ impl Problem<'_> {
         parts.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
     }
 
-    /// Probes, for a law without a potential, each cell's stiffness by its own gap and by its
-    /// +x neighbour's apart (one more evaluation of the law a step), for
-    /// [`Problem::precondition_rows`], and evaluates `at` (the point [`setup`] made) again so.
+    /// Probes, for a law whose cell pressure depends on its neighbours' gaps (no local
+    /// potential) and that is evaluated without an energy, each cell's stiffness by its own
+    /// gap and by its +x neighbour's apart (one more evaluation of the law a step), for
+    /// [`Problem::solve_rows`], and evaluates `at` (the point [`setup`] made) again so.
     pub(super) fn couple_rows(&mut self, at: &mut Point) -> Result<()> {
-        if matches!(self.energy, Energy::None) {
+        if matches!(self.energy, Energy::None) && self.law.local_potential().is_none() {
             self.couple = true;
             self.evaluate(at)?;
         }
@@ -656,23 +657,26 @@ impl Problem<'_> {
                 } else {
                     0.0
                 };
-                [a, b, dot_row(j, zr)]
+                // Where `mu` follows, `<z, v>` is taken after it.
+                [a, b, if prescribed { 0.0 } else { dot_row(j, zr) }]
             })
             .collect();
         let [a, b, dot] = rows.iter().fold([0.0; 3], |mut acc, r| {
             acc.iter_mut().zip(r).for_each(|(a, r)| *a += r);
             acc
         });
-        if !prescribed || b <= 0.0 {
+        if !prescribed {
             return dot;
         }
         // Less `mu P^-1 1`, solved again row by row rather than kept.
-        let mu = a / b;
+        let mu = if b > 0.0 { a / b } else { 0.0 };
         flat_mut(out)
             .par_chunks_mut(mx)
             .enumerate()
             .map(|(j, zr)| {
-                solve_row(j, &|_| 1.0, &mut |i, z| zr[i] -= mu * z);
+                if mu != 0.0 {
+                    solve_row(j, &|_| 1.0, &mut |i, z| zr[i] -= mu * z);
+                }
                 dot_row(j, zr)
             })
             .collect::<Vec<f64>>()

@@ -354,11 +354,9 @@ fn iterate(
         delta,
         load,
     } = gap_problem::setup(job, gap_problem::Energy::None)?;
-    if law.local_potential().is_none() {
-        // The line and surface laws: the preconditioner couples each cell to its +x
-        // neighbour as their cell means do.
-        problem.couple_rows(&mut x)?;
-    }
+    // The line and surface laws: the preconditioner couples each cell to its +x neighbour as
+    // their cell means do.
+    problem.couple_rows(&mut x)?;
     let unknown = x.gap.dim();
     let mut sums: GradientSums = problem.project_gradient(&mut x);
     let mut norm = dot(&x.gradient, &x.gradient).sqrt();
