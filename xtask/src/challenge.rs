@@ -13,6 +13,8 @@ pub const LENGTH: f64 = 1e-4;
 pub const MODULUS: f64 = 25e6;
 pub const WORK: f64 = 0.05;
 pub const RANGE: f64 = 2.071e-9;
+/// The adhesive runs' limit on a load's iterations.
+const MAX_STEPS: usize = 200_000;
 
 /// The challenge surface from its specification (or the user's file) on an `n^2` grid with
 /// RMS gradient `g_bar`; the short cutoff is the specification's 0.1 um or four cells,
@@ -103,6 +105,11 @@ impl Run {
             .collect();
         keys.insert("keep_steps".into(), kept.into());
         let adhesive = self.case.law.is_some();
+        if adhesive {
+            // The flow's first load from a cold start takes more than the default 20000 steps
+            // at 1024^2 (docs/validation.md).
+            keys.insert("max_iterations".into(), (MAX_STEPS as i64).into());
+        }
         let file = self.case.surface.is_some();
         let n = self.case.n.map_or("file".into(), |n| n.to_string());
         // The exponential law's runs keep their names from before the law was a choice.
