@@ -17,6 +17,7 @@ mod flow;
 mod gap_problem;
 mod krylov;
 mod newton;
+pub(crate) use newton::restart_for;
 
 use crate::error::{Result, SolverError, invalid};
 use crate::method::{Method, Settings};

@@ -39,8 +39,20 @@ use ndarray::{Array2, Zip, s};
 use rayon::prelude::*;
 use std::time::Instant;
 
-/// Krylov vectors kept before GMRES restarts.
+/// Krylov vectors kept before GMRES restarts, at most.
 const RESTART: usize = 30;
+/// The most memory \[bytes\] the Krylov basis may take: on larger grids GMRES restarts
+/// sooner (a constant, not the machine's memory, so that results do not depend on the machine).
+pub(crate) const BASIS_BYTES: f64 = 4.0 * 1024.0 * 1024.0 * 1024.0;
+/// Krylov vectors kept at least, however large the grid.
+const MIN_RESTART: usize = 5;
+
+/// The Krylov vectors GMRES keeps before it restarts on fields of `cells` values: [`RESTART`],
+/// or fewer where their `restart + 1` fields would take more than [`BASIS_BYTES`].
+pub(crate) fn restart_for(cells: usize) -> usize {
+    let fields = (BASIS_BYTES / (8.0 * cells as f64)).floor() as usize;
+    fields.saturating_sub(1).clamp(MIN_RESTART, RESTART)
+}
 /// Krylov iterations per Newton step at most.
 const MAX_KRYLOV: usize = 300;
 /// The first pseudo-time step, in units of each cell's relaxation time `1 / D`.
@@ -362,7 +374,7 @@ fn iterate(
     let mut norm = dot(&x.gradient, &x.gradient).sqrt();
     let mut trial = Point::new(Array2::zeros(unknown));
     let mut linear = Linear::new(unknown, domain.shape());
-    let mut gmres = Gmres::new(unknown, RESTART, MAX_KRYLOV);
+    let mut gmres = Gmres::new(unknown, restart_for(unknown.0 * unknown.1), MAX_KRYLOV);
     // The linearised balance's right-hand side `-r`.
     let mut rhs = Array2::zeros(unknown);
     let block = s![..problem.ny, ..problem.nx];
@@ -482,4 +494,22 @@ fn iterate(
         (delta, load),
         outcome,
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The basis is capped at [`BASIS_BYTES`] from the grid where 31 fields no longer fit: all 30
+    /// vectors on a periodic 4096^2 grid, 7 on a free one (its padded 8192^2 unknown, where
+    /// 31 fields took 16 GiB), never fewer than [`MIN_RESTART`].
+    #[test]
+    fn the_krylov_basis_is_capped() {
+        let basis = |cells: usize| (restart_for(cells) + 1) as f64 * 8.0 * cells as f64;
+        assert_eq!(restart_for(512 * 512), RESTART);
+        assert_eq!(restart_for(4096 * 4096), RESTART);
+        assert_eq!(restart_for(8192 * 8192), 7);
+        assert!(basis(4096 * 4096) <= BASIS_BYTES && basis(8192 * 8192) <= BASIS_BYTES);
+        assert_eq!(restart_for(1 << 32), MIN_RESTART);
+    }
 }
