@@ -43,16 +43,9 @@ use std::time::Instant;
 const RESTART: usize = 30;
 /// The most memory \[bytes\] the Krylov basis may take: on larger grids GMRES restarts
 /// sooner (a constant, not the machine's memory, so that results do not depend on the machine).
-pub(crate) const BASIS_BYTES: f64 = 4.0 * 1024.0 * 1024.0 * 1024.0;
+const BASIS_BYTES: f64 = 4.0 * 1024.0 * 1024.0 * 1024.0;
 /// Krylov vectors kept at least, however large the grid.
 const MIN_RESTART: usize = 5;
-
-/// The Krylov vectors GMRES keeps before it restarts on fields of `cells` values: [`RESTART`],
-/// or fewer where their `restart + 1` fields would take more than [`BASIS_BYTES`].
-pub(crate) fn restart_for(cells: usize) -> usize {
-    let fields = (BASIS_BYTES / (8.0 * cells as f64)).floor() as usize;
-    fields.saturating_sub(1).clamp(MIN_RESTART, RESTART)
-}
 /// Krylov iterations per Newton step at most.
 const MAX_KRYLOV: usize = 300;
 /// The first pseudo-time step, in units of each cell's relaxation time `1 / D`.
@@ -83,6 +76,13 @@ const ESCAPE: usize = 5;
 const CHUNK: usize = 4096;
 /// Halvings of a step that raises the residual before a new direction is sought.
 const BACKTRACKS: usize = 3;
+
+/// The Krylov vectors GMRES keeps before it restarts on fields of `cells` values: [`RESTART`],
+/// or fewer where their `restart + 1` fields would take more than [`BASIS_BYTES`].
+pub(crate) fn restart_for(cells: usize) -> usize {
+    let fields = (BASIS_BYTES / (8.0 * cells as f64)).floor() as usize;
+    fields.saturating_sub(1).clamp(MIN_RESTART, RESTART)
+}
 
 /// `<a, b>` in chunks of [`CHUNK`] values added in order.
 pub(super) fn dot(a: &Array2<f64>, b: &Array2<f64>) -> f64 {
