@@ -28,7 +28,7 @@ pub const STUDIES: [(&str, &str); 4] = [
         "challenge-mesh",
         "the contact-mechanics challenge's load cycle, relative contact area against the cell size for the \
          surface, line, point and exponential laws, by the relaxation (SIZES=256,512,1024; LAWS=...; \
-         METHOD=flow)",
+         METHOD=flow; TOLERANCE=...; REFINE=k)",
     ),
 ];
 
@@ -297,17 +297,32 @@ fn challenge_mesh() -> Result<()> {
         seed: 1,
     };
     let heights = surfgen::generate(&spec)?.heights;
-    let loads = [
+    let loads: [f64; 11] = [
         0.00125, 0.0025, 0.005, 0.01, 0.02, 0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125,
     ];
-    let path: Vec<_> = loads.iter().map(|&p| Control::MeanPressure(p * e_star)).collect();
+    // `REFINE=k`: k - 1 loads between each two of the table's, geometrically spaced, to see
+    // how much the unloading branch depends on the size of the load steps.
+    let refine: usize = match std::env::var("REFINE") {
+        Ok(k) => k.parse()?,
+        Err(_) => 1,
+    };
+    let mut steps = vec![loads[0]];
+    for w in loads.windows(2) {
+        steps.extend((1..=refine).map(|k| w[0] * (w[1] / w[0]).powf(k as f64 / refine as f64)));
+    }
+    let path: Vec<_> = steps.iter().map(|&p| Control::MeanPressure(p * e_star)).collect();
     let method: Method = std::env::var("METHOD")
         .unwrap_or_else(|_| "flow".into())
         .parse()
         .map_err(|e: String| anyhow::anyhow!(e))?;
+    let defaults = Settings::with_method(method);
     let settings = Settings {
         max_iterations: 1_000_000,
-        ..Settings::with_method(method)
+        tolerance: match std::env::var("TOLERANCE") {
+            Ok(t) => t.parse()?,
+            Err(_) => defaults.tolerance,
+        },
+        ..defaults
     };
     println!(
         "| law | n | cell / process zone | {} | wall [s] | all converged |",
@@ -337,6 +352,7 @@ fn challenge_mesh() -> Result<()> {
             let points = problem.sweep(&path, None, &settings, None, &mut ())?;
             let areas: Vec<String> = points
                 .iter()
+                .step_by(refine)
                 .map(|p| format!("{:.5}", p.report.contact_area_fraction))
                 .collect();
             println!(

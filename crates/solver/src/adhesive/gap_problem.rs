@@ -308,6 +308,21 @@ impl Problem<'_> {
             });
     }
 
+    /// Moves the cells of `gap` where `held` is 0 by `by` \[m\], projected onto the wall, keeping
+    /// the scratch field in step (a periodic domain's unknown: the gap everywhere).
+    pub(super) fn shift_cells(&mut self, gap: &mut Array2<f64>, held: &Array2<f64>, by: f64) {
+        Zip::from(gap)
+            .and(&mut self.scratch)
+            .and(held)
+            .and(&self.base)
+            .par_for_each(|g, u, &h, &b| {
+                if h == 0.0 {
+                    *g = (*g + by).max(0.0);
+                    *u = *g - b;
+                }
+            });
+    }
+
     /// Fills `at`'s fields, energy and raw gradient from its admissible gap, just made by
     /// [`Problem::step_and_project`].
     pub(super) fn evaluate(&mut self, at: &mut Point) -> Result<()> {
