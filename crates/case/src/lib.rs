@@ -462,13 +462,20 @@ impl Case {
         }
         let law = self.law()?;
         let periodic = self.domain.unwrap_or(DomainKind::Periodic) == DomainKind::Periodic;
-        // Auto as under approach control: the larger of its choices.
-        let method = (law.work_of_adhesion() > 0.0).then(|| {
-            self.settings()
-                .method
-                .resolve(law.as_ref(), solver::Control::Approach(0.0), periodic)
-        });
-        let check_memory = |nx: usize, ny: usize| {
+        let check_memory = |nx: usize, ny: usize, lx: f64, ly: f64| {
+            let domain = elastic::Domain {
+                nx,
+                ny,
+                dx: lx / nx as f64,
+                dy: ly / ny as f64,
+                periodic,
+            };
+            // Auto as under approach control: the larger of its choices.
+            let method = (law.work_of_adhesion() > 0.0).then(|| {
+                self.settings()
+                    .method
+                    .resolve(law.as_ref(), solver::Control::Approach(0.0), &domain, e_star)
+            });
             crate::memory::check(
                 &format!("a {nx} x {ny} solve"),
                 solver::memory_estimate(nx, ny, periodic, method),
@@ -476,7 +483,7 @@ impl Case {
         };
         let mut builder = ContactProblem::builder()
             .modulus(e_star)
-            .shared_law(law)
+            .shared_law(law.clone())
             .periodic(periodic);
         let mut heights = None;
         let size;
@@ -529,7 +536,7 @@ impl Case {
                     s.grid.ny
                 );
             }
-            check_memory(s.grid.nx, s.grid.ny)?;
+            check_memory(s.grid.nx, s.grid.ny, s.grid.length_x, s.grid.length_y)?;
             size = (s.grid.length_x, s.grid.length_y);
             heights = Some(s.heights);
         } else {
@@ -547,7 +554,7 @@ impl Case {
                 .context("the grid needs its size: --length L [m] (and --n)")?;
             let ly = self.length_y.unwrap_or(l * ny as f64 / n as f64);
             let grid = Grid::new(n, ny, l, ly)?;
-            check_memory(n, ny)?;
+            check_memory(n, ny, l, ly)?;
             if generated {
                 let spec = SurfaceSpec {
                     grid,

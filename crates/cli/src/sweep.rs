@@ -311,7 +311,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             .then(|| {
                 settings
                     .method
-                    .resolve(problem.law.as_ref(), controls[0], domain.periodic)
+                    .resolve(problem.law.as_ref(), controls[0], &domain, problem.e_star())
                     .name()
             }),
         "adhesive_range": problem.adhesive().then_some(range),

@@ -937,9 +937,10 @@ fn long_sweep_steps_are_split_into_substeps_of_the_range() {
 }
 
 #[test]
-fn auto_takes_newton_for_the_surface_law_under_approach_control() {
+fn auto_takes_newton_or_the_flow_for_the_surface_law_under_approach_control() {
     // The law soft (dmt-sphere, 0.05 times a cell's stiffness), between (2.5 times) and stiff
-    // (jkr-sphere, 4.6 times): Newton at each.
+    // (jkr-sphere, 4.6 times): Newton at each; on cells four times coarser (18 times), where
+    // each cell holds on or lets go alone, the flow.
     let d = dir("newton");
     for (name, extra) in [
         ("soft", vec!["--example", "dmt-sphere"]),
@@ -964,6 +965,16 @@ fn auto_takes_newton_for_the_surface_law_under_approach_control() {
     assert!(o.status.success(), "{}", stderr(&o));
     let summary = json(&d.join("summary.json"));
     assert_eq!(summary["method"], "newton");
+    assert_eq!(summary["converged"], true);
+    let coarse = d.join("coarse");
+    let o = sweep_example(
+        "jkr-sphere",
+        coarse.to_str().unwrap(),
+        &["--n", "32", "--approaches=-4e-9,-3e-9"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary = json(&coarse.join("summary.json"));
+    assert_eq!(summary["method"], "flow");
     assert_eq!(summary["converged"], true);
     // ... and not where the user chose.
     let o = sweep_example(
@@ -1257,10 +1268,22 @@ fn auto_picks_the_librarys_method_for_every_built_in_example() {
         } else {
             Control::Approach(0.0)
         };
-        let expected = law
-            .work_of_adhesion()
-            .gt(&0.0)
-            .then(|| Method::Auto.resolve(law.as_ref(), control, true).name());
+        // The grid as run: the example's length over the `--n` given here.
+        let n: f64 = extra[1].parse().unwrap();
+        let length = number("length").unwrap();
+        let domain = elastic::Domain {
+            nx: n as usize,
+            ny: n as usize,
+            dx: length / n,
+            dy: length / n,
+            periodic: table.get("sphere_radius").is_none(),
+        };
+        let e_star = number("modulus").unwrap();
+        let expected = law.work_of_adhesion().gt(&0.0).then(|| {
+            Method::Auto
+                .resolve(law.as_ref(), control, &domain, e_star)
+                .name()
+        });
         // The command line's choice, as its summary records it.
         let out = d.join(name);
         let o = sweep_example(name, out.to_str().unwrap(), &extra);

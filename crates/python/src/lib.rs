@@ -450,7 +450,12 @@ fn sweep<'py>(
     let method = problem.adhesive().then(|| {
         settings
             .method
-            .resolve(problem.law.as_ref(), controls[0], problem.domain().periodic)
+            .resolve(
+                problem.law.as_ref(),
+                controls[0],
+                &problem.domain(),
+                problem.e_star(),
+            )
             .name()
     });
     let summary = serde_json::json!({

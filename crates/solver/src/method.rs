@@ -8,6 +8,7 @@
 use crate::options::{ContactOptions, Control};
 use crate::sweep::SweepPoint;
 use crate::{AdhesiveState, error::Result, error::invalid};
+use elastic::Domain;
 use ljadhesion::AdhesionLaw;
 
 /// An adhesive solution method.
@@ -62,15 +63,17 @@ impl Method {
         }
     }
 
-    /// The method for `law` under `control` on a domain that is `periodic` or not: itself, or
-    /// for [`Method::Auto`] the energy descent for the laws with an energy (local or of the
-    /// field) and Newton for the line and surface laws under approach control, the
-    /// flow for the line and surface laws under load control on periodic domains, the
+    /// The method for `law` under `control` on `domain`, over a half-space of composite modulus
+    /// `e_star` \[Pa\]: itself, or for [`Method::Auto`] the energy descent for the laws with an
+    /// energy (local or of the field); for the line and surface laws under approach control
+    /// Newton where a cell is stiffer than [`Method::FLOW_ABOVE`] times the law's stiffness
+    /// bound, else the flow (on coarser cells, where each cell holds on or lets go alone, Newton
+    /// circles between states); the flow for them under load control on periodic domains; the
     /// accelerated loop elsewhere (central-gap control, Dugdale's law, no adhesion, loads on
     /// free domains). Near a fold the accelerated loop leaves a branch early, where the methods
     /// that relax from the last state hold on; under load control on coarse cells it circles
     /// with the line and surface laws, where the flow settles (`docs/solvers.md`).
-    pub fn resolve(self, law: &dyn AdhesionLaw, control: Control, periodic: bool) -> Method {
+    pub fn resolve(self, law: &dyn AdhesionLaw, control: Control, domain: &Domain, e_star: f64) -> Method {
         if self != Method::Auto {
             return self;
         }
@@ -79,16 +82,26 @@ impl Method {
         let adhesive = law.work_of_adhesion() > 0.0;
         let energy = law.local_potential().is_some() || law.field_potential().is_some();
         let averaged = !energy && law.flat_potential().is_some() && law.stiffness_bound().is_finite();
+        let periodic = domain.periodic;
+        let coarse =
+            law.stiffness_bound() * crate::adhesive::cell_compliance(domain, e_star) > Method::FLOW_ABOVE;
         if approach && adhesive && energy {
             Method::EnergyDescent
         } else if approach && adhesive && averaged {
-            Method::Newton
+            if coarse { Method::Flow } else { Method::Newton }
         } else if load && periodic && adhesive && averaged {
             Method::Flow
         } else {
             Method::Accelerated
         }
     }
+}
+
+impl Method {
+    /// The ratio of the law's stiffness bound to a cell's own elastic stiffness above which
+    /// [`Method::resolve`] takes the flow rather than Newton under approach control
+    /// (`docs/decisions.md`: the two take the same time near 5-8).
+    pub const FLOW_ABOVE: f64 = 8.0;
 }
 
 impl std::fmt::Display for Method {

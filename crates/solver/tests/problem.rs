@@ -93,18 +93,48 @@ fn auto_takes_the_tested_method_for_each_law_and_control() {
         (&PointLaw(lj()), load, Method::Accelerated),
         (&PointLaw(lj()), Control::CentralGap(Z0), Method::Accelerated),
     ];
+    // Cells of 1 nm on a half-space of 1 GPa, about as stiff as the law at its stiffest (w0 =
+    // 50 mJ/m^2, z0 = 1 nm), and 30 times coarser ones.
+    let e_star = 1e9;
+    let grid = |dx: f64, periodic: bool| Domain {
+        nx: 64,
+        ny: 64,
+        dx,
+        dy: dx,
+        periodic,
+    };
+    let fine = grid(1e-9, true);
+    let cell_stiffness = 1.0 / solver::adhesive::cell_compliance(&fine, e_star);
+    assert!(
+        ljadhesion::AdhesionLaw::stiffness_bound(&SurfaceLaw(lj())) < Method::FLOW_ABOVE * cell_stiffness
+    );
     for (law, control, expected) in cases {
         assert_eq!(
-            Method::Auto.resolve(law, control, true),
+            Method::Auto.resolve(law, control, &fine, e_star),
             expected,
             "{} {control:?}",
             law.name()
         );
         // A chosen method stays chosen.
-        assert_eq!(Method::DualLoop.resolve(law, control, true), Method::DualLoop);
+        assert_eq!(
+            Method::DualLoop.resolve(law, control, &fine, e_star),
+            Method::DualLoop
+        );
         // Loads on free domains: the flow takes the approach only there.
         if expected == Method::Flow {
-            assert_eq!(Method::Auto.resolve(law, control, false), Method::Accelerated);
+            let free = grid(1e-9, false);
+            assert_eq!(
+                Method::Auto.resolve(law, control, &free, e_star),
+                Method::Accelerated
+            );
+        }
+        // On cells coarser than the process zone by far, where each holds on or lets go alone,
+        // the flow takes the approach for the laws Newton takes on fine cells.
+        if expected == Method::Newton {
+            for periodic in [true, false] {
+                let coarse = grid(3e-8, periodic);
+                assert_eq!(Method::Auto.resolve(law, control, &coarse, e_star), Method::Flow);
+            }
         }
     }
     for m in Method::ALL {

@@ -350,7 +350,7 @@ pub(crate) fn solve(
         other => other,
     };
     let law = problem.law.as_ref();
-    let method = settings.method.resolve(law, control, op.domain().periodic);
+    let method = settings.method.resolve(law, control, op.domain(), op.e_star());
     let job = Job {
         op,
         law,
