@@ -38,6 +38,22 @@ impl Setup {
         self.half_width * self.half_width * Z0 / (2.0 * RADIUS)
     }
 
+    /// The method `--solver auto` takes for this sphere under approach control.
+    pub fn method(&self) -> solver::Method {
+        let cell = self.cell() * Z0;
+        let domain = elastic::Domain {
+            nx: self.n,
+            ny: self.n,
+            dx: cell,
+            dy: cell,
+            periodic: false,
+        };
+        let law = ljadhesion::SurfaceLaw(
+            ljadhesion::LennardJones::new(self.work_of_adhesion(), Z0).expect("w0 and z0 are positive"),
+        );
+        solver::Method::Auto.resolve(&law, Control::Approach(0.0), &domain, MODULUS)
+    }
+
     pub fn case(&self) -> Case {
         Case {
             sphere_radius: Some(RADIUS),
@@ -569,8 +585,23 @@ pub fn figure(ctx: &crate::Context, number: u32, mus: &[f64], s_curves: bool) ->
     ));
     report.computed.push(format!(
         "Approach-controlled cycle from {from} to {to} z0 in steps of {h_in} z0 and back to {back} z0 in \
-         steps of {h_out} z0, each step warm-started from the last (Newton, as `--solver auto` takes it \
-         for this law under approach control; tolerance 1e-6 z0 on the worst cell).{}",
+         steps of {h_out} z0, each step warm-started from the last, by {} as `--solver auto` takes them \
+         for this law under approach control (tolerance 1e-6 z0 on the worst cell).{}",
+        {
+            // Each method with the Tabor parameters it solves, in order.
+            let mut by: Vec<(solver::Method, Vec<String>)> = Vec::new();
+            for &mu in mus {
+                let method = setup(mu, n).method();
+                match by.iter_mut().find(|(m, _)| *m == method) {
+                    Some((_, list)) => list.push(format!("{mu}")),
+                    None => by.push((method, vec![format!("{mu}")])),
+                }
+            }
+            by.iter()
+                .map(|(m, list)| format!("`{m}` (μ = {})", list.join(", ")))
+                .collect::<Vec<_>>()
+                .join(", ")
+        },
         if s_curves {
             " S-curves: the gap at the apex prescribed from 3 z0 down to 0.1 z0, then finer to 0.001 z0 through the fold of the jump out, the approach following (accelerated outer loop)."
         } else {
