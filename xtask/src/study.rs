@@ -306,6 +306,9 @@ fn challenge_mesh() -> Result<()> {
         Ok(k) => k.parse()?,
         Err(_) => 1,
     };
+    if refine == 0 {
+        bail!("REFINE must be at least 1 (the table's loads alone)");
+    }
     let mut steps = vec![loads[0]];
     for w in loads.windows(2) {
         steps.extend((1..=refine).map(|k| w[0] * (w[1] / w[0]).powf(k as f64 / refine as f64)));

@@ -40,6 +40,11 @@ pub enum Method {
 }
 
 impl Method {
+    /// The ratio of the law's stiffness bound to a cell's own elastic stiffness above which
+    /// [`Method::resolve`] takes the flow rather than Newton under approach control
+    /// (`docs/decisions.md`: the two take the same time near 5-8).
+    pub const FLOW_ABOVE: f64 = 8.0;
+
     /// Every method, `Auto` first.
     pub const ALL: [Method; 6] = [
         Method::Auto,
@@ -66,9 +71,9 @@ impl Method {
     /// The method for `law` under `control` on `domain`, over a half-space of composite modulus
     /// `e_star` \[Pa\]: itself, or for [`Method::Auto`] the energy descent for the laws with an
     /// energy (local or of the field); for the line and surface laws under approach control
-    /// Newton where a cell is stiffer than [`Method::FLOW_ABOVE`] times the law's stiffness
-    /// bound, else the flow (on coarser cells, where each cell holds on or lets go alone, Newton
-    /// circles between states); the flow for them under load control on periodic domains; the
+    /// Newton where the law's stiffness bound is at most [`Method::FLOW_ABOVE`] times a cell's
+    /// own elastic stiffness, else the flow (on coarser cells, where each cell holds on or lets
+    /// go alone, Newton circles between states); the flow for them under load control on periodic domains; the
     /// accelerated loop elsewhere (central-gap control, Dugdale's law, no adhesion, loads on
     /// free domains). Near a fold the accelerated loop leaves a branch early, where the methods
     /// that relax from the last state hold on; under load control on coarse cells it circles
@@ -95,13 +100,6 @@ impl Method {
             Method::Accelerated
         }
     }
-}
-
-impl Method {
-    /// The ratio of the law's stiffness bound to a cell's own elastic stiffness above which
-    /// [`Method::resolve`] takes the flow rather than Newton under approach control
-    /// (`docs/decisions.md`: the two take the same time near 5-8).
-    pub const FLOW_ABOVE: f64 = 8.0;
 }
 
 impl std::fmt::Display for Method {

@@ -111,6 +111,8 @@ fn energy<'a>(job: &Job<'a>) -> Result<Energy<'a>> {
     Ok(Energy::of(law))
 }
 
+/// The relaxation of `job`; under load control with the soft cells' shift apart
+/// ([`RigidShift`]) if `rigid_shift` (off only to test it against the plain flow).
 fn solve<'a>(
     job: &Job<'a>,
     energy: Energy<'a>,
