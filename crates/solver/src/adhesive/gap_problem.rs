@@ -622,37 +622,12 @@ impl Problem<'_> {
     pub(super) fn solve_rows(
         &self,
         at: &Point,
-        weight: &(dyn Fn(usize, usize, usize) -> f64 + Sync),
+        weight: &(impl Fn(usize, usize, usize) -> f64 + Sync),
         v: &Array2<f64>,
         out: &mut Array2<f64>,
     ) -> f64 {
-        const ROW_COUPLING: f64 = 0.9;
-        let (mx, nx, ny) = (self.mx, self.nx, self.ny);
-        let (vs, ds) = (flat(v), flat(&at.coupling));
-        // `P^-1 rhs` on row `j` by back substitution, each `z_i` handed to `sink(i, z_i)`;
-        // returns the sum of the `z`.
-        let solve_row = |j: usize, rhs: &dyn Fn(usize) -> f64, sink: &mut dyn FnMut(usize, f64)| {
-            let mut sum = 0.0;
-            let mut next = 0.0;
-            for i in (0..mx).rev() {
-                let k = j * mx + i;
-                let w = weight(j, i, k);
-                let z = if w == 0.0 {
-                    0.0
-                } else {
-                    let c = if j < ny && i + 1 < nx {
-                        ds[j * nx + i].clamp(-ROW_COUPLING / w, ROW_COUPLING / w)
-                    } else {
-                        0.0
-                    };
-                    (rhs(k) - c * next) * w
-                };
-                sink(i, z);
-                next = z;
-                sum += z;
-            }
-            sum
-        };
+        let mx = self.mx;
+        let vs = flat(v);
         let dot_row = |j: usize, zr: &[f64]| {
             zr.iter()
                 .zip(&vs[j * mx..][..mx])
@@ -666,9 +641,9 @@ impl Problem<'_> {
             .par_chunks_mut(mx)
             .enumerate()
             .map(|(j, zr)| {
-                let a = solve_row(j, &|k| vs[k], &mut |i, z| zr[i] = z);
+                let a = self.solve_row(at, weight, j, |k| vs[k], |i, z| zr[i] = z);
                 let b = if prescribed {
-                    solve_row(j, &|_| 1.0, &mut |_, _| {})
+                    self.solve_row(at, weight, j, |_| 1.0, |_, _| {})
                 } else {
                     0.0
                 };
@@ -690,13 +665,48 @@ impl Problem<'_> {
             .enumerate()
             .map(|(j, zr)| {
                 if mu != 0.0 {
-                    solve_row(j, &|_| 1.0, &mut |i, z| zr[i] -= mu * z);
+                    self.solve_row(at, weight, j, |_| 1.0, |i, z| zr[i] -= mu * z);
                 }
                 dot_row(j, zr)
             })
             .collect::<Vec<f64>>()
             .iter()
             .sum()
+    }
+
+    /// `P^-1 rhs` on row `j` of [`Problem::solve_rows`] by back substitution, each `z_i` handed
+    /// to `sink(i, z_i)`; returns the sum of the `z`.
+    fn solve_row(
+        &self,
+        at: &Point,
+        weight: &impl Fn(usize, usize, usize) -> f64,
+        j: usize,
+        rhs: impl Fn(usize) -> f64,
+        mut sink: impl FnMut(usize, f64),
+    ) -> f64 {
+        const ROW_COUPLING: f64 = 0.9;
+        let (mx, nx, ny) = (self.mx, self.nx, self.ny);
+        let ds = flat(&at.coupling);
+        let mut sum = 0.0;
+        let mut next = 0.0;
+        for i in (0..mx).rev() {
+            let k = j * mx + i;
+            let w = weight(j, i, k);
+            let z = if w == 0.0 {
+                0.0
+            } else {
+                let c = if j < ny && i + 1 < nx {
+                    ds[j * nx + i].clamp(-ROW_COUPLING / w, ROW_COUPLING / w)
+                } else {
+                    0.0
+                };
+                (rhs(k) - c * next) * w
+            };
+            sink(i, z);
+            next = z;
+            sum += z;
+        }
+        sum
     }
 
     /// Cell `(j, i)`'s mass \[Pa/m\], `k` its flat index and `curvature` the law's stiffness
