@@ -796,18 +796,25 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
     let (mut problem, first, hold) = if domain.periodic {
         let stiffness = PeriodicStiffness::new(domain, op.e_star())?;
         let first = match start {
-            // Under load control the rigid shift has no elastic stiffness, and a first step
-            // from a point contact would snap far more of the surface in than a quasi-static
-            // approach does: start from the non-adhesive contact at the same (compressive)
-            // load instead.
-            Start::Loading => match load {
-                Some(p) if p > 0.0 => {
-                    crate::cg::solve(op, g0, Control::MeanPressure(p), &settings.contact, None, &mut ())?
-                        .0
-                        .gap
+            // A first step from the rigid overlap (or, under load control, where the rigid
+            // shift has no elastic stiffness, from a point contact) would snap far more of
+            // the surface in than a quasi-static approach does: start from the non-adhesive
+            // contact at the same compressive load or approach instead.
+            Start::Loading => {
+                let contact = match load {
+                    Some(p) if p > 0.0 => Some(Control::MeanPressure(p)),
+                    None if delta > 0.0 => Some(Control::Approach(delta)),
+                    _ => None,
+                };
+                match contact {
+                    Some(control) => {
+                        crate::cg::solve(op, g0, control, &settings.contact, None, &mut ())?
+                            .0
+                            .gap
+                    }
+                    None => g0.mapv(|g| g - delta),
                 }
-                _ => g0.mapv(|g| g - delta),
-            },
+            }
             Start::Unloading => Array2::zeros(shape),
             Start::Warm(s) => s.contact.gap.clone(),
         };
