@@ -222,9 +222,16 @@ impl ExponentialLaw {
     /// `sigma(g)` \[Pa\].
     pub fn pressure(&self, gap: f64) -> f64 {
         let g = if gap < 0.0 { 0.0 } else { gap }; // NaN stays NaN
+        if g > UNDERFLOW * self.rho {
+            // What `exp` returns there, without libm's slow path near underflow.
+            return -0.0;
+        }
         -(self.w0 / self.rho) * (-g / self.rho).exp()
     }
 }
+
+/// Ranges beyond which `exp(-g / rho)` underflows to zero (`ln 2^-1075` = -745.13).
+const UNDERFLOW: f64 = 745.2;
 
 impl AdhesionLaw for ExponentialLaw {
     fn pressure_field(&self, gap: ArrayView2<f64>, _cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()> {

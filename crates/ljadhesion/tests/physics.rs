@@ -68,6 +68,18 @@ fn the_other_laws_also_integrate_to_minus_w0() {
     assert!((d.range() / Z0 - 0.974).abs() < 5e-4, "{}", d.range() / Z0);
 }
 
+/// Far from the wall the exponential law skips `exp`, whose result there is zero: the same
+/// pressure, bit for bit, on both sides of where the skip begins.
+#[test]
+fn the_exponential_law_is_exact_where_it_underflows() {
+    let e = ExponentialLaw::new(W0, Z0).unwrap();
+    for k in 0..=20_000 {
+        let g = Z0 * (700.0 + 100.0 * k as f64 / 20_000.0);
+        let direct = -(W0 / Z0) * (-g / Z0).exp();
+        assert_eq!(e.pressure(g).to_bits(), direct.to_bits(), "{}", g / Z0);
+    }
+}
+
 #[test]
 fn the_strongest_pull_is_at_the_sixth_root_of_three() {
     let law = lj();

@@ -141,8 +141,9 @@ pub struct Settings {
     pub max_iterations: usize,
     /// The dual loops only: relaxation and mixing.
     pub mixing: Mixing,
-    /// The non-adhesive solves inside a method: the dual loops' inner solves and the energy
-    /// descent's start under a compressive load.
+    /// The non-adhesive solves inside a method: the dual loops' inner solves and the cold
+    /// start of the gap methods (energy descent, flow, Newton) on a periodic grid under a
+    /// compressive load or an approach.
     pub contact: ContactOptions,
 }
 
