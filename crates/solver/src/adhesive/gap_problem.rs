@@ -801,18 +801,13 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
             // the surface in than a quasi-static approach does: start from the non-adhesive
             // contact at the same compressive load or approach instead.
             Start::Loading => {
-                let contact = match load {
-                    Some(p) if p > 0.0 => Some(Control::MeanPressure(p)),
-                    None if delta > 0.0 => Some(Control::Approach(delta)),
-                    _ => None,
+                let non_adhesive = |control| {
+                    crate::cg::solve(op, g0, control, &settings.contact, None, &mut ()).map(|(s, _)| s.gap)
                 };
-                match contact {
-                    Some(control) => {
-                        crate::cg::solve(op, g0, control, &settings.contact, None, &mut ())?
-                            .0
-                            .gap
-                    }
-                    None => g0.mapv(|g| g - delta),
+                match load {
+                    Some(p) if p > 0.0 => non_adhesive(Control::MeanPressure(p))?,
+                    None if delta > 0.0 => non_adhesive(Control::Approach(delta))?,
+                    _ => g0.mapv(|g| g - delta),
                 }
             }
             Start::Unloading => Array2::zeros(shape),
