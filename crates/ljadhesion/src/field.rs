@@ -92,6 +92,64 @@ pub(crate) fn neighbours(
     Ok(())
 }
 
+/// As [`neighbours`], with `cell` giving three values a cell, written into `outs` in order (a
+/// cell's pressure and its slopes by its own gap and its +x neighbour's, say).
+pub(crate) fn neighbours3(
+    gap: ArrayView2<f64>,
+    cells: &Cells,
+    outs: [ArrayViewMut2<f64>; 3],
+    node: impl Fn(f64) -> f64 + Sync,
+    cell: impl Fn(f64, f64, f64, f64, f64) -> [f64; 3] + Sync,
+) -> Result<()> {
+    for out in &outs {
+        check_shapes(&gap, out)?;
+    }
+    let (ny, nx) = gap.dim();
+    if ny == 0 || nx == 0 {
+        return Ok(());
+    }
+    let last_x = next(nx - 1, nx, cells.periodic);
+    let [mut a, mut b, mut c] = outs;
+    let bad = Zip::indexed(a.rows_mut())
+        .and(b.rows_mut())
+        .and(c.rows_mut())
+        .into_par_iter()
+        .map_init(
+            || vec![0.0; nx],
+            |t, (y, mut a, mut b, mut c)| {
+                let g = gap.row(y);
+                let u = gap.row(next(y, ny, cells.periodic));
+                let (g, u) = (
+                    g.as_slice().expect("standard layout"),
+                    u.as_slice().expect("standard layout"),
+                );
+                let (a, b, c) = (
+                    a.as_slice_mut().expect("standard layout"),
+                    b.as_slice_mut().expect("standard layout"),
+                    c.as_slice_mut().expect("standard layout"),
+                );
+                t.iter_mut().zip(g).for_each(|(t, &g)| *t = node(g));
+                // Zipped slices rather than indices, as in `neighbours`.
+                let m = nx - 1;
+                a[..m]
+                    .iter_mut()
+                    .zip(b[..m].iter_mut().zip(c[..m].iter_mut()))
+                    .zip(g[..m].iter().zip(&g[1..]))
+                    .zip(u[..m].iter().zip(t[..m].iter().zip(&t[1..])))
+                    .for_each(|(((a, (b, c)), (&g1, &g2)), (&g3, (&t1, &t2)))| {
+                        [*a, *b, *c] = cell(g1, g2, g3, t1, t2);
+                    });
+                [a[m], b[m], c[m]] = cell(g[m], g[last_x], u[m], t[m], t[last_x]);
+                a.iter().any(|v| !v.is_finite())
+            },
+        )
+        .reduce(|| false, |a, b| a || b);
+    if bad {
+        locate_bad_gap(&gap)?;
+    }
+    Ok(())
+}
+
 /// The neighbour of node `i` along an axis of `n` nodes: the next, wrapping around on
 /// periodic domains; on free edges the last node's is mirrored (`n - 2`).
 fn next(i: usize, n: usize, periodic: bool) -> usize {

@@ -28,6 +28,11 @@ macro_rules! lennard_jones_scales {
     };
 }
 
+/// `dz/dg`: 1 where the gap is open, 0 in contact (the separation is clamped there at z0).
+fn open(gap: f64) -> f64 {
+    if gap >= 0.0 { 1.0 } else { 0.0 }
+}
+
 /// The naive law: `p_i = p(z1)`, the Lennard-Jones pressure at the cell's node.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointLaw(pub LennardJones);
@@ -116,6 +121,28 @@ impl AdhesionLaw for LineLaw {
             |_, _, _, v1, v2| lj.mean_pressure_v(v1, v2),
         )
     }
+    fn pressure_and_stiffness_field(
+        &self,
+        gap: ArrayView2<f64>,
+        cells: &Cells,
+        pressure: ArrayViewMut2<f64>,
+        own: ArrayViewMut2<f64>,
+        next: ArrayViewMut2<f64>,
+    ) -> Result<bool> {
+        let lj = self.0;
+        let z0 = lj.z0();
+        field::neighbours3(
+            gap,
+            cells,
+            [pressure, own, next],
+            |g| z0 / lj.separation(g),
+            |g1, g2, _, v1, v2| {
+                let (d1, d2) = lj.mean_pressure_slopes_v(v1, v2);
+                [lj.mean_pressure_v(v1, v2), -open(g1) * d1, -open(g2) * d2]
+            },
+        )?;
+        Ok(true)
+    }
     lennard_jones_scales!("line");
     fn flat_potential(&self) -> Option<&dyn LocalPotential> {
         Some(self)
@@ -138,6 +165,39 @@ impl AdhesionLaw for SurfaceLaw {
                 (1.0 + sx * sx + sy * sy).sqrt() * lj.mean_pressure_v(v1, v2)
             },
         )
+    }
+    fn pressure_and_stiffness_field(
+        &self,
+        gap: ArrayView2<f64>,
+        cells: &Cells,
+        pressure: ArrayViewMut2<f64>,
+        own: ArrayViewMut2<f64>,
+        next: ArrayViewMut2<f64>,
+    ) -> Result<bool> {
+        let lj = self.0;
+        let z0 = lj.z0();
+        let (ix, iy) = (1.0 / cells.dx, 1.0 / cells.dy);
+        field::neighbours3(
+            gap,
+            cells,
+            [pressure, own, next],
+            |g| z0 / lj.separation(g),
+            |g1, g2, g3, v1, v2| {
+                let (z1, z2, z3) = (lj.separation(g1), lj.separation(g2), lj.separation(g3));
+                let (sx, sy) = ((z2 - z1) * ix, (z3 - z1) * iy);
+                let area = (1.0 + sx * sx + sy * sy).sqrt();
+                let mean = lj.mean_pressure_v(v1, v2);
+                let (d1, d2) = lj.mean_pressure_slopes_v(v1, v2);
+                // The area factor's slopes by z1 and z2: -(sx ix + sy iy) / S and sx ix / S.
+                let (a1, a2) = (-(sx * ix + sy * iy) / area, sx * ix / area);
+                [
+                    area * mean,
+                    -open(g1) * (area * d1 + a1 * mean),
+                    -open(g2) * (area * d2 + a2 * mean),
+                ]
+            },
+        )?;
+        Ok(true)
     }
     // The stiffness bound is that of the mean pressure; the area factor `S` multiplies it
     // where the gap is steep.

@@ -63,6 +63,27 @@ pub trait AdhesionLaw: Sync + Send {
     /// unspecified.
     fn pressure_field(&self, gap: ArrayView2<f64>, cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()>;
 
+    /// Writes the pressure \[Pa\] as [`AdhesionLaw::pressure_field`] does (bit for bit) into
+    /// `pressure`, and its stiffness by each cell's own gap and by its +x neighbour's,
+    /// `-dp_i/dg_i` and `-dp_i/dg_(i+1)` [Pa/m], into `own` and `next`, for the laws whose cell
+    /// mixes its gap with its +x neighbour's (line and surface), in closed form in one pass.
+    /// The surface law's dependence on the +y neighbour, through its area factor alone, is
+    /// left out. Returns `false`, with nothing written, for the other laws.
+    ///
+    /// # Errors
+    /// As [`AdhesionLaw::pressure_field`].
+    fn pressure_and_stiffness_field(
+        &self,
+        gap: ArrayView2<f64>,
+        cells: &Cells,
+        pressure: ArrayViewMut2<f64>,
+        own: ArrayViewMut2<f64>,
+        next: ArrayViewMut2<f64>,
+    ) -> Result<bool> {
+        let _ = (gap, cells, pressure, own, next);
+        Ok(false)
+    }
+
     /// An upper bound of `|dp/dg|` [Pa/m], for choosing a stable relaxation.
     fn stiffness_bound(&self) -> f64;
 

@@ -103,6 +103,22 @@ impl LennardJones {
         self.w0 / (3.0 * self.z0) * v1 * v2 * (v1 + v2) * ((a + b) * (a * a + b * b) - 4.0)
     }
 
+    /// The slopes of [`LennardJones::mean_pressure_v`] by the separations at its two ends,
+    /// `(dM/dz1, dM/dz2)` [Pa/m], in terms of `v = z0 / z`: polynomials like the mean itself
+    /// (`dv/dz = -v^2 / z0`), so free of cancellation for every interval; where the ends
+    /// coincide each is half the slope of the pressure.
+    #[inline]
+    pub fn mean_pressure_slopes_v(&self, v1: f64, v2: f64) -> (f64, f64) {
+        let (a, b) = (v1 * v1, v2 * v2);
+        let q = (a + b) * (a * a + b * b) - 4.0;
+        let r = 2.0 * (v1 + v2) * (a * a + b * b);
+        let c = -self.w0 / (3.0 * self.z0 * self.z0);
+        // d/dv1 of v1 v2 (v1 + v2) q, with dq/dv1 = 2 v1 (a^2 + b^2 + 2 a (a + b)).
+        let d1 = v2 * ((2.0 * v1 + v2) * q + a * (r + 4.0 * a * (a + b) * (v1 + v2)));
+        let d2 = v1 * ((2.0 * v2 + v1) * q + b * (r + 4.0 * b * (a + b) * (v1 + v2)));
+        (c * a * d1, c * b * d2)
+    }
+
     /// Mean of the interaction energy per area `-Phi` over the separations between `z1` and
     /// `z2`, in terms of `v = z0 / z` at both ends, with its partial derivatives by `v1` and
     /// `v2`: `[M, dM/dv1, dM/dv2, d2M/dv1^2, d2M/dv2^2]`.

@@ -496,3 +496,96 @@ fn the_surface_energy_law_on_flat_gaps_is_the_point_law() {
         }
     }
 }
+
+/// The line and surface laws' closed-form stiffnesses by a cell's own gap and by its +x
+/// neighbour's are the slopes of their pressure fields: central differences of the field with
+/// one node moved (its own cell and its -x neighbour's change), on rough gaps from contact to
+/// far apart, periodic and free; the pressure is the field's bit for bit.
+#[test]
+fn the_closed_form_stiffnesses_are_the_slopes_of_the_pressure() {
+    let (ny, nx) = (6, 7);
+    let gap = rough_gap(ny, nx);
+    let line = LineLaw(lj());
+    let surface = SurfaceLaw(lj());
+    let laws: [&dyn AdhesionLaw; 2] = [&line, &surface];
+    for law in laws {
+        for periodic in [true, false] {
+            let cells = Cells {
+                dx: 3e-9,
+                dy: 4e-9,
+                periodic,
+            };
+            let field = |g: &Array2<f64>| {
+                let mut p = Array2::zeros((ny, nx));
+                law.pressure_field(g.view(), &cells, p.view_mut()).unwrap();
+                p
+            };
+            let (mut p, mut own, mut next) = (
+                Array2::zeros((ny, nx)),
+                Array2::zeros((ny, nx)),
+                Array2::zeros((ny, nx)),
+            );
+            assert!(
+                law.pressure_and_stiffness_field(
+                    gap.view(),
+                    &cells,
+                    p.view_mut(),
+                    own.view_mut(),
+                    next.view_mut()
+                )
+                .unwrap()
+            );
+            assert_eq!(p, field(&gap));
+            let h = 1e-8 * Z0;
+            for y in 0..ny {
+                for x in 0..nx {
+                    // Moving node (y, x) changes its own cell and the cell whose +x neighbour
+                    // it is (with periodic or mirrored edges, the last one's too).
+                    // Central differences, but one-sided on the wall (the law is clamped there).
+                    let (mut up, mut down) = (gap.clone(), gap.clone());
+                    up[(y, x)] += h;
+                    down[(y, x)] = (down[(y, x)] - h).max(0.0);
+                    let slope = (field(&down) - field(&up)) / (up[(y, x)] - down[(y, x)]);
+                    let scale = law.stiffness_bound();
+                    assert!(
+                        (slope[(y, x)] - own[(y, x)]).abs() < 1e-6 * scale,
+                        "{} own ({y}, {x}): {} against {}",
+                        law.name(),
+                        own[(y, x)],
+                        slope[(y, x)]
+                    );
+                    let from = if x > 0 {
+                        x - 1
+                    } else if periodic {
+                        nx - 1
+                    } else {
+                        continue;
+                    };
+                    if from == x {
+                        continue;
+                    }
+                    assert!(
+                        (slope[(y, from)] - next[(y, from)]).abs() < 1e-6 * scale,
+                        "{} next ({y}, {from}): {} against {}",
+                        law.name(),
+                        next[(y, from)],
+                        slope[(y, from)]
+                    );
+                }
+            }
+        }
+    }
+    // The other laws have none.
+    let mut a = Array2::zeros((ny, nx));
+    let (mut b, mut c) = (a.clone(), a.clone());
+    let cells = Cells {
+        dx: 3e-9,
+        dy: 4e-9,
+        periodic: true,
+    };
+    assert!(
+        !PointLaw(lj())
+            .pressure_and_stiffness_field(gap.view(), &cells, a.view_mut(), b.view_mut(), c.view_mut())
+            .unwrap()
+    );
+}

@@ -109,3 +109,64 @@ fn the_flow_on_coarse_rough_cells_does_not_depend_on_the_number_of_threads() {
     assert_eq!(ra.iterations, rb.iterations);
     assert_eq!(a, b);
 }
+
+/// A law of the user's that couples a cell to its +x neighbour but gives no stiffness in
+/// closed form: the surface law's pressure alone, so that the flow probes its stiffness.
+#[derive(Clone)]
+struct Probed(ljadhesion::SurfaceLaw);
+
+impl ljadhesion::AdhesionLaw for Probed {
+    fn pressure_field(
+        &self,
+        gap: ndarray::ArrayView2<f64>,
+        cells: &ljadhesion::Cells,
+        out: ndarray::ArrayViewMut2<f64>,
+    ) -> ljadhesion::Result<()> {
+        self.0.pressure_field(gap, cells, out)
+    }
+    fn stiffness_bound(&self) -> f64 {
+        self.0.stiffness_bound()
+    }
+    fn work_of_adhesion(&self) -> f64 {
+        self.0.work_of_adhesion()
+    }
+    fn range(&self) -> f64 {
+        self.0.range()
+    }
+    fn peak_pressure(&self) -> f64 {
+        self.0.peak_pressure()
+    }
+    fn name(&self) -> &'static str {
+        "probed surface"
+    }
+}
+
+#[test]
+fn a_probed_stiffness_and_the_closed_form_reach_the_same_states() {
+    // The mass only sets the flow's path; on a smooth sphere at mu = 3 (one stable state a
+    // step) both reach the same loads and contact areas.
+    pool().install(|| {
+        let (op, g0, law, w0) = sphere_case(3.0, 64, 62.5);
+        let path = approaches([-2.0, 0.0, 1.0, -1.0, -3.0].into_iter());
+        let settings = Settings {
+            tolerance: 1e-8,
+            max_iterations: 200_000,
+            ..Settings::with_method(Method::Flow)
+        };
+        let (closed, _) = checked_sweep(&op, &law, &g0, &path, &settings);
+        let (probed, worst) = checked_sweep(&op, &Probed(law), &g0, &path, &settings);
+        assert!(worst < 1e-5, "{worst}");
+        for (a, b) in closed.iter().zip(&probed) {
+            assert!(a.report.converged() && b.report.converged());
+            let difference = (a.report.load - b.report.load).abs() / (PI * R * w0);
+            println!(
+                "a/z0 {:5.1}: load difference {difference:.1e} pi R w0, steps {} / {}",
+                a.report.approach / Z0,
+                a.report.iterations.count(),
+                b.report.iterations.count()
+            );
+            assert!(difference < 1e-6, "{difference}");
+            assert_eq!(a.report.contact_area_fraction, b.report.contact_area_fraction);
+        }
+    });
+}

@@ -35,9 +35,9 @@
 //! plain flow's within 1 %, the unloading branch's as closely as it agrees with itself under
 //! smaller load steps (`docs/decisions.md`).
 //!
-//! Cost: one application of the stiffness and one evaluation of the law a step (three for laws
-//! without a local potential, whose stiffness by a cell's own gap and by its neighbour's is
-//! probed).
+//! Cost: one application of the stiffness and one evaluation of the law a step (the line and
+//! surface laws with their stiffness by a cell's own gap and by its neighbour's in closed form;
+//! a law of the user's without it is probed, two more evaluations).
 
 use super::driver::Driver;
 use super::gap_problem::{Energy, Point, Problem, Setup, check_control, finish, setup};

@@ -147,8 +147,9 @@ pub(super) struct Problem<'a> {
     pub(super) law: &'a dyn AdhesionLaw,
     pub(super) cells: Cells,
     domain: Domain,
-    /// The block's gap shifted by a probe, and the law's pressure there (without an energy);
-    /// the cells' energies (a field energy); empty otherwise.
+    /// The block's gap shifted by a probe, and the law's pressure there (without an energy and
+    /// without the law's stiffness in closed form; made at the first probe); the cells'
+    /// energies (a field energy); empty otherwise.
     probe: (Array2<f64>, Array2<f64>),
     /// The unknown less the surface displacement \[m\] (up to its mean, periodic): `g0` periodic;
     /// `g0 - delta` on the domain's block and zero in the padding, free.
@@ -167,7 +168,7 @@ pub(super) struct Problem<'a> {
     pub(super) calls: usize,
     /// The stiffness's diagonal `S_ii` [Pa/m] (the same for every cell).
     pub(super) diagonal: f64,
-    /// Whether the law's stiffness is probed by a cell's own gap and by its +x neighbour's
+    /// Whether the law's stiffness is taken by a cell's own gap and by its +x neighbour's
     /// apart ([`Problem::couple_rows`]).
     couple: bool,
 }
@@ -412,19 +413,35 @@ impl Problem<'_> {
     }
 
     /// Writes the law's pressure at `at`'s gaps on the domain's block into `at.law`, and its
-    /// stiffness `-dp/dg` [Pa/m] there, from a probe at gaps larger by a thousandth of the
-    /// range, into `at.curvature`: a law without a local potential may depend on the
-    /// neighbours' gaps (the surface law), so the field is evaluated as a whole.
+    /// stiffness `-dp/dg` [Pa/m] there into `at.curvature` (coupled: by the cell's own gap,
+    /// and by its +x neighbour's into `at.coupling`), in closed form where the law has it,
+    /// else from a probe at gaps larger by a thousandth of the range: a law without a local
+    /// potential may depend on the neighbours' gaps (the surface law), so the field is
+    /// evaluated as a whole.
     fn law_on_block(&mut self, at: &mut Point) -> Result<()> {
         let block = s![..self.ny, ..self.nx];
         let gap = at.gap.slice(block);
-        self.law
-            .pressure_field(gap, &self.cells, at.law.slice_mut(block))?;
-        let probe = 1e-3 * self.law.range();
         if self.couple {
             if at.coupling.dim() != (self.ny, self.nx) {
                 at.coupling = Array2::zeros((self.ny, self.nx));
             }
+            if self.law.pressure_and_stiffness_field(
+                gap,
+                &self.cells,
+                at.law.slice_mut(block),
+                at.curvature.slice_mut(block),
+                at.coupling.view_mut(),
+            )? {
+                return Ok(());
+            }
+        }
+        self.law
+            .pressure_field(gap, &self.cells, at.law.slice_mut(block))?;
+        if self.probe.1.dim() != gap.dim() {
+            self.probe = (Array2::zeros(gap.dim()), Array2::zeros(gap.dim()));
+        }
+        let probe = 1e-3 * self.law.range();
+        if self.couple {
             // Every other column probed at a time: a cell's pressure depends on its own gap and
             // its +x neighbour's (and on its +y neighbour's only through the area factor, whose
             // column is probed with its own).
@@ -582,10 +599,11 @@ impl Problem<'_> {
         parts.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
     }
 
-    /// Probes, for a law whose cell pressure depends on its neighbours' gaps (no local
+    /// Takes, for a law whose cell pressure depends on its neighbours' gaps (no local
     /// potential) and that is evaluated without an energy, each cell's stiffness by its own
-    /// gap and by its +x neighbour's apart (one more evaluation of the law a step), for
-    /// [`Problem::solve_rows`], and evaluates `at` (the point [`setup`] made) again so.
+    /// gap and by its +x neighbour's apart (in closed form where the law gives it, else
+    /// probed: one more evaluation of the law a step), for [`Problem::solve_rows`], and
+    /// evaluates `at` (the point [`setup`] made) again so.
     pub(super) fn couple_rows(&mut self, at: &mut Point) -> Result<()> {
         if matches!(self.energy, Energy::None) && self.law.local_potential().is_none() {
             self.couple = true;
@@ -774,8 +792,9 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
         });
     }
     let n = (nx * ny) as f64;
+    // The cells' energies of a field energy; a probe's buffers are made when first needed.
     let probe_shape = |both| {
-        let needed = matches!(energy, Energy::None) || (both && matches!(energy, Energy::Field(_)));
+        let needed = both && matches!(energy, Energy::Field(_));
         Array2::zeros(if needed { shape } else { (0, 0) })
     };
     let cells = cells(&domain);
