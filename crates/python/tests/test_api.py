@@ -124,26 +124,28 @@ def test_an_unconverged_solve_warns_and_says_so():
     assert not solution.converged and "iteration limit" in solution.termination
 
 
-def test_two_solves_run_side_by_side_in_two_threads():
-    """The GIL is released while solving: two one-thread solves in two Python threads take
-    little longer than one on two cores."""
+def test_the_gil_is_released_while_solving():
+    """Python runs on in another thread while a solve works: the main thread's loop never
+    waits for more than a fraction of the solve (holding the GIL, it would wait for all of
+    it). Two solves side by side give the same result."""
     surface = rc.generate(n=1024, length=1e-4, rms_gradient=1.0, rolloff=2e-5, seed=1)
     keys = dict(surface=surface, modulus=25e6, mean_pressure=0.01 * 25e6, threads=1)
-
-    def timed(runs):
-        best = float("inf")
-        for _ in range(3):
-            started = time.perf_counter()
-            with concurrent.futures.ThreadPoolExecutor(runs) as pool:
-                results = list(pool.map(lambda _: rc.solve(**keys), range(runs)))
-            best = min(best, time.perf_counter() - started)
-        return best, results
-
-    one, _ = timed(1)
-    two, (a, b) = timed(2)
-    print(f"one solve {one:.3f} s, two side by side {two:.3f} s ({two / one:.2f}x)")
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        started = time.perf_counter()
+        future = pool.submit(rc.solve, **keys)
+        last, longest = started, 0.0
+        while not future.done():
+            now = time.perf_counter()
+            longest, last = max(longest, now - last), now
+        took = time.perf_counter() - started
+        solution = future.result()
+    print(f"solve {took:.3f} s, the main thread's longest wait {longest:.4f} s")
+    assert solution.converged
+    assert longest < 0.25 * took
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        a, b = pool.map(lambda _: rc.solve(**keys), range(2))
     assert np.array_equal(a.pressure, b.pressure)
-    assert two < 1.6 * one
+    assert np.array_equal(a.pressure, solution.pressure)
 
 
 def test_threads_do_not_change_the_result():
