@@ -188,11 +188,12 @@ impl AdhesionLaw for SurfaceLaw {
                 let area = (1.0 + sx * sx + sy * sy).sqrt();
                 let mean = lj.mean_pressure_v(v1, v2);
                 let (d1, d2) = lj.mean_pressure_slopes_v(v1, v2);
-                // The area factor's slopes by z1 and z2: -(sx ix + sy iy) / S and sx ix / S.
-                let (a1, a2) = (-(sx * ix + sy * iy) / area, sx * ix / area);
+                // The area factor's slopes by z1, z2 and z3: -(sx ix + sy iy) / S, sx ix / S
+                // and sy iy / S.
+                let (a1, a2, a3) = (-(sx * ix + sy * iy) / area, sx * ix / area, sy * iy / area);
                 [
                     area * mean,
-                    -open(g1) * (area * d1 + a1 * mean),
+                    -open(g1) * (area * d1 + a1 * mean) - open(g3) * a3 * mean,
                     -open(g2) * (area * d2 + a2 * mean),
                 ]
             },

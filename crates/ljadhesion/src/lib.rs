@@ -64,11 +64,11 @@ pub trait AdhesionLaw: Sync + Send {
     fn pressure_field(&self, gap: ArrayView2<f64>, cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()>;
 
     /// Writes the pressure \[Pa\] as [`AdhesionLaw::pressure_field`] does (bit for bit) into
-    /// `pressure`, and its stiffness by each cell's own gap and by its +x neighbour's,
-    /// `-dp_i/dg_i` and `-dp_i/dg_(i+1)` [Pa/m], into `own` and `next`, for the laws whose cell
-    /// mixes its gap with its +x neighbour's (line and surface), in closed form in one pass.
-    /// The surface law's dependence on the +y neighbour, through its area factor alone, is
-    /// left out. Returns `false`, with nothing written, for the other laws.
+    /// `pressure`, and into `own` and `next` its stiffness [Pa/m] when the cell's own column
+    /// of nodes moves and when its +x neighbour's does, `-dp/dg` (the surface law's area
+    /// factor also depends on the +y neighbour, which is in the cell's own column), for the
+    /// laws whose cell mixes its gap with its neighbours' (line and surface), in closed form in
+    /// one pass. Returns `false`, with nothing written, for the other laws.
     ///
     /// # Errors
     /// As [`AdhesionLaw::pressure_field`].
