@@ -93,7 +93,7 @@ pub(crate) fn neighbours(
 }
 
 /// As [`neighbours`], with `cell` giving three values a cell, written into `outs` in order (a
-/// cell's pressure and its slopes by its own gap and its +x neighbour's, say).
+/// cell's pressure and its stiffness by its own column and by its +x neighbour's, say).
 pub(crate) fn neighbours3(
     gap: ArrayView2<f64>,
     cells: &Cells,

@@ -573,6 +573,17 @@ fn the_closed_form_stiffnesses_are_the_slopes_of_the_pressure() {
             }
         }
     }
+    // Where a cell's two ends coincide, each slope of the mean is half the pressure's.
+    let law = lj();
+    for z in [1.0, 1.1, 1.2, 1.5, 3.0, 10.0].map(|r| r * Z0) {
+        let v = Z0 / z;
+        let (d1, d2) = law.mean_pressure_slopes_v(v, v);
+        assert_eq!(d1, d2);
+        assert!(
+            (d1 + d2 + law.curvature(z)).abs() < 1e-12 * law.stiffness_bound(),
+            "{z}"
+        );
+    }
     // The other laws have none.
     let mut a = Array2::zeros((ny, nx));
     let (mut b, mut c) = (a.clone(), a.clone());
