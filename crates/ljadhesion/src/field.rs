@@ -64,15 +64,8 @@ pub(crate) fn neighbours(
             let mut t = vec![0.0; nx];
             let mut bad = false;
             for (r, mut row) in rows.outer_iter_mut().enumerate() {
-                let y = chunk * ROWS + r;
-                let c = gap.row(y);
-                let u = gap.row(next(y, ny, cells.periodic));
-                let (c, u, o) = (
-                    c.as_slice().expect("standard layout"),
-                    u.as_slice().expect("standard layout"),
-                    row.as_slice_mut().expect("standard layout"),
-                );
-                t.iter_mut().zip(c).for_each(|(t, &g)| *t = node(g));
+                let (c, u) = row_and_next(&gap, chunk * ROWS + r, cells.periodic, &node, &mut t);
+                let o = row.as_slice_mut().expect("standard layout");
                 // Zipped slices rather than indices: no bounds checks, so the loop vectorises.
                 let m = nx - 1;
                 o[..m]
@@ -117,18 +110,12 @@ pub(crate) fn neighbours3(
         .map_init(
             || vec![0.0; nx],
             |t, (y, mut a, mut b, mut c)| {
-                let g = gap.row(y);
-                let u = gap.row(next(y, ny, cells.periodic));
-                let (g, u) = (
-                    g.as_slice().expect("standard layout"),
-                    u.as_slice().expect("standard layout"),
-                );
+                let (g, u) = row_and_next(&gap, y, cells.periodic, &node, t);
                 let (a, b, c) = (
                     a.as_slice_mut().expect("standard layout"),
                     b.as_slice_mut().expect("standard layout"),
                     c.as_slice_mut().expect("standard layout"),
                 );
-                t.iter_mut().zip(g).for_each(|(t, &g)| *t = node(g));
                 // Zipped slices rather than indices, as in `neighbours`.
                 let m = nx - 1;
                 a[..m]
@@ -148,6 +135,22 @@ pub(crate) fn neighbours3(
         locate_bad_gap(&gap)?;
     }
     Ok(())
+}
+
+/// Row `y` of `gap` and its +y neighbour row (wrapped or mirrored as [`next`]), with `node` of
+/// each of row `y`'s gaps written into `t`.
+fn row_and_next<'a>(
+    gap: &'a ArrayView2<f64>,
+    y: usize,
+    periodic: bool,
+    node: &impl Fn(f64) -> f64,
+    t: &mut [f64],
+) -> (&'a [f64], &'a [f64]) {
+    let ny = gap.nrows();
+    let row = |y: usize| gap.row(y).to_slice().expect("standard layout");
+    let (c, u) = (row(y), row(next(y, ny, periodic)));
+    t.iter_mut().zip(c).for_each(|(t, &g)| *t = node(g));
+    (c, u)
 }
 
 /// The neighbour of node `i` along an axis of `n` nodes: the next, wrapping around on

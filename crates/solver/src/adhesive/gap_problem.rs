@@ -793,9 +793,13 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
     }
     let n = (nx * ny) as f64;
     // The cells' energies of a field energy; a probe's buffers are made when first needed.
-    let probe_shape = |both| {
-        let needed = both && matches!(energy, Energy::Field(_));
-        Array2::zeros(if needed { shape } else { (0, 0) })
+    let probe = || {
+        let energies = if matches!(energy, Energy::Field(_)) {
+            shape
+        } else {
+            (0, 0)
+        };
+        (Array2::zeros(energies), Array2::zeros((0, 0)))
     };
     let cells = cells(&domain);
     let (delta, load) = match control {
@@ -839,7 +843,7 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
             law,
             cells,
             domain,
-            probe: (probe_shape(true), probe_shape(false)),
+            probe: probe(),
             couple: false,
             base: g0.to_owned(),
             mx: nx,
@@ -892,7 +896,7 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
             law,
             cells,
             domain,
-            probe: (probe_shape(true), probe_shape(false)),
+            probe: probe(),
             couple: false,
             base,
             mx: padded.1,
