@@ -352,7 +352,10 @@ fn challenge_mesh() -> Result<()> {
             }
             .build()?;
             let started = Instant::now();
-            let mut progress = Progress(format!("{law} at {n}^2"), started);
+            let mut progress = Progress {
+                row: format!("{law} at {n}^2"),
+                started,
+            };
             let points = problem.sweep(&path, None, &settings, None, &mut progress)?;
             let areas: Vec<String> = points
                 .iter()
@@ -372,20 +375,23 @@ fn challenge_mesh() -> Result<()> {
 }
 
 /// Each load of a row to stderr as it lands, so that a row of hours leaves its loads behind
-/// if it is stopped: the row's label and when it started.
-struct Progress(String, Instant);
+/// if it is stopped.
+struct Progress {
+    row: String,
+    started: Instant,
+}
 
 impl solver::Observer for Progress {
     fn step(&mut self, index: usize, point: &solver::SweepPoint, _: &solver::AdhesiveState) -> bool {
         let report = &point.report;
         eprintln!(
             "{}, load {}: area {:.5}, {} iterations, converged {}, {:.0} s",
-            self.0,
+            self.row,
             index + 1,
             report.contact_area_fraction,
             report.iterations.count(),
             report.converged(),
-            self.1.elapsed().as_secs_f64()
+            self.started.elapsed().as_secs_f64()
         );
         true
     }
