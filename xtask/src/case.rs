@@ -23,6 +23,17 @@ pub enum Law {
     Exponential,
 }
 
+impl Law {
+    /// The law's name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Law::Point => "point",
+            Law::Surface => "surface",
+            Law::Exponential => "exponential",
+        }
+    }
+}
+
 /// A case, in the command line's terms and units (SI).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(default)]

@@ -140,7 +140,7 @@ impl Job {
         // The point law's runs keep the names they always had.
         let law = match self.law {
             Law::Point => String::new(),
-            _ => format!("{}_", self.law_name()),
+            _ => format!("{}_", self.law.name()),
         };
         format!(
             "{law}mu{}_n{}_l{:.0}nm_rq{}_cutoff{:.0}nm_h{}_seed{}",
@@ -157,14 +157,15 @@ impl Job {
     /// The run's case keys as a sweep of the command line's: in to the preload
     /// from two z0 apart in five steps, then the pull-off search: coarse unloading steps until
     /// the load has come back up from its minimum (or the sphere is far beyond the smooth
-    /// sphere's pull-off distance), refined in fifths around it.
-    fn keys(&self) -> toml::Table {
+    /// sphere's pull-off distance), refined in fifths around it. The roughness is generated
+    /// from the job's spectrum, or read from `surface` (heights \[m\] on the job's grid).
+    pub fn keys(&self, surface: Option<&Path>) -> toml::Table {
         let top = self.preload();
         let scale = (PI * PI * self.w0().powi(2) * RADIUS / MODULUS.powi(2)).cbrt() / Z0;
         let mut keys = vec![
             ("sphere_radius", RADIUS.into()),
             ("modulus", MODULUS.into()),
-            ("law", self.law_name().into()),
+            ("law", self.law.name().into()),
             ("solver", self.solver().into()),
             ("z0", Z0.into()),
             ("tolerance", self.tolerance.into()),
@@ -183,7 +184,9 @@ impl Job {
                 (-(3.0 * scale + 3.0 * self.rq + 5.0) * Z0).into(),
             ),
         ];
-        if self.rq > 0.0 {
+        if let Some(path) = surface {
+            keys.push(("surface", path.display().to_string().into()));
+        } else if self.rq > 0.0 {
             let case = self.case();
             keys.extend([
                 ("hurst", self.hurst.into()),
@@ -199,14 +202,6 @@ impl Job {
         keys.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
     }
 
-    fn law_name(&self) -> &'static str {
-        match self.law {
-            Law::Point => "point",
-            Law::Surface => "surface",
-            Law::Exponential => "exponential",
-        }
-    }
-
     /// The method: the energy descent for the laws with an energy, the flow for the surface
     /// law (which has none).
     fn solver(&self) -> &'static str {
@@ -217,7 +212,7 @@ impl Job {
     }
 
     /// What the run in `dir` found, from its summary.
-    fn outcome(&self, dir: &Path) -> Result<Outcome> {
+    pub fn outcome(&self, dir: &Path) -> Result<Outcome> {
         let path = dir.join("summary.json");
         let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
         let summary: serde_json::Value = serde_json::from_str(&text)?;
@@ -307,21 +302,31 @@ pub struct Plan {
 }
 
 pub fn plan(ctx: &crate::Context) -> Plan {
-    Plan {
-        max_n: ctx.pick(64, 512),
-        seeds: ctx.pick(vec![1, 2], (1..=10).collect()),
-        rqs: ctx.pick(vec![0.0, 1.0, 2.0, 4.0, 8.0], vec![0.0, 1.0, 2.0, 4.0, 8.0]),
-        hursts: ctx.pick(vec![0.8, 0.5, 0.2], vec![0.8, 0.6, 0.4, 0.2]),
-        tolerance: 1e-5,
-        law: ctx.options.rough_law,
-        mus: ctx.pick(
-            [vec![2], vec![2], vec![2]],
-            [vec![2, 5], vec![5, 7], vec![2, 5, 7]],
-        ),
-    }
+    Plan::new(ctx.quick(), ctx.options.rough_law)
 }
 
 impl Plan {
+    /// The plan of quick mode (`quick`) or of full mode, with `law`.
+    pub fn new(quick: bool, law: Law) -> Plan {
+        Plan {
+            max_n: if quick { 64 } else { 512 },
+            seeds: if quick { vec![1, 2] } else { (1..=10).collect() },
+            rqs: vec![0.0, 1.0, 2.0, 4.0, 8.0],
+            hursts: if quick {
+                vec![0.8, 0.5, 0.2]
+            } else {
+                vec![0.8, 0.6, 0.4, 0.2]
+            },
+            tolerance: 1e-5,
+            law,
+            mus: if quick {
+                [vec![2], vec![2], vec![2]]
+            } else {
+                [vec![2, 5], vec![5, 7], vec![2, 5, 7]]
+            },
+        }
+    }
+
     /// Figure `number`'s Tabor parameters (11 to 14).
     fn mus_of(&self, number: u32) -> &[u32] {
         &self.mus[match number {
@@ -504,7 +509,7 @@ pub fn sweeps(ctx: &crate::Context, wanted: &[Spec]) -> (Vec<Job>, Vec<crate::se
         .map(|j| crate::series::Sweep {
             study: format!("rough-spheres-{}", if j.rq > 0.0 { "rough" } else { "smooth" }),
             name: j.name(),
-            keys: j.keys(),
+            keys: j.keys(None),
         })
         .collect();
     (jobs, sweeps)
@@ -877,7 +882,7 @@ mod tests {
             law: Law::Surface,
             ..point
         };
-        let keys = |j: &Job| (j.keys()["law"].clone(), j.keys()["solver"].clone());
+        let keys = |j: &Job| (j.keys(None)["law"].clone(), j.keys(None)["solver"].clone());
         assert_eq!(keys(&point), ("point".into(), "energy".into()));
         assert_eq!(keys(&surface), ("surface".into(), "flow".into()));
         assert_ne!(point.name(), surface.name());

@@ -3,14 +3,14 @@
 //! tests; each prints a Markdown table to stdout.
 
 use crate::sphere::{MODULUS, RADIUS, Z0};
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use ljadhesion::{AdhesionLaw, LennardJones, LineLaw, PointLaw, SurfaceLaw};
 use solver::{ContactProblem, Control, CyclePoint, Method, Settings, summarize};
 use std::f64::consts::PI;
 use std::time::Instant;
 
 /// The studies, by name, with what each shows.
-pub const STUDIES: [(&str, &str); 4] = [
+pub const STUDIES: [(&str, &str); 5] = [
     (
         "pull-off-mesh",
         "a sphere's pull-off at mu = 1 against the cell size, point, line, surface and surface-energy laws (minutes)",
@@ -30,6 +30,12 @@ pub const STUDIES: [(&str, &str); 4] = [
          surface, line, point and exponential laws, by the relaxation (SIZES=256,512,1024; LAWS=...; \
          METHOD=flow; TOLERANCE=...; REFINE=k)",
     ),
+    (
+        "rough-sphere-mesh",
+        "the pull-off of a rough sphere of Figs. 11-14 (mu = 5, Rq = 2 z0) against the cell size, point and \
+         surface laws, one surface sampled on every grid (SIZES=90,135,270,540; LAWS=point,surface; SEEDS=1; \
+         an hour or more)",
+    ),
 ];
 
 /// Runs the study `name`.
@@ -39,6 +45,7 @@ pub fn run(name: &str) -> Result<()> {
         "high-tabor-mesh" => high_tabor_mesh(),
         "nested-start" => nested_start(),
         "challenge-mesh" => challenge_mesh(),
+        "rough-sphere-mesh" => rough_sphere_mesh(),
         _ => {
             let names: Vec<_> = STUDIES.iter().map(|(n, _)| *n).collect();
             bail!("unknown study `{name}`; the studies are {}", names.join(", "))
@@ -105,7 +112,7 @@ fn pull_off_mesh() -> Result<()> {
 /// Mesh refinement of the pull-off at mu = 10 (box 600 z0 wide), point law by the energy
 /// descent; the grids from the environment variable `MESH` (default 128,256).
 fn high_tabor_mesh() -> Result<()> {
-    let mesh = std::env::var("MESH").unwrap_or_else(|_| "128,256".into());
+    let mesh: Vec<usize> = list("MESH", "128,256")?;
     let w0 = work_of_adhesion(10.0);
     let lj = LennardJones::new(w0, Z0)?;
     let mut path = approaches((0..=24).map(|k| -2.0 + k as f64));
@@ -113,8 +120,7 @@ fn high_tabor_mesh() -> Result<()> {
     let settings = Settings::with_method(Method::EnergyDescent);
     println!("| cells | cell / z0 | pull-off / (pi R w0) | iterations per step | time |");
     println!("|---|---|---|---|---|");
-    for n in mesh.split(',') {
-        let n: usize = n.trim().parse()?;
+    for n in mesh {
         let started = Instant::now();
         let points = sphere(n, 300.0, PointLaw(lj))?.sweep(&path, None, &settings, None, &mut ())?;
         let s = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
@@ -139,12 +145,10 @@ fn nested_start() -> Result<()> {
     use elastic::{Domain, Periodic};
     use ndarray::Array2;
     use solver::{ContactOptions, ContactState, cg};
-    let env = |name: &str, default: &str| std::env::var(name).unwrap_or_else(|_| default.to_string());
-    let sizes: Vec<usize> = env("SIZES", "512,1024,2048")
-        .split(',')
-        .map(|v| v.trim().parse())
-        .collect::<std::result::Result<_, _>>()?;
-    let p: f64 = env("PRESSURE", "0.04").parse()?;
+    let sizes: Vec<usize> = list("SIZES", "512,1024,2048")?;
+    let p: f64 = std::env::var("PRESSURE")
+        .unwrap_or_else(|_| "0.04".into())
+        .parse()?;
     let options = ContactOptions {
         tolerance: 5e-9,
         max_iterations: 100_000,
@@ -273,16 +277,8 @@ fn bench_gap(n: usize) -> Result<ndarray::Array2<f64>> {
 /// surface). Prints the relative contact area of each law on each grid at each load.
 fn challenge_mesh() -> Result<()> {
     use ljadhesion::{ExponentialLaw, LineLaw, SurfaceEnergyLaw, SurfaceLaw};
-    let sizes: Vec<usize> = std::env::var("SIZES")
-        .unwrap_or_else(|_| "256,512,1024".into())
-        .split(',')
-        .map(|s| s.trim().parse())
-        .collect::<Result<_, _>>()?;
-    let laws: Vec<String> = std::env::var("LAWS")
-        .unwrap_or_else(|_| "surface,line,point,exponential".into())
-        .split(',')
-        .map(|s| s.trim().to_string())
-        .collect();
+    let sizes: Vec<usize> = list("SIZES", "256,512,1024")?;
+    let laws: Vec<String> = list("LAWS", "surface,line,point,exponential")?;
     let (coarsest, finest) = (
         *sizes.iter().min().unwrap_or(&256),
         *sizes.iter().max().unwrap_or(&256),
@@ -368,6 +364,105 @@ fn challenge_mesh() -> Result<()> {
                 areas.join(" | "),
                 started.elapsed().as_secs_f64(),
                 points.iter().all(|p| p.report.converged())
+            );
+        }
+    }
+    Ok(())
+}
+
+/// A comma-separated list from the environment variable `name`, else `default`.
+fn list<T: std::str::FromStr>(name: &str, default: &str) -> Result<Vec<T>>
+where
+    T::Err: std::error::Error + Send + Sync + 'static,
+{
+    let text = std::env::var(name).unwrap_or_else(|_| default.into());
+    text.split(',')
+        .map(|s| {
+            s.trim()
+                .parse::<T>()
+                .map_err(|e| anyhow::anyhow!("{name}: `{s}`: {e}"))
+        })
+        .collect()
+}
+
+/// The rough sphere of Figs. 11-14 at mu = 5 and Rq = 2 z0 (the figures' box, spectrum and
+/// pull-off search) on grids of several cell sizes, the same surface on each: generated on
+/// the finest grid and sampled every `finest / n` nodes (its short cut-off is 15 cells of the
+/// finest grid, so the coarsest keeps the spectrum). Does the surface law's cell integral make
+/// the pull-off less dependent on the mesh than the point law, as the paper argues?
+fn rough_sphere_mesh() -> Result<()> {
+    use crate::case::Law;
+    use crate::rough_sphere::{Job, Plan, process_zone};
+    let sizes: Vec<usize> = list("SIZES", "90,135,270,540")?;
+    let laws: Vec<String> = list("LAWS", "point,surface")?;
+    let seeds: Vec<u64> = list("SEEDS", "1")?;
+    let finest = *sizes.iter().max().context("SIZES is empty")?;
+    if let Some(n) = sizes.iter().find(|&&n| finest % n != 0) {
+        bail!("every size must divide the finest ({finest}); {n} does not");
+    }
+    let (mu, rq) = (5, 2.0);
+    let plan = Plan::new(false, Law::Point);
+    let dir = std::path::PathBuf::from("target/rough-sphere-mesh");
+    let surfaces = dir.join("surfaces");
+    std::fs::create_dir_all(&surfaces)?;
+    let mut jobs = Vec::new();
+    let mut sweeps = Vec::new();
+    for &seed in &seeds {
+        let fine = Job {
+            rq,
+            cutoff: plan.cutoff(),
+            seed,
+            n: finest,
+            ..Job::smooth(mu, finest, plan.length(), plan.tolerance, Law::Point)
+        };
+        let (heights, _, _) = fine.case().heights()?.context("the job is rough")?;
+        for &n in &sizes {
+            let stride = finest / n;
+            let path = surfaces.join(format!("seed{seed}_n{n}.npy"));
+            let sampled = heights.slice(ndarray::s![..;stride, ..;stride]).to_owned();
+            surfgen::io::write_npy(&sampled, &path)?;
+            for law in &laws {
+                let law = match law.as_str() {
+                    "point" => Law::Point,
+                    "surface" => Law::Surface,
+                    other => bail!("unknown law `{other}` (point, surface)"),
+                };
+                let job = Job { n, law, ..fine };
+                let name = format!("{}_n{n}_seed{seed}", law.name());
+                sweeps.push(crate::series::Sweep {
+                    study: "mesh".into(),
+                    name,
+                    keys: job.keys(Some(&std::fs::canonicalize(&path)?)),
+                });
+                jobs.push(job);
+            }
+        }
+    }
+    let dirs = crate::series::run(&dir, &sweeps)?;
+    println!("| law | n | cell / process zone | pull-off / (pi R w0), by seed | wall [s] | all converged |");
+    println!("|---|---|---|---|---|---|");
+    for law in [Law::Point, Law::Surface] {
+        for &n in &sizes {
+            let found: Vec<_> = jobs
+                .iter()
+                .zip(&dirs)
+                .filter(|(j, _)| j.law == law && j.n == n)
+                .map(|(j, d)| j.outcome(d).map(|o| (o, j.force_unit())))
+                .collect::<Result<_>>()?;
+            if found.is_empty() {
+                continue;
+            }
+            let pull_offs: Vec<String> = found
+                .iter()
+                .map(|(o, unit)| format!("{:.4}", o.pull_off / unit))
+                .collect();
+            println!(
+                "| {} | {n} | {:.2} | {} | {:.0} | {} |",
+                law.name(),
+                plan.length() / n as f64 / process_zone(mu),
+                pull_offs.join(", "),
+                found.iter().map(|(o, _)| o.wall_time_s).sum::<f64>(),
+                found.iter().all(|(o, _)| o.all_converged)
             );
         }
     }
