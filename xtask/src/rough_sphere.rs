@@ -1,11 +1,13 @@
 //! Rough spheres (Figs. 11-14): a rigid sphere R* = 100 um carrying a self-affine roughness,
 //! pressed into an elastic flat (E* = 50 GPa) with a Lennard-Jones law (z0 = 0.3 nm) and
-//! pulled off. The paper used its surface law; by default the point law stands in for it
-//! because the energy descent solves it 2.5 times faster than the flow solves the surface law
-//! (`--rough-law surface` takes the paper's); on resolved grids the two laws' pull-offs differ
-//! by 0.3-3 % on smooth spheres but by about 12 % on a rough one (mu = 5, Rq = 2 z0;
-//! docs/validation.md has the measurements). The pull-off force is the most negative
-//! load of a displacement-controlled unloading from a fixed preload
+//! pulled off. The paper used its surface law; by default the point law stands in for it: on
+//! the figures' grids (about a process zone a cell) the point law's pull-off is within 2-3 %
+//! of its value on cells half as wide, the surface law's within 3-5 % and still several per
+//! cent above the point law's there (its cell mean converges slowly on a rough contact's
+//! steep edges), and the energy descent solves the point law 2.5 times faster than the flow
+//! solves the surface law (`--rough-law surface` takes the paper's; docs/validation.md has
+//! the measurements). The pull-off force is the most negative load of a
+//! displacement-controlled unloading from a fixed preload
 //! ([`solver::ContactProblem::pull_off`]).
 
 use crate::case::{Case, Law};
@@ -698,8 +700,10 @@ impl PullOffFigure<'_> {
              a free grid, E* = 50 GPa, z0 = 0.3 nm, {}, tolerance {:e} z0; {} seeds per rough point (error bars: ± one \
              standard error of the mean; each realisation's pull-off in fig{}_realisations.csv).",
             match plan.law {
-                Law::Point => "Lennard-Jones point law solved by the energy descent (the paper's surface law, \
-                               `--rough-law surface`, takes the flow 2.5 times as long: docs/validation.md)",
+                Law::Point => "Lennard-Jones point law solved by the energy descent (on cells of a process zone \
+                               within 2-3 % of its pull-off on cells half as wide, the paper's surface law 3-5 % \
+                               from its own, and that by the flow, `--rough-law surface`, 2.5 times as long: \
+                               docs/validation.md)",
                 _ => "the paper's Lennard-Jones surface law (Eq. 11) solved by the flow",
             },
             plan.tolerance,
