@@ -387,9 +387,9 @@ where
 
 /// The rough sphere of Figs. 11-14 at mu = 5 and Rq = 2 z0 (the figures' box, spectrum and
 /// pull-off search) on grids of several cell sizes, the same surface on each: generated on
-/// the finest grid and sampled every `finest / n` nodes (its short cut-off is 15 cells of the
-/// finest grid, so the coarsest keeps the spectrum). Does the surface law's cell integral make
-/// the pull-off less dependent on the mesh than the point law, as the paper argues?
+/// the finest grid and sampled every `finest / n` nodes (the figures' short cut-off, 215 nm,
+/// spans five cells of 90^2, so every grid keeps the spectrum). Does the surface law's cell
+/// integral make the pull-off less dependent on the mesh than the point law, as the paper argues?
 fn rough_sphere_mesh() -> Result<()> {
     use crate::case::Law;
     use crate::rough_sphere::{Job, Plan, process_zone};
@@ -418,7 +418,9 @@ fn rough_sphere_mesh() -> Result<()> {
         let (heights, _, _) = fine.case().heights()?.context("the job is rough")?;
         for &n in &sizes {
             let stride = finest / n;
-            let path = surfaces.join(format!("seed{seed}_n{n}.npy"));
+            // Named by the grid it was sampled from too: a finished run is never redone.
+            let tag = format!("n{n}_of{finest}_seed{seed}");
+            let path = surfaces.join(format!("{tag}.npy"));
             let sampled = heights.slice(ndarray::s![..;stride, ..;stride]).to_owned();
             surfgen::io::write_npy(&sampled, &path)?;
             for law in &laws {
@@ -428,7 +430,7 @@ fn rough_sphere_mesh() -> Result<()> {
                     other => bail!("unknown law `{other}` (point, surface)"),
                 };
                 let job = Job { n, law, ..fine };
-                let name = format!("{}_n{n}_seed{seed}", law.name());
+                let name = format!("{}_{tag}", law.name());
                 sweeps.push(crate::series::Sweep {
                     study: "mesh".into(),
                     name,
