@@ -101,8 +101,13 @@ fn run() -> Result<()> {
         Command::Figures(args) => args,
         Command::Study { name, list } => {
             if list {
+                let width = xtask::study::STUDIES
+                    .iter()
+                    .map(|(n, _)| n.len())
+                    .max()
+                    .unwrap_or(0);
                 for (name, what) in xtask::study::STUDIES {
-                    println!("{name:16} {what}");
+                    println!("{name:width$}  {what}");
                 }
                 return Ok(());
             }
