@@ -115,7 +115,7 @@ impl Run {
         // The exponential law's runs keep their names from before the law was a choice.
         let name = match (self.case.law, self.case.work_of_adhesion) {
             (Some(Law::Exponential), Some(w0)) => format!("n{n}_g{g:.6}_w0{w0:.6e}"),
-            (Some(law), Some(w0)) => format!("{}_n{n}_g{g:.6}_w0{w0:.6e}", name(law)),
+            (Some(law), Some(w0)) => format!("{}_n{n}_g{g:.6}_w0{w0:.6e}", law.name()),
             _ => format!("n{n}_g{g:.6}"),
         };
         Ok(crate::series::Sweep {
@@ -285,15 +285,6 @@ pub fn adhesive(mut case: Case, w0: f64, law: Law) -> Case {
         Law::Surface | Law::Point => case.z0 = Some(RANGE),
     }
     case
-}
-
-/// The law's name in run names and CSV files.
-pub fn name(law: Law) -> &'static str {
-    match law {
-        Law::Exponential => "exponential",
-        Law::Surface => "surface",
-        Law::Point => "point",
-    }
 }
 
 /// The law in a legend.
