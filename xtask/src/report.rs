@@ -13,7 +13,18 @@ pub struct Table {
     /// File stem (`fig05` writes `fig05.csv`).
     pub name: String,
     pub columns: Vec<String>,
+    /// NaN where a row has no value (JSON's null).
+    #[serde(deserialize_with = "rows_with_gaps")]
     pub rows: Vec<Vec<f64>>,
+}
+
+/// Rows whose missing values JSON wrote as null, read back as NaN.
+fn rows_with_gaps<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<Vec<f64>>, D::Error> {
+    let rows = Vec::<Vec<Option<f64>>>::deserialize(d)?;
+    Ok(rows
+        .into_iter()
+        .map(|r| r.into_iter().map(|v| v.unwrap_or(f64::NAN)).collect())
+        .collect())
 }
 
 impl Table {
