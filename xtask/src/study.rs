@@ -27,8 +27,8 @@ pub const STUDIES: [(&str, &str); 5] = [
     (
         "challenge-mesh",
         "the contact-mechanics challenge's load cycle, relative contact area against the cell size for the \
-         surface, line, point and exponential laws, by the relaxation (SIZES=256,512,1024; LAWS=...; \
-         METHOD=flow; TOLERANCE=...; REFINE=k)",
+         surface, line, point and exponential laws, one surface sampled on every grid, each run a resumable \
+         sweep in target/challenge-mesh (SIZES=256,512,1024; LAWS=...; METHOD=auto; TOLERANCE=...; REFINE=k)",
     ),
     (
         "rough-sphere-mesh",
@@ -276,13 +276,13 @@ fn bench_gap(n: usize) -> Result<ndarray::Array2<f64>> {
 /// at every k-th node for the coarser ones (band-limited, so the samples are the same
 /// surface). Prints the relative contact area of each law on each grid at each load.
 fn challenge_mesh() -> Result<()> {
-    use ljadhesion::{ExponentialLaw, LineLaw, SurfaceEnergyLaw, SurfaceLaw};
     let sizes: Vec<usize> = list("SIZES", "256,512,1024")?;
     let laws: Vec<String> = list("LAWS", "surface,line,point,exponential")?;
-    let (coarsest, finest) = (
-        *sizes.iter().min().unwrap_or(&256),
-        *sizes.iter().max().unwrap_or(&256),
-    );
+    let finest = *sizes.iter().max().context("SIZES is empty")?;
+    let coarsest = *sizes.iter().min().context("SIZES is empty")?;
+    if let Some(n) = sizes.iter().find(|&&n| finest % n != 0) {
+        bail!("every size must divide the finest ({finest}); {n} does not");
+    }
     let (length, e_star, w0, z0) = (1e-4, 25e6, 0.05, 2.071e-9);
     let grid = surfgen::Grid::square(finest, length)?;
     let spec = surfgen::SurfaceSpec {
@@ -309,65 +309,101 @@ fn challenge_mesh() -> Result<()> {
     for w in loads.windows(2) {
         steps.extend((1..=refine).map(|k| w[0] * (w[1] / w[0]).powf(k as f64 / refine as f64)));
     }
-    let path: Vec<_> = steps.iter().map(|&p| Control::MeanPressure(p * e_star)).collect();
-    let method: Method = std::env::var("METHOD")
-        .unwrap_or_else(|_| "flow".into())
-        .parse()
-        .map_err(|e: String| anyhow::anyhow!(e))?;
-    let defaults = Settings::with_method(method);
-    let settings = Settings {
-        max_iterations: 1_000_000,
-        tolerance: match std::env::var("TOLERANCE") {
-            Ok(t) => t.parse()?,
-            Err(_) => defaults.tolerance,
-        },
-        ..defaults
-    };
+    let pressures: Vec<toml::Value> = steps.iter().map(|&p| (p * e_star).into()).collect();
+    let method = std::env::var("METHOD").unwrap_or_else(|_| "auto".into());
+    let tolerance: Option<f64> = std::env::var("TOLERANCE").ok().map(|t| t.parse()).transpose()?;
+    // Every setting that changes a run is in its name: a finished run is never redone, nor
+    // taken for another's.
+    let mut variant = format!("{method}_of{finest}_cut{coarsest}");
+    if let Some(t) = tolerance {
+        variant += &format!("_tol{t:e}");
+    }
+    if refine > 1 {
+        variant += &format!("_refine{refine}");
+    }
+    let dir = std::path::PathBuf::from("target/challenge-mesh");
+    let surfaces = dir.join("surfaces");
+    std::fs::create_dir_all(&surfaces)?;
+    let mut sweeps = Vec::new();
+    let mut rows = Vec::new();
+    for law in &laws {
+        let (law_key, range_key) = match law.as_str() {
+            "surface" | "line" | "point" | "surface-energy" => (law.as_str(), "z0"),
+            "exponential" => ("exponential", "range"),
+            other => bail!("unknown law `{other}` (surface, line, point, surface-energy, exponential)"),
+        };
+        for &n in &sizes {
+            let stride = finest / n;
+            let path = surfaces.join(format!("n{n}_of{finest}_cut{coarsest}.npy"));
+            if !path.exists() {
+                let sampled = heights.slice(ndarray::s![..;stride, ..;stride]).to_owned();
+                surfgen::io::write_npy(&sampled, &path)?;
+            }
+            let mut keys = toml::Table::new();
+            let path = std::fs::canonicalize(&path)?.display().to_string();
+            keys.insert("surface".into(), path.into());
+            keys.insert("length".into(), length.into());
+            keys.insert("modulus".into(), e_star.into());
+            keys.insert("law".into(), law_key.into());
+            keys.insert("work_of_adhesion".into(), w0.into());
+            keys.insert(range_key.into(), z0.into());
+            keys.insert("solver".into(), method.clone().into());
+            keys.insert("max_iterations".into(), 1_000_000i64.into());
+            keys.insert("mean_pressures".into(), pressures.clone().into());
+            if let Some(t) = tolerance {
+                keys.insert("tolerance".into(), t.into());
+            }
+            sweeps.push(crate::series::Sweep {
+                // One study a law: a study's runs set the same keys (`z0` or `range`).
+                study: law.clone(),
+                name: format!("n{n}_{variant}"),
+                keys,
+            });
+            rows.push((law.clone(), n));
+        }
+    }
+    let dirs = crate::series::run(&dir, &sweeps)?;
     println!(
-        "| law | n | cell / process zone | {} | wall [s] | all converged |",
+        "| law | n | cell / process zone | {} | solve [s] | all converged |",
         loads.map(|p| format!("{p}")).join(" | ")
     );
     println!("|---|---|---|{}---|---|", "---|".repeat(loads.len()));
     let lj = LennardJones::new(w0, z0)?;
     let zone = e_star * w0 / (lj.min_pressure() * lj.min_pressure());
-    for law in &laws {
-        for &n in &sizes {
-            let stride = finest / n;
-            let sampled = heights.slice(ndarray::s![..;stride, ..;stride]).to_owned();
-            let builder = ContactProblem::builder()
-                .roughness(sampled, length, length)
-                .periodic(true)
-                .modulus(e_star);
-            let problem = match law.as_str() {
-                "surface" => builder.law(SurfaceLaw(lj)),
-                "line" => builder.law(LineLaw(lj)),
-                "point" => builder.law(PointLaw(lj)),
-                "surface-energy" => builder.law(SurfaceEnergyLaw(lj)),
-                "exponential" => builder.law(ExponentialLaw::new(w0, z0)?),
-                other => bail!("unknown law `{other}` (surface, line, point, surface-energy, exponential)"),
-            }
-            .build()?;
-            let started = Instant::now();
-            let mut progress = Progress {
-                row: format!("{law} at {n}^2"),
-                started,
-            };
-            let points = problem.sweep(&path, None, &settings, None, &mut progress)?;
-            let areas: Vec<String> = points
-                .iter()
-                .step_by(refine)
-                .map(|p| format!("{:.5}", p.report.contact_area_fraction))
-                .collect();
-            println!(
-                "| {law} | {n} | {:.0} | {} | {:.1} | {} |",
-                length / n as f64 / zone,
-                areas.join(" | "),
-                started.elapsed().as_secs_f64(),
-                points.iter().all(|p| p.report.converged())
-            );
-        }
+    for ((law, n), dir) in rows.iter().zip(&dirs) {
+        let curve = read_curve(&dir.join("curve.csv"))?;
+        let column = |name: &str| -> Result<Vec<String>> {
+            let c = curve.0.iter().position(|h| h == name).context(name.to_string())?;
+            Ok(curve.1.iter().map(|r| r[c].clone()).collect())
+        };
+        let areas: Vec<String> = column("contact_area_fraction")?
+            .iter()
+            .step_by(refine)
+            .map(|a| a.parse::<f64>().map(|a| format!("{a:.5}")))
+            .collect::<Result<_, _>>()?;
+        let solve: f64 = column("wall_time_s")?
+            .iter()
+            .map(|t| t.parse::<f64>())
+            .sum::<Result<f64, _>>()?;
+        println!(
+            "| {law} | {n} | {:.0} | {} | {solve:.0} | {} |",
+            length / *n as f64 / zone,
+            areas.join(" | "),
+            column("converged")?.iter().all(|c| c == "true")
+        );
     }
+    eprintln!("runs in {} (resumable: the same command goes on)", dir.display());
     Ok(())
+}
+
+/// A sweep's `curve.csv`: its header and rows.
+fn read_curve(path: &std::path::Path) -> Result<(Vec<String>, Vec<Vec<String>>)> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    let mut lines = text
+        .lines()
+        .map(|l| l.split(',').map(str::to_string).collect::<Vec<_>>());
+    let header = lines.next().context("an empty curve")?;
+    Ok((header, lines.collect()))
 }
 
 /// A comma-separated list from the environment variable `name`, else `default`.
@@ -469,27 +505,4 @@ fn rough_sphere_mesh() -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// Each load of a row to stderr as it lands, so that a row of hours leaves its loads behind
-/// if it is stopped.
-struct Progress {
-    row: String,
-    started: Instant,
-}
-
-impl solver::Observer for Progress {
-    fn step(&mut self, index: usize, point: &solver::SweepPoint, _: &solver::AdhesiveState) -> bool {
-        let report = &point.report;
-        eprintln!(
-            "{}, load {}: area {:.5}, {} iterations, converged {}, {:.0} s",
-            self.row,
-            index + 1,
-            report.contact_area_fraction,
-            report.iterations.count(),
-            report.converged(),
-            self.started.elapsed().as_secs_f64()
-        );
-        true
-    }
 }
