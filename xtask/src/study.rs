@@ -28,7 +28,8 @@ pub const STUDIES: [(&str, &str); 5] = [
         "challenge-mesh",
         "the contact-mechanics challenge's load cycle, relative contact area against the cell size for the \
          surface, line, point and exponential laws, one surface sampled on every grid, each run a resumable \
-         sweep in target/challenge-mesh (SIZES=256,512,1024; LAWS=...; METHOD=auto; TOLERANCE=...; REFINE=k)",
+         sweep in target/challenge-mesh (SIZES=256,512,1024; LAWS=...; METHOD=auto; TOLERANCE=...; REFINE=k; \
+         FINEST=n, the grid the surface is made on, default the largest size)",
     ),
     (
         "rough-sphere-mesh",
@@ -272,13 +273,22 @@ fn bench_gap(n: usize) -> Result<ndarray::Array2<f64>> {
 /// The contact-mechanics challenge (L = 100 um, H = 0.8, roll-off 20 um, RMS gradient 1, seed
 /// 1, E* = 25 MPa, w0 = 50 mJ/m^2, z0 = rho = 2.071 nm) under the loads p / (E* g_bar) =
 /// 0.00125 ... 0.04 and back, on grids of `SIZES` cells a side. One surface for all of them:
-/// made on the finest grid with its short cut-off at four cells of the coarsest, and sampled
+/// made on the finest grid (or `FINEST`) with its short cut-off at four cells of the coarsest, and sampled
 /// at every k-th node for the coarser ones (band-limited, so the samples are the same
 /// surface). Prints the relative contact area of each law on each grid at each load.
 fn challenge_mesh() -> Result<()> {
     let sizes: Vec<usize> = list("SIZES", "256,512,1024")?;
     let laws: Vec<String> = list("LAWS", "surface,line,point,exponential")?;
-    let finest = *sizes.iter().max().context("SIZES is empty")?;
+    // `FINEST=N`: the grid the surface is made on, if finer than every size run (so that a
+    // law's rows can share a surface with another law's finer ones).
+    let largest = *sizes.iter().max().context("SIZES is empty")?;
+    let finest: usize = match std::env::var("FINEST") {
+        Ok(n) => n.parse()?,
+        Err(_) => largest,
+    };
+    if finest < largest {
+        bail!("FINEST ({finest}) must be at least the largest size ({largest})");
+    }
     let coarsest = *sizes.iter().min().context("SIZES is empty")?;
     if let Some(n) = sizes.iter().find(|&&n| finest % n != 0) {
         bail!("every size must divide the finest ({finest}); {n} does not");
