@@ -290,7 +290,7 @@ fn challenge_mesh() -> Result<()> {
         bail!("FINEST ({finest}) must be at least the largest size ({largest})");
     }
     let coarsest = *sizes.iter().min().context("SIZES is empty")?;
-    if let Some(n) = sizes.iter().find(|&&n| finest % n != 0) {
+    if let Some(n) = sizes.iter().find(|&&n| !finest.is_multiple_of(n)) {
         bail!("every size must divide the finest ({finest}); {n} does not");
     }
     let (length, e_star, w0, z0) = (1e-4, 25e6, 0.05, 2.071e-9);
