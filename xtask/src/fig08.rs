@@ -275,7 +275,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         if finest.sticky.cell > 1.01 * challenge::LENGTH / 4096.0 {
             ", not at the paper's 4096²"
         } else {
-            " as the paper's 4096²"
+            ", the paper's 4096² grid"
         },
     );
     Ok(report)
