@@ -293,6 +293,11 @@ fn small_load_slope(plain: &challenge::Outcome) -> f64 {
 /// One grid's agreement: the non-adhesive slope and Müser, adhesion's gain, the unloading.
 fn agreement(report: &mut FigureReport, name: &str, r: &Rung, back: &[&challenge::LoadPoint], zone: f64) {
     let (plain, sticky) = (r.plain, r.sticky);
+    // The name opens a sentence: "The topography", not "the topography".
+    let mut chars = name.chars();
+    let name = &chars.next().map_or(String::new(), |c| {
+        c.to_uppercase().chain(chars).collect::<String>()
+    });
     let muser_dev = plain
         .points
         .iter()
