@@ -140,49 +140,40 @@ impl Run {
         let (_, local_radius, rms_height, cell) = stats;
         let p = self.case.build()?;
         let mean_g0 = p.initial_gap.mean().unwrap_or(0.0);
-        let path = dir.join("curve.csv");
-        let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
-        let mut lines = text.lines();
-        let header: Vec<&str> = lines.next().context("an empty curve")?.split(',').collect();
-        let column = |name: &str| header.iter().position(|&c| c == name).context(name.to_string());
-        let [approach, pressure, area, converged, iterations, time] = [
-            "approach",
-            "mean_pressure",
-            "contact_area_fraction",
-            "converged",
-            "iterations",
-            "wall_time_s",
-        ]
-        .map(column);
-        let (approach, pressure, area, converged, iterations, time) =
-            (approach?, pressure?, area?, converged?, iterations?, time?);
-        let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+        let curve = crate::series::Curve::read(dir)?;
         let reduced: Vec<f64> = self.reduced.iter().chain(&self.unloading).copied().collect();
-        if rows.len() != reduced.len() {
+        if curve.len() != reduced.len() {
             bail!(
                 "{} holds {} loads, not {}",
-                path.display(),
-                rows.len(),
+                dir.display(),
+                curve.len(),
                 reduced.len()
             );
         }
-        let number = |r: &[&str], c: usize| -> Result<f64> { Ok(r[c].parse::<f64>()?) };
-        let mut points = rows
-            .iter()
-            .zip(reduced)
-            .map(|(r, reduced)| {
-                Ok(LoadPoint {
-                    reduced,
-                    mean_pressure: number(r, pressure)?,
-                    contact_area_fraction: number(r, area)?,
-                    // Periodic: the mean displacement is zero.
-                    mean_gap: mean_g0 - number(r, approach)?,
-                    converged: r[converged] == "true",
-                    iterations: number(r, iterations)? as usize,
-                    wall_time_s: number(r, time)?,
-                })
+        let (approach, pressure, area) = (
+            curve.numbers("approach")?,
+            curve.numbers("mean_pressure")?,
+            curve.numbers("contact_area_fraction")?,
+        );
+        let (converged, iterations, time) = (
+            curve.converged()?,
+            curve.numbers("iterations")?,
+            curve.numbers("wall_time_s")?,
+        );
+        let mut points: Vec<LoadPoint> = reduced
+            .into_iter()
+            .enumerate()
+            .map(|(k, reduced)| LoadPoint {
+                reduced,
+                mean_pressure: pressure[k],
+                contact_area_fraction: area[k],
+                // Periodic: the mean displacement is zero.
+                mean_gap: mean_g0 - approach[k],
+                converged: converged[k],
+                iterations: iterations[k] as usize,
+                wall_time_s: time[k],
             })
-            .collect::<Result<Vec<_>>>()?;
+            .collect();
         let unloading = points.split_off(self.reduced.len());
         let profile = match self.profile_step() {
             Some(k) => {

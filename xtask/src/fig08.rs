@@ -216,21 +216,15 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             report.solver_seconds += a.wall_time_s + b.wall_time_s;
         }
         report.solver_seconds += r.sticky.unloading.iter().map(|u| u.wall_time_s).sum::<f64>();
-        let solved = |points: &[&challenge::LoadPoint]| {
-            points
-                .iter()
-                .map(|p| (p.reduced, p.contact_area_fraction, p.converged))
-                .collect()
-        };
         chart.curves.push(Curve::solved(
             format!("BEM, no adhesion, {name}"),
-            solved(&r.plain.points.iter().collect::<Vec<_>>()),
+            solved(&r.plain.points),
             Mark::Triangles,
             lighter(PALETTE[0], shade),
         ));
         chart.curves.push(Curve::solved(
             format!("BEM, adhesion ({}), {name}", challenge::label(law)),
-            solved(&r.sticky.points.iter().collect::<Vec<_>>()),
+            solved(&r.sticky.points),
             Mark::Dots,
             lighter(PALETTE[3], shade),
         ));
@@ -244,7 +238,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
                         "cells within the process zone"
                     }
                 ),
-                solved(&back),
+                solved(back.iter().copied()),
                 Mark::Line,
                 lighter(PALETTE[3], shade),
             ));
@@ -279,6 +273,14 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         },
     );
     Ok(report)
+}
+
+/// A curve's points and whether each converged.
+fn solved<'a>(points: impl IntoIterator<Item = &'a challenge::LoadPoint>) -> Vec<(f64, f64, bool)> {
+    points
+        .into_iter()
+        .map(|p| (p.reduced, p.contact_area_fraction, p.converged))
+        .collect()
 }
 
 /// Small-load slope a_r / p~ over the two lightest loads.

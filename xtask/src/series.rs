@@ -76,3 +76,59 @@ pub fn run(dir: &Path, sweeps: &[Sweep]) -> Result<Vec<PathBuf>> {
         })
         .collect()
 }
+
+/// A finished or half-finished sweep's `curve.csv`, read a column at a time.
+pub struct Curve {
+    path: PathBuf,
+    header: Vec<String>,
+    rows: Vec<Vec<String>>,
+}
+
+impl Curve {
+    /// The curve of the sweep in the run directory `run`.
+    pub fn read(run: &Path) -> Result<Curve> {
+        let path = run.join("curve.csv");
+        let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+        let mut lines = text
+            .lines()
+            .map(|l| l.split(',').map(str::to_string).collect::<Vec<_>>());
+        let header = lines.next().context("an empty curve")?;
+        let rows = lines.collect();
+        Ok(Curve { path, header, rows })
+    }
+
+    /// The number of steps.
+    pub fn len(&self) -> usize {
+        self.rows.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    /// The column `name` as text.
+    pub fn text(&self, name: &str) -> Result<Vec<&str>> {
+        let c = self
+            .header
+            .iter()
+            .position(|h| h == name)
+            .with_context(|| format!("{} has no column {name}", self.path.display()))?;
+        Ok(self.rows.iter().map(|r| r[c].as_str()).collect())
+    }
+
+    /// The column `name` as numbers.
+    pub fn numbers(&self, name: &str) -> Result<Vec<f64>> {
+        self.text(name)?
+            .into_iter()
+            .map(|v| {
+                v.parse::<f64>()
+                    .with_context(|| format!("{}: {name} = `{v}`", self.path.display()))
+            })
+            .collect()
+    }
+
+    /// Whether each step converged.
+    pub fn converged(&self) -> Result<Vec<bool>> {
+        Ok(self.text("converged")?.into_iter().map(|v| v == "true").collect())
+    }
+}

@@ -381,39 +381,23 @@ fn challenge_mesh() -> Result<()> {
     let lj = LennardJones::new(w0, z0)?;
     let zone = e_star * w0 / (lj.min_pressure() * lj.min_pressure());
     for ((law, n), dir) in rows.iter().zip(&dirs) {
-        let curve = read_curve(&dir.join("curve.csv"))?;
-        let column = |name: &str| -> Result<Vec<String>> {
-            let c = curve.0.iter().position(|h| h == name).context(name.to_string())?;
-            Ok(curve.1.iter().map(|r| r[c].clone()).collect())
-        };
-        let areas: Vec<String> = column("contact_area_fraction")?
+        let curve = crate::series::Curve::read(dir)?;
+        let areas: Vec<String> = curve
+            .numbers("contact_area_fraction")?
             .iter()
             .step_by(refine)
-            .map(|a| a.parse::<f64>().map(|a| format!("{a:.5}")))
-            .collect::<Result<_, _>>()?;
-        let solve: f64 = column("wall_time_s")?
-            .iter()
-            .map(|t| t.parse::<f64>())
-            .sum::<Result<f64, _>>()?;
+            .map(|a| format!("{a:.5}"))
+            .collect();
+        let solve: f64 = curve.numbers("wall_time_s")?.iter().sum();
         println!(
             "| {law} | {n} | {:.0} | {} | {solve:.0} | {} |",
             length / *n as f64 / zone,
             areas.join(" | "),
-            column("converged")?.iter().all(|c| c == "true")
+            curve.converged()?.iter().all(|&c| c)
         );
     }
     eprintln!("runs in {} (resumable: the same command goes on)", dir.display());
     Ok(())
-}
-
-/// A sweep's `curve.csv`: its header and rows.
-fn read_curve(path: &std::path::Path) -> Result<(Vec<String>, Vec<Vec<String>>)> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-    let mut lines = text
-        .lines()
-        .map(|l| l.split(',').map(str::to_string).collect::<Vec<_>>());
-    let header = lines.next().context("an empty curve")?;
-    Ok((header, lines.collect()))
 }
 
 /// A comma-separated list from the environment variable `name`, else `default`.
