@@ -176,13 +176,7 @@ impl Run {
             .collect();
         let unloading = points.split_off(self.reduced.len());
         let profile = match self.profile_step() {
-            Some(k) => {
-                let file = dir.join("states").join(format!("step-{k:04}")).join("gap.npy");
-                let gap: ndarray::Array2<f64> =
-                    ndarray_npy::read_npy(&file).with_context(|| format!("reading {}", file.display()))?;
-                let (ny, nx) = gap.dim();
-                (0..ny).map(|j| gap[(j, nx / 2)]).collect()
-            }
+            Some(k) => profile(dir, k)?,
             None => Vec::new(),
         };
         Ok(Outcome {
@@ -323,4 +317,51 @@ pub fn tabor(local_radius: f64, w0: f64) -> f64 {
 /// The work of adhesion [J/m^2] that gives Tabor parameter `mu` at local radius `R` \[m\].
 pub fn work_for_tabor(local_radius: f64, mu: f64) -> f64 {
     (mu.powi(3) * MODULUS * MODULUS * RANGE.powi(3) / local_radius).sqrt()
+}
+
+/// The gap (m) along the middle column of the sweep in `dir` at step `k`: read from the kept
+/// state once and stored beside the run as `profile.csv`, which the repository keeps (the
+/// states it does not).
+fn profile(dir: &Path, k: usize) -> Result<Vec<f64>> {
+    let kept = dir.join("profile.csv");
+    if let Ok(text) = std::fs::read_to_string(&kept) {
+        return text
+            .lines()
+            .skip(1)
+            .map(|l| {
+                l.parse::<f64>()
+                    .with_context(|| format!("reading {}: {l:?}", kept.display()))
+            })
+            .collect();
+    }
+    let file = dir.join("states").join(format!("step-{k:04}")).join("gap.npy");
+    let gap: ndarray::Array2<f64> =
+        ndarray_npy::read_npy(&file).with_context(|| format!("reading {}", file.display()))?;
+    let (ny, nx) = gap.dim();
+    let column: Vec<f64> = (0..ny).map(|j| gap[(j, nx / 2)]).collect();
+    let text: String = std::iter::once("gap_m".to_string())
+        .chain(column.iter().map(|g| format!("{g:e}")))
+        .map(|l| l + "\n")
+        .collect();
+    std::fs::write(&kept, text).with_context(|| format!("writing {}", kept.display()))?;
+    Ok(column)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_profile_is_kept_beside_the_run_bit_for_bit() {
+        let dir = std::env::temp_dir().join(format!("xtask-profile-{}", std::process::id()));
+        let step = dir.join("states").join("step-0002");
+        std::fs::create_dir_all(&step).unwrap();
+        let gap = ndarray::Array2::from_shape_fn((5, 4), |(j, i)| (j as f64 + 0.1 * i as f64) / 3.0 * 1e-9);
+        ndarray_npy::write_npy(step.join("gap.npy"), &gap).unwrap();
+        let read = profile(&dir, 2).unwrap();
+        assert_eq!(read, gap.column(2).to_vec());
+        std::fs::remove_dir_all(dir.join("states")).unwrap();
+        assert_eq!(profile(&dir, 2).unwrap(), read);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -321,7 +321,8 @@ fn attempt(study: &Study, run: &Run, dir: &Path, threads: usize) -> Result<()> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
     pool.install(|| {
         if study.command == "sweep" {
-            let again = if dir.join("curve.csv").exists() {
+            // A run copied without its saved state (its small files only) starts over.
+            let again = if dir.join("curve.csv").exists() && dir.join("state").exists() {
                 "--resume"
             } else {
                 "--overwrite"
