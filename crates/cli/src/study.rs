@@ -199,9 +199,32 @@ impl Study {
     }
 }
 
+/// Whether a run's case (`run.toml`) is the one the study gives it now: the same keys and
+/// values but for its output directory and the folders of the files it names, which differ
+/// between machines and checkouts.
+fn same_run(old: &str, new: &str) -> bool {
+    let table = |t: &str| {
+        toml::from_str::<toml::Table>(t).ok().map(|mut t| {
+            t.remove("out");
+            for key in FILE_KEYS {
+                if let Some(toml::Value::String(p)) = t.get_mut(key) {
+                    *p = Path::new(p.as_str())
+                        .file_name()
+                        .map_or_else(String::new, |f| f.to_string_lossy().into_owned());
+                }
+            }
+            t
+        })
+    };
+    matches!((table(old), table(new)), (Some(a), Some(b)) if a == b)
+}
+
+/// The case keys that name files.
+const FILE_KEYS: [&str; 2] = ["surface", "start_from"];
+
 /// Case keys that name files, made absolute against the folder of the file that gave them.
 fn beside(case: &mut toml::Table, dir: &Path) {
-    for key in ["surface", "start_from"] {
+    for key in FILE_KEYS {
         if let Some(toml::Value::String(p)) = case.get_mut(key)
             && Path::new(p).is_relative()
         {
@@ -309,20 +332,22 @@ fn execute(study: &Study, run: &Run, dir: &Path, threads: usize) -> Outcome {
 }
 
 fn attempt(study: &Study, run: &Run, dir: &Path, threads: usize) -> Result<()> {
-    if dir.join("summary.json").exists() {
+    let case = study.run_case(run, dir)?;
+    let config = dir.join("run.toml");
+    let same = std::fs::read_to_string(&config).is_ok_and(|old| same_run(&old, &case));
+    if same && dir.join("summary.json").exists() {
         return Ok(());
     }
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let _ = std::fs::remove_file(dir.join("error.txt"));
-    let config = dir.join("run.toml");
-    std::fs::write(&config, study.run_case(run, dir)?)
-        .with_context(|| format!("writing {}", config.display()))?;
+    std::fs::write(&config, case).with_context(|| format!("writing {}", config.display()))?;
     let config = config.display().to_string();
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
     pool.install(|| {
         if study.command == "sweep" {
-            // A run copied without its saved state (its small files only) starts over.
-            let again = if dir.join("curve.csv").exists() && dir.join("state").exists() {
+            // A run of another case, or copied without its saved state (its small files
+            // only), starts over.
+            let again = if same && dir.join("curve.csv").exists() && dir.join("state").exists() {
                 "--resume"
             } else {
                 "--overwrite"

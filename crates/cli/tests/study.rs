@@ -136,8 +136,28 @@ fn serial_parallel_sharded_and_resumed_studies_give_the_same_tables() {
     std::fs::write(half.join("curve.csv"), rows).unwrap();
     study(&killed, &[]);
     assert_eq!(tables(&killed), (table.clone(), groups.clone()));
+    let kept = copied.join("study/runs/seed=1_work_of_adhesion=0.1/summary.json");
+    let before = std::fs::metadata(&kept).unwrap().modified().unwrap();
     study(&copied, &[]);
     assert_eq!(tables(&copied), (table, groups));
+    // Its finished runs were kept, though their directory moved.
+    assert_eq!(std::fs::metadata(&kept).unwrap().modified().unwrap(), before);
+}
+
+#[test]
+fn a_finished_run_whose_case_changed_is_solved_again() {
+    let changed = fresh("study-changed");
+    study(&changed, &[]);
+    let original = tables(&changed);
+    let edited = STUDY.replace("to = 1e-9", "to = 1.5e-9");
+    assert_ne!(edited, STUDY);
+    std::fs::write(changed.join("study.toml"), &edited).unwrap();
+    study(&changed, &[]);
+    let direct = fresh("study-changed-direct");
+    std::fs::write(direct.join("study.toml"), &edited).unwrap();
+    study(&direct, &[]);
+    assert_eq!(tables(&changed), tables(&direct));
+    assert_ne!(tables(&changed), original);
 }
 
 fn copy_without_states(from: &Path, to: &Path) {
