@@ -204,8 +204,7 @@ impl Study {
 /// between machines and checkouts.
 fn same_run(old: &str, new: &str) -> bool {
     let table = |t: &str| {
-        toml::from_str::<toml::Table>(t).ok().map(|mut t| {
-            t.remove("out");
+        sweep::without_out(t).map(|mut t| {
             for key in FILE_KEYS {
                 if let Some(toml::Value::String(p)) = t.get_mut(key) {
                     *p = Path::new(p.as_str())

@@ -413,13 +413,15 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
 /// Whether two resolved cases (TOML) are the same apart from their output directory, which
 /// may be spelt differently or moved between a sweep and its resumption.
 fn same_case(a: &str, b: &str) -> bool {
-    let table = |t: &str| {
-        toml::from_str::<toml::Table>(t).ok().map(|mut t| {
-            t.remove("out");
-            t
-        })
-    };
-    matches!((table(a), table(b)), (Some(a), Some(b)) if a == b)
+    matches!((without_out(a), without_out(b)), (Some(a), Some(b)) if a == b)
+}
+
+/// A case (TOML) without its output directory; `None` if it does not parse.
+pub(crate) fn without_out(case: &str) -> Option<toml::Table> {
+    toml::from_str::<toml::Table>(case).ok().map(|mut t| {
+        t.remove("out");
+        t
+    })
 }
 
 /// The finished rows of a sweep being resumed must be a start of its path: no more rows than
