@@ -275,7 +275,7 @@ struct FarField {
     step: f64,
     /// The relaxation's move, residual, direction and the operator on it (made at its first
     /// use).
-    work: Vec<Array2<f64>>,
+    work: Option<[Array2<f64>; 4]>,
 }
 
 impl FarField {
@@ -285,7 +285,7 @@ impl FarField {
             response: Array2::zeros(shape),
             elastic: 0.0,
             step: 0.0,
-            work: Vec::new(),
+            work: None,
         }
     }
 
@@ -298,24 +298,23 @@ impl FarField {
     fn relax(&mut self, problem: &mut Problem, x: &Point, trial: &mut Point) -> Result<()> {
         use crate::fields::flat;
         let (mx, cell) = (problem.mx, problem.diagonal);
-        if self.work.is_empty() {
-            self.work = vec![Array2::zeros(x.gap.dim()); 4];
-        }
-        let [delta, residual, direction, applied] = &mut self.work[..] else {
-            unreachable!("four work fields")
-        };
+        let [delta, residual, direction, applied] = self
+            .work
+            .get_or_insert_with(|| std::array::from_fn(|_| Array2::zeros(x.gap.dim())));
         let held = &self.held;
+        // The preconditioner's diagonal `S_ii + max(K, 0)`, and the law's part of it.
         let law = |c: f64| c.max(0.0);
+        let mass = |c: f64| cell + law(c);
         delta.fill(0.0);
         Zip::from(&mut *residual)
             .and(held)
             .and(&x.gradient)
             .par_for_each(|q, &h, &r| *q = if h == 0.0 { -r } else { 0.0 });
-        // The preconditioned residual `z = q / (S_ii + max(K, 0))`, kept in `direction` first.
+        // The preconditioned residual `z = q / mass`, kept in `direction` first.
         Zip::from(&mut *direction)
             .and(&*residual)
             .and(&x.curvature)
-            .par_for_each(|z, &q, &c| *z = q / (cell + law(c)));
+            .par_for_each(|z, &q, &c| *z = q / mass(c));
         let mut qz = crate::sum::dot_chunks(flat(residual), flat(direction), mx);
         let first = qz;
         for _ in 0..RELAX_ITERATIONS {
@@ -343,16 +342,13 @@ impl FarField {
             let [qz_new] = crate::sum::ordered(problem.my, |j| {
                 let row = j * mx..(j + 1) * mx;
                 let (q, c) = (&qs[row.clone()], &cs[row]);
-                [q.iter()
-                    .zip(c)
-                    .map(|(&q, &c)| q * q / (cell + law(c)))
-                    .sum::<f64>()]
+                [q.iter().zip(c).map(|(&q, &c)| q * q / mass(c)).sum::<f64>()]
             });
             let beta = qz_new / qz;
             Zip::from(&mut *direction)
                 .and(&*residual)
                 .and(&x.curvature)
-                .par_for_each(|d, &q, &c| *d = q / (cell + law(c)) + beta * *d);
+                .par_for_each(|d, &q, &c| *d = q / mass(c) + beta * *d);
             qz = qz_new;
         }
         problem.step_and_project(&x.gap, delta, 1.0, &mut trial.gap, None);
