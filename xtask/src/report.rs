@@ -138,6 +138,7 @@ pub fn write_markdown(options: &Options) -> Result<()> {
          or full mode. Times are this machine's (2 cores, shared).\n",
         env!("CARGO_PKG_VERSION"),
     )?;
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     for r in &reports {
         writeln!(s, "## Figure {}: {} ({} mode)\n", r.number, r.title, r.mode)?;
         for img in &r.images {
@@ -152,9 +153,12 @@ pub fn write_markdown(options: &Options) -> Result<()> {
         }
         writeln!(
             s,
-            "- Solver time {:.0} s summed over the runs; wall time of the build that wrote this entry {:.0} s \
-             (one run a core at a time; runs found in the cache cost nothing); data: {}.\n",
+            "- Solver time {:.0} s summed over the runs, so about {} of wall from scratch on this machine's {} \
+             cores (one run a core at a time); wall time of the build that wrote this entry {:.0} s (runs found in \
+             the cache cost nothing); data: {}.\n",
             r.solver_seconds,
+            duration(r.solver_seconds / cores as f64),
+            cores,
             r.seconds,
             r.tables
                 .iter()
@@ -181,4 +185,13 @@ pub fn write_markdown(options: &Options) -> Result<()> {
     let path = options.out.join("FIGURES.md");
     std::fs::write(&path, s).with_context(|| format!("writing {}", path.display()))?;
     Ok(())
+}
+
+/// `seconds` as minutes below an hour, else as hours.
+fn duration(seconds: f64) -> String {
+    if seconds < 3600.0 {
+        format!("{:.0} min", (seconds / 60.0).ceil())
+    } else {
+        format!("{:.1} h", seconds / 3600.0)
+    }
 }
