@@ -54,7 +54,10 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             },
             changes
                 .iter()
-                .map(|(mu, c)| format!("μ = {mu}: {:+.3} ± {:.3} πRw0, paired over the seeds", c.mean, c.error))
+                .map(|(mu, c)| format!(
+                    "μ = {mu}: {:+.3} ± {:.3} πRw0, paired over the seeds",
+                    c.mean, c.error
+                ))
                 .collect::<Vec<_>>()
                 .join("; ")
         )

@@ -548,4 +548,53 @@ mod tests {
             );
         }
     }
+
+    /// The coupled mass keeps the force weight `<r, M^-1 r>` positive where a cell just above
+    /// the wall (the law 200 times as stiff as the cell, and as stiff by its +x neighbour's
+    /// gap) sits beside a soft one: clamped to the cell's own diagonal alone, the coupling made
+    /// the mass's symmetric part indefinite, and a residual along its negative direction gave a
+    /// negative weight, on which the flow stopped every step.
+    #[test]
+    fn the_coupled_mass_keeps_the_force_weight_positive() {
+        let (n, length) = (16, 1e-6);
+        let lj = LennardJones::new(0.05, 2.071e-9).unwrap();
+        let problem = ContactProblem::builder()
+            .roughness(Array2::zeros((n, n)), length, length)
+            .periodic(true)
+            .modulus(25e6)
+            .law(SurfaceLaw(lj))
+            .build()
+            .unwrap();
+        let settings = Settings::with_method(Method::Flow);
+        let job = Job {
+            op: problem.operator.as_ref(),
+            law: problem.law.as_ref(),
+            g0: problem.initial_gap.view(),
+            control: Control::MeanPressure(1e3),
+            settings: &settings,
+            method: Method::Flow,
+            start: Start::Loading,
+        };
+        let Setup { problem, mut x, .. } = setup(&job, energy(&job).unwrap()).unwrap();
+        let mut problem = problem;
+        problem.couple_rows(&mut x).unwrap();
+        assert!(problem.coupled());
+        let cell = problem.diagonal;
+        // Stiff cells at even columns, coupled to their soft +x neighbours; the residual is
+        // `P z` for the direction `z = (-0.45, 1)` of each pair, along which the symmetric part
+        // of the mass clamped to the own diagonal alone is negative.
+        let (stiff, coupling) = (200.0 * cell, 0.9 * 201.0 * cell);
+        x.curvature = Array2::from_shape_fn((n, n), |(_, i)| if i % 2 == 0 { stiff } else { 0.0 });
+        x.coupling = Array2::from_shape_fn((n, n), |(_, i)| if i % 2 == 0 { coupling } else { 0.0 });
+        x.gradient = Array2::from_shape_fn((n, n), |(_, i)| {
+            if i % 2 == 0 {
+                (201.0 * -0.45 + 0.9 * 201.0) * cell
+            } else {
+                cell
+            }
+        });
+        let mut pull = Array2::zeros((n, n));
+        let weight = problem.precondition_rows(&x, &mut pull);
+        assert!(weight > 0.0, "force weight {weight:e}");
+    }
 }

@@ -633,9 +633,11 @@ impl Problem<'_> {
 
     /// `z = P^-1 (v - mu)` into `out`, with `P` the diagonal `1 / weight(j, i, k)` (held cells
     /// have weight 0 and get 0) plus the law's stiffness at `at` by the +x neighbour,
-    /// `-dp_i/dg_j` ([`Problem::couple_rows`]; at most `ROW_COUPLING` times the diagonal, so
-    /// that the back substitution along a row stays bounded; none across the block's edge or a
-    /// periodic wrap), and `mu` the multiple of `P^-1 1` that keeps the moving cells' sum at
+    /// `-dp_i/dg_j` ([`Problem::couple_rows`]; at most `ROW_COUPLING` times the cell's own
+    /// diagonal, so that the back substitution along a row stays bounded, and times the
+    /// geometric mean of its diagonal and its neighbour's, so that `P`'s symmetric part stays
+    /// positive definite and `<v, P^-1 v> > 0`; none across the block's edge or a periodic
+    /// wrap), and `mu` the multiple of `P^-1 1` that keeps the moving cells' sum at
     /// zero where the mean gap is prescribed. Returns `<z, v>`.
     pub(super) fn solve_rows(
         &self,
@@ -714,7 +716,15 @@ impl Problem<'_> {
                 0.0
             } else {
                 let c = if j < ny && i + 1 < nx {
-                    ds[j * nx + i].clamp(-ROW_COUPLING / w, ROW_COUPLING / w)
+                    // A stiff cell beside a soft one made `<v, P^-1 v>` negative, the flow's
+                    // force weight, which then stopped every step (docs/decisions.md).
+                    let next_weight = weight(j, i + 1, k + 1);
+                    let bound = if next_weight > 0.0 {
+                        (1.0 / w).min((w * next_weight).sqrt().recip())
+                    } else {
+                        1.0 / w
+                    };
+                    ds[j * nx + i].clamp(-ROW_COUPLING * bound, ROW_COUPLING * bound)
                 } else {
                     0.0
                 };
