@@ -16,7 +16,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_label: "Rq² E* / (λL w0)",
         x_name: "ciavarella_variable",
         x_log: true,
-        legend: crate::plot::Legend::UpperRight,
+        legend: crate::plot::Legend::LowerLeft,
     };
     let x = |pt: &crate::rough_sphere::Point| {
         theory::rough::ciavarella_variable(
