@@ -208,22 +208,26 @@ fn solve<'a>(
             (1.0, 0.0)
         };
         let pulls = crate::fields::flat(&pull);
-        problem.move_cells(&x.gap, &mut velocity, dt, &mut trial.gap, |v, k, inside| {
-            let a = pulls[k];
-            let v = keep * (if stopped { 0.0 } else { v } - dt * a) - turn * a;
-            // No cell of the block moves against the force on it: a cell that would climb
-            // stops (inelastically, like one meeting the wall), so that inertia carries no
-            // cell over a barrier of its own, and a cell falling into the law's well does not
-            // bounce off its core, whose stiffness the mass of the step before does not know.
-            if inside && v * a > 0.0 { 0.0 } else { v }
-        });
-        if let Some(far_field) = &far_field {
-            problem.shift_cells(
-                &mut trial.gap,
-                &far_field.held,
-                SHIFT_SHARE * dt * dt * far_field.step,
-            );
-        }
+        // The far field's rigid shift rides on the move ([`FarField`]).
+        let shift = far_field
+            .as_ref()
+            .map(|f| (&f.held, SHIFT_SHARE * dt * dt * f.step));
+        problem.move_cells(
+            &x.gap,
+            &mut velocity,
+            dt,
+            &mut trial.gap,
+            shift,
+            |v, k, inside| {
+                let a = pulls[k];
+                let v = keep * (if stopped { 0.0 } else { v } - dt * a) - turn * a;
+                // No cell of the block moves against the force on it: a cell that would climb
+                // stops (inelastically, like one meeting the wall), so that inertia carries no
+                // cell over a barrier of its own, and a cell falling into the law's well does not
+                // bounce off its core, whose stiffness the mass of the step before does not know.
+                if inside && v * a > 0.0 { 0.0 } else { v }
+            },
+        );
         problem.evaluate(&mut trial)?;
         std::mem::swap(&mut x, &mut trial);
         sums = problem.project_gradient(&mut x);

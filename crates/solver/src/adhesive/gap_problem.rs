@@ -256,17 +256,22 @@ impl Problem<'_> {
     /// Updates each cell's velocity \[m per time unit\] to `new(v, k, inside)` (`k` its flat
     /// index, `inside` whether it is on the domain's block) and moves the cells by `step` times
     /// it, as [`Problem::step_and_project`] would; a cell that ends on the wall keeps no
-    /// velocity into it. Without a prescribed mean gap this is one pass over the fields.
+    /// velocity into it. With `shift = (held, by)` the cells where `held` is 0 then move by
+    /// `by` \[m\] more, projected onto the wall (a periodic domain's unknown, the gap
+    /// everywhere; no prescribed mean gap). Without a prescribed mean gap this is one pass over
+    /// the fields.
     pub(super) fn move_cells(
         &mut self,
         from: &Array2<f64>,
         velocity: &mut Array2<f64>,
         step: f64,
         gap: &mut Array2<f64>,
+        shift: Option<(&Array2<f64>, f64)>,
         new: impl Fn(f64, usize, bool) -> f64 + Sync,
     ) {
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
         if self.mean_gap.is_some() {
+            debug_assert!(shift.is_none(), "a shift would move the prescribed mean gap");
             // The shift that keeps the mean needs every cell's step first.
             flat_mut(velocity)
                 .par_chunks_mut(mx)
@@ -287,6 +292,7 @@ impl Problem<'_> {
             return;
         }
         let (fs, bs) = (flat(from), flat(&self.base));
+        let (held, by) = shift.map_or((None, 0.0), |(h, by)| (Some(flat(h)), by));
         flat_mut(gap)
             .par_chunks_mut(mx)
             .zip(flat_mut(&mut self.scratch).par_chunks_mut(mx))
@@ -304,22 +310,10 @@ impl Problem<'_> {
                         (f + step * v).max(0.0)
                     };
                     vr[i] = if inside && gr[i] <= 0.0 && v < 0.0 { 0.0 } else { v };
+                    if held.is_some_and(|h| h[k] == 0.0) {
+                        gr[i] = (gr[i] + by).max(0.0);
+                    }
                     ur[i] = gr[i] - bs[k];
-                }
-            });
-    }
-
-    /// Moves the cells of `gap` where `held` is 0 by `by` \[m\], projected onto the wall, keeping
-    /// the scratch field in step (a periodic domain's unknown: the gap everywhere).
-    pub(super) fn shift_cells(&mut self, gap: &mut Array2<f64>, held: &Array2<f64>, by: f64) {
-        Zip::from(gap)
-            .and(&mut self.scratch)
-            .and(held)
-            .and(&self.base)
-            .par_for_each(|g, u, &h, &b| {
-                if h == 0.0 {
-                    *g = (*g + by).max(0.0);
-                    *u = *g - b;
                 }
             });
     }
