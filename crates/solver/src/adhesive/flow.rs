@@ -579,8 +579,9 @@ mod tests {
             method: Method::Flow,
             start: Start::Loading,
         };
-        let Setup { problem, mut x, .. } = setup(&job, energy(&job).unwrap()).unwrap();
-        let mut problem = problem;
+        let Setup {
+            mut problem, mut x, ..
+        } = setup(&job, energy(&job).unwrap()).unwrap();
         problem.couple_rows(&mut x).unwrap();
         assert!(problem.coupled());
         let cell = problem.diagonal;

@@ -702,7 +702,8 @@ impl Problem<'_> {
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
         let ds = flat(&at.coupling);
         let mut sum = 0.0;
-        let mut next = 0.0;
+        // `z` and the weight of the +x neighbour, solved just before.
+        let (mut next, mut next_weight) = (0.0, 0.0);
         for i in (0..mx).rev() {
             let k = j * mx + i;
             let w = weight(j, i, k);
@@ -712,7 +713,6 @@ impl Problem<'_> {
                 let c = if j < ny && i + 1 < nx {
                     // A stiff cell beside a soft one made `<v, P^-1 v>` negative, the flow's
                     // force weight, which then stopped every step (docs/decisions.md).
-                    let next_weight = weight(j, i + 1, k + 1);
                     let bound = if next_weight > 0.0 {
                         (1.0 / w).min((w * next_weight).sqrt().recip())
                     } else {
@@ -725,7 +725,7 @@ impl Problem<'_> {
                 (rhs(k) - c * next) * w
             };
             sink(i, z);
-            next = z;
+            (next, next_weight) = (z, w);
             sum += z;
         }
         sum
