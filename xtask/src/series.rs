@@ -62,8 +62,8 @@ pub fn write(dir: &Path, sweeps: &[Sweep]) -> Result<Vec<(PathBuf, PathBuf, usiz
 /// sweep's run directory, in order; a failed run is an error.
 pub fn run(dir: &Path, sweeps: &[Sweep]) -> Result<Vec<PathBuf>> {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    for (file, out, runs) in write(dir, sweeps)? {
-        roughcontact::study::run(&file, &out, cores.min(runs), 1)?;
+    for (file, out, _) in write(dir, sweeps)? {
+        roughcontact::study::run(&file, &out, cores, None)?;
     }
     sweeps
         .iter()

@@ -23,7 +23,8 @@ pub struct StudyArgs {
     /// extension].
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Runs side by side on this machine, each with its share of the cores (or --threads each).
+    /// Runs side by side on this machine, each with its share of the cores (shared among the
+    /// runs left to do; or --threads each).
     #[arg(long, default_value_t = 1)]
     jobs: usize,
     /// Only this shard of the runs, I/N (1 <= I <= N): run k belongs to shard (k mod N) + 1.
@@ -330,13 +331,21 @@ fn execute(study: &Study, run: &Run, dir: &Path, threads: usize) -> Outcome {
     }
 }
 
+/// Whether `run` in `dir` finished with the case it has now (then it is not run again).
+fn finished(study: &Study, run: &Run, dir: &Path) -> bool {
+    study.run_case(run, dir).is_ok_and(|case| {
+        dir.join("summary.json").exists()
+            && std::fs::read_to_string(dir.join("run.toml")).is_ok_and(|old| same_run(&old, &case))
+    })
+}
+
 fn attempt(study: &Study, run: &Run, dir: &Path, threads: usize) -> Result<()> {
+    if finished(study, run, dir) {
+        return Ok(());
+    }
     let case = study.run_case(run, dir)?;
     let config = dir.join("run.toml");
     let same = std::fs::read_to_string(&config).is_ok_and(|old| same_run(&old, &case));
-    if same && dir.join("summary.json").exists() {
-        return Ok(());
-    }
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let _ = std::fs::remove_file(dir.join("error.txt"));
     std::fs::write(&config, case).with_context(|| format!("writing {}", config.display()))?;
@@ -374,9 +383,10 @@ struct Wrapped<A: Args> {
     args: A,
 }
 
-/// Runs the study file `study` into `out`, `jobs` runs side by side on `threads` threads each,
-/// and merges its tables: `roughcontact study STUDY --out OUT --jobs J`, from a program.
-pub fn run(study: &Path, out: &Path, jobs: usize, threads: usize) -> Result<()> {
+/// Runs the study file `study` into `out`, `jobs` runs side by side on `threads` threads each
+/// (`None`: the cores shared among the runs left), and merges its tables: `roughcontact study
+/// STUDY --out OUT --jobs J`, from a program.
+pub fn run(study: &Path, out: &Path, jobs: usize, threads: Option<usize>) -> Result<()> {
     let args = StudyArgs {
         study: study.to_path_buf(),
         out: Some(out.to_path_buf()),
@@ -386,7 +396,7 @@ pub fn run(study: &Path, out: &Path, jobs: usize, threads: usize) -> Result<()> 
         group_over: None,
         dry_run: false,
     };
-    self::study(args, Some(threads))
+    self::study(args, threads)
 }
 
 pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
@@ -455,13 +465,15 @@ pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
         match ranked {
             Some(false) => return Ok(()),
             Some(true) => {}
-            None => run_all(
-                &study,
-                &mine,
-                &runs_dir,
-                a.jobs,
-                threads.unwrap_or((cores / a.jobs).max(1)),
-            ),
+            None => {
+                // The cores go to the runs left: the last run of a resumed study gets them all.
+                let left = mine
+                    .iter()
+                    .filter(|r| !finished(&study, r, &runs_dir.join(&r.name)))
+                    .count();
+                let jobs = a.jobs.min(left).max(1);
+                run_all(&study, &mine, &runs_dir, jobs, threads.unwrap_or((cores / jobs).max(1)))
+            }
         }
     }
     let (rows, failed, missing) = merge(&study, &runs_dir)?;
