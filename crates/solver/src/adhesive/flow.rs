@@ -173,9 +173,10 @@ fn solve<'a>(
         } else {
             problem.precondition(&x, &x.gradient, &mut pull)[0]
         };
-        if let Some(far_field) = &mut far_field {
-            far_field.update(&mut problem, &x, &mut pull)?;
-        }
+        let moments = match &mut far_field {
+            Some(far_field) => far_field.update(&mut problem, &x, &velocity, &pull)?,
+            None => Moments::of(&problem, &x, &velocity, &pull),
+        };
         // Whether the velocity is zeroed before this step's update.
         let mut stopped = driver.since_progress(steps, sums.max * scale) > STALL;
         if stopped {
@@ -184,7 +185,6 @@ fn solve<'a>(
             dt = dt.min(max_step);
             driver.restart_stall_count(steps);
         }
-        let moments = Moments::of(&problem, &x, &velocity, &pull);
         // The force's power on the velocity: stop when it turns against it.
         let power = if stopped { 0.0 } else { moments.power };
         if power > 0.0 {
@@ -208,10 +208,14 @@ fn solve<'a>(
             (1.0, 0.0)
         };
         let pulls = crate::fields::flat(&pull);
-        // The far field's rigid shift rides on the move ([`FarField`]).
+        // The far field's rigid shift rides on the move, its pull's mean on the soft cells
+        // taken out on the way ([`FarField`]).
         let shift = far_field
             .as_ref()
             .map(|f| (&f.held, SHIFT_SHARE * dt * dt * f.step));
+        let (held, mean) = far_field
+            .as_ref()
+            .map_or((None, 0.0), |f| (Some(crate::fields::flat(&f.held)), f.mean));
         problem.move_cells(
             &x.gap,
             &mut velocity,
@@ -219,7 +223,11 @@ fn solve<'a>(
             &mut trial.gap,
             shift,
             |v, k, inside| {
-                let a = pulls[k];
+                let a = if held.is_some_and(|h| h[k] == 0.0) {
+                    pulls[k] - mean
+                } else {
+                    pulls[k]
+                };
                 let v = keep * (if stopped { 0.0 } else { v } - dt * a) - turn * a;
                 // No cell of the block moves against the force on it: a cell that would climb
                 // stops (inelastically, like one meeting the wall), so that inertia carries no
@@ -277,6 +285,9 @@ struct FarField {
     elastic: f64,
     /// The shift's Newton step \[m\].
     step: f64,
+    /// The pull's mean over the soft cells \[m per time unit squared\], which the shift moves
+    /// them by instead of the flow.
+    mean: f64,
     /// The relaxation's move, residual, direction and the operator on it (made at its first
     /// use).
     work: Option<[Array2<f64>; 4]>,
@@ -289,6 +300,7 @@ impl FarField {
             response: Array2::zeros(shape),
             elastic: 0.0,
             step: 0.0,
+            mean: 0.0,
             work: None,
         }
     }
@@ -359,22 +371,30 @@ impl FarField {
         problem.evaluate(trial)
     }
 
-    /// Finds the soft cells at `at` and the shift's step, and takes the pull's mean over the
-    /// soft cells out of `pull` (the shift moves them by it instead).
-    fn update(&mut self, problem: &mut Problem, at: &Point, pull: &mut Array2<f64>) -> Result<()> {
+    /// Finds the soft cells at `at`, the shift's step and the pull's mean over them; returns
+    /// the step's [`Moments`] with that mean taken out of the soft cells' pull, in the same
+    /// pass over the cells.
+    fn update(
+        &mut self,
+        problem: &mut Problem,
+        at: &Point,
+        velocity: &Array2<f64>,
+        pull: &Array2<f64>,
+    ) -> Result<Moments> {
         use crate::fields::{flat, flat_mut};
         use rayon::prelude::*;
         let (rs, gs, cs) = (flat(&at.gradient), flat(&at.gap), flat(&at.curvature));
-        let ps = flat(pull);
+        let (vs, ps) = (flat(velocity), flat(pull));
         let (mx, cell) = (problem.mx, problem.diagonal);
         let clearance = SOFT_CLEARANCE * problem.law.range();
-        // Per row: held cells changed, the law's stable stiffness, force and pull summed over
-        // the soft cells, and their number.
-        let rows: Vec<[f64; 5]> = flat_mut(&mut self.held)
+        let shared = &*problem;
+        // Per row: held cells changed; the law's stable stiffness, force, pull, number, and
+        // `sum m v`, `sum m a`, `sum m` over the soft cells; the moments over all cells.
+        let rows: Vec<[f64; 12]> = flat_mut(&mut self.held)
             .par_chunks_mut(mx)
             .enumerate()
             .map(|(j, hr)| {
-                let mut sums = [0.0; 5];
+                let mut sums = [0.0; 12];
                 for (i, h) in hr.iter_mut().enumerate() {
                     let k = j * mx + i;
                     let held = if gs[k] < clearance || cs[k] > cell {
@@ -386,20 +406,29 @@ impl FarField {
                         *h = held;
                         sums[0] = 1.0;
                     }
+                    let (m, v, a) = (shared.mass(cs, j, i, k), vs[k], ps[k]);
                     if held == 0.0 {
                         sums[1] += cs[k].max(0.0);
                         sums[2] += rs[k];
-                        sums[3] += ps[k];
+                        sums[3] += a;
                         sums[4] += 1.0;
+                        sums[5] += m * v;
+                        sums[6] += m * a;
+                        sums[7] += m;
                     }
+                    sums[8] -= rs[k] * v;
+                    sums[9] += m * v * v;
+                    sums[10] += m * v * a;
+                    sums[11] += m * a * a;
                 }
                 sums
             })
             .collect();
-        let [changed, law, force, pulled, soft] = rows.iter().fold([0.0; 5], |mut a, r| {
-            a.iter_mut().zip(r).for_each(|(a, r)| *a += r);
-            a
-        });
+        let [changed, law, force, pulled, soft, mv, ma, mass, power, vv, va, aa] =
+            rows.iter().fold([0.0; 12], |mut a, r| {
+                a.iter_mut().zip(r).for_each(|(a, r)| *a += r);
+                a
+            });
         if changed > 0.0 {
             problem
                 .stiffness
@@ -408,18 +437,19 @@ impl FarField {
             self.elastic = crate::sum::dot_chunks(flat(&self.held), flat(&self.response), mx);
         }
         let stiffness = self.elastic + law;
-        self.step = 0.0;
-        if soft == 0.0 || stiffness <= 0.0 {
-            return Ok(());
-        }
-        self.step = -force / stiffness;
-        let mean = pulled / soft;
-        Zip::from(pull).and(&self.held).par_for_each(|a, &h| {
-            if h == 0.0 {
-                *a -= mean
-            }
-        });
-        Ok(())
+        (self.step, self.mean) = if soft == 0.0 || stiffness <= 0.0 {
+            (0.0, 0.0)
+        } else {
+            (-force / stiffness, pulled / soft)
+        };
+        // `a - mean` on the soft cells.
+        let mean = self.mean;
+        Ok(Moments {
+            power,
+            vv,
+            va: va - mean * mv,
+            aa: (aa - 2.0 * mean * ma + mean * mean * mass).max(0.0),
+        })
     }
 }
 

@@ -44,6 +44,9 @@ pub(super) struct Point {
     pub(super) coupling: Array2<f64>,
     /// The gradient `S (g - g0) - p(g)` \[Pa\], then projected ([`Problem::project_gradient`]).
     pub(super) gradient: Array2<f64>,
+    /// Without a prescribed mean gap, `max |r|` \[Pa\] of the gradient, which
+    /// [`Problem::evaluate`] then leaves projected.
+    largest: f64,
     /// Elastic energy, and interaction energy plus the load's potential `p_mean mean(g)`, per
     /// area [J/m^2].
     pub(super) energy: (f64, f64),
@@ -65,6 +68,7 @@ impl Point {
             gradient: Array2::zeros(shape),
             energy: (0.0, 0.0),
             free: (0.0, 0.0),
+            largest: 0.0,
             min_gap: 0.0,
         }
     }
@@ -319,7 +323,8 @@ impl Problem<'_> {
     }
 
     /// Fills `at`'s fields, energy and raw gradient from its admissible gap, just made by
-    /// [`Problem::step_and_project`].
+    /// [`Problem::step_and_project`]; without a prescribed mean gap the gradient is projected
+    /// in the same pass ([`Problem::project_gradient`] then has nothing left to do).
     pub(super) fn evaluate(&mut self, at: &mut Point) -> Result<()> {
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
         self.stiffness
@@ -341,19 +346,20 @@ impl Problem<'_> {
             Energy::Local(_) => {}
         }
         let load = self.load.unwrap_or(0.0);
+        let project = self.mean_gap.is_none();
         let cell_energies = flat(&self.probe.0);
         let gs = flat(&at.gap);
         let ds = flat(&self.scratch);
         let es = flat(&at.elastic);
-        let sums: Vec<[f64; 6]> = flat_mut(&mut at.law)
+        let sums: Vec<[f64; 7]> = flat_mut(&mut at.law)
             .par_chunks_mut(mx)
             .zip(flat_mut(&mut at.curvature).par_chunks_mut(mx))
             .zip(flat_mut(&mut at.gradient).par_chunks_mut(mx))
             .enumerate()
             .map(|(j, ((lr, cr), rr))| {
                 // Elastic energy, interaction energy and the load's potential, free gradient
-                // and count, non-finite gaps, smallest gap.
-                let mut sums = [0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY];
+                // and count, non-finite gaps, smallest gap, largest projected gradient.
+                let mut sums = [0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY, 0.0];
                 for i in 0..mx {
                     let k = j * mx + i;
                     let g = gs[k];
@@ -364,6 +370,7 @@ impl Problem<'_> {
                     if j >= ny || i >= nx {
                         // The padding: elasticity alone.
                         (lr[i], cr[i], rr[i]) = (0.0, 0.0, es[k]);
+                        sums[6] = sums[6].max(es[k].abs());
                         continue;
                     }
                     let (v, p, c) = match energy {
@@ -378,16 +385,20 @@ impl Problem<'_> {
                     if g > 0.0 {
                         sums[2] += rr[i];
                         sums[3] += 1.0;
+                    } else if project && rr[i] >= 0.0 {
+                        rr[i] = 0.0;
                     }
+                    sums[6] = sums[6].max(rr[i].abs());
                 }
                 sums
             })
             .collect();
         let t = sums
             .iter()
-            .fold([0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY], |mut a, b| {
+            .fold([0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY, 0.0], |mut a, b| {
                 a.iter_mut().take(5).zip(b).for_each(|(a, b)| *a += b);
                 a[5] = a[5].min(b[5]);
+                a[6] = a[6].max(b[6]);
                 a
             });
         if t[4] > 0.0 {
@@ -403,6 +414,7 @@ impl Problem<'_> {
         at.energy = (0.5 * t[0] / n, t[1] / n);
         at.free = (t[2], t[3]);
         at.min_gap = t[5];
+        at.largest = t[6];
         Ok(())
     }
 
@@ -484,25 +496,14 @@ impl Problem<'_> {
         } else {
             0.0
         };
-        let gs = flat(&at.gap);
         if self.mean_gap.is_none() {
-            // No multiplier and no mean to keep: one pass.
-            let max = flat_mut(&mut at.gradient)
-                .par_chunks_mut(mx)
-                .enumerate()
-                .map(|(j, row)| {
-                    let mut max: f64 = 0.0;
-                    for (i, (r, &g)) in row.iter_mut().zip(&gs[j * mx..][..mx]).enumerate() {
-                        if on_wall(j, i, g, nx, ny) && *r >= 0.0 {
-                            *r = 0.0;
-                        }
-                        max = max.max(r.abs());
-                    }
-                    max
-                })
-                .reduce(|| 0.0, f64::max);
-            return GradientSums { lambda, max };
+            // No multiplier and no mean to keep: projected by `evaluate`.
+            return GradientSums {
+                lambda,
+                max: at.largest,
+            };
         }
+        let gs = flat(&at.gap);
         let [sum, moving] = {
             let rs = flat_mut(&mut at.gradient);
             let parts: Vec<[f64; 2]> = rs
