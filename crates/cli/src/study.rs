@@ -472,7 +472,13 @@ pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
                     .filter(|r| !finished(&study, r, &runs_dir.join(&r.name)))
                     .count();
                 let jobs = a.jobs.min(left).max(1);
-                run_all(&study, &mine, &runs_dir, jobs, threads.unwrap_or((cores / jobs).max(1)))
+                run_all(
+                    &study,
+                    &mine,
+                    &runs_dir,
+                    jobs,
+                    threads.unwrap_or((cores / jobs).max(1)),
+                )
             }
         }
     }
