@@ -10,7 +10,9 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Duration;
 
 #[derive(Args, Debug)]
 pub struct StudyArgs {
@@ -509,7 +511,8 @@ fn axis_names(study: &Study) -> String {
         .join(", ")
 }
 
-/// Runs `runs`, `jobs` at a time, each on `threads` threads, with one progress bar.
+/// Runs `runs`, `jobs` at a time, each on `threads` threads, with one progress bar that
+/// names the runs under way and their finished steps (without a terminal, a line a minute).
 fn run_all(study: &Study, runs: &[&Run], runs_dir: &Path, jobs: usize, threads: usize) {
     crate::set_quiet(true);
     let bar = ProgressBar::new(runs.len() as u64).with_style(
@@ -517,24 +520,60 @@ fn run_all(study: &Study, runs: &[&Run], runs_dir: &Path, jobs: usize, threads: 
             .expect("valid template"),
     );
     let next = AtomicUsize::new(0);
+    let under_way = Mutex::new(Vec::<&str>::new());
     std::thread::scope(|s| {
-        for _ in 0..jobs.min(runs.len()) {
-            s.spawn(|| {
-                loop {
-                    let k = next.fetch_add(1, Ordering::SeqCst);
-                    let Some(run) = runs.get(k) else { break };
-                    let outcome = execute(study, run, &runs_dir.join(&run.name), threads);
-                    if let Outcome::Failed(e) = outcome {
-                        bar.suspend(|| eprintln!("run {} failed: {e}", run.name));
+        let workers: Vec<_> = (0..jobs.min(runs.len()))
+            .map(|_| {
+                s.spawn(|| {
+                    loop {
+                        let k = next.fetch_add(1, Ordering::SeqCst);
+                        let Some(run) = runs.get(k) else { break };
+                        under_way.lock().expect("not poisoned").push(&run.name);
+                        let outcome = execute(study, run, &runs_dir.join(&run.name), threads);
+                        under_way.lock().expect("not poisoned").retain(|n| *n != run.name);
+                        if let Outcome::Failed(e) = outcome {
+                            bar.suspend(|| eprintln!("run {} failed: {e}", run.name));
+                        }
+                        bar.inc(1);
                     }
-                    bar.set_message(format!("last: {}", run.name));
-                    bar.inc(1);
+                })
+            })
+            .collect();
+        let (tick, every) = (Duration::from_millis(200), if bar.is_hidden() { 300 } else { 10 });
+        let mut ticks = 0usize;
+        while !workers.iter().all(|w| w.is_finished()) {
+            std::thread::sleep(tick);
+            ticks += 1;
+            if ticks.is_multiple_of(every) {
+                let names = under_way.lock().expect("not poisoned").clone();
+                let status = standing(runs_dir, &names);
+                if bar.is_hidden() {
+                    eprintln!(
+                        "{}/{} runs finished; under way: {status}",
+                        bar.position(),
+                        runs.len()
+                    );
+                } else {
+                    bar.set_message(status);
                 }
-            });
+            }
         }
     });
     bar.finish_and_clear();
     crate::set_quiet(false);
+}
+
+/// Each of the runs `names` with the steps its curve has so far.
+fn standing(runs_dir: &Path, names: &[&str]) -> String {
+    names
+        .iter()
+        .map(|n| {
+            let rows = std::fs::read_to_string(runs_dir.join(n).join("curve.csv"))
+                .map_or(0, |t| t.lines().count().saturating_sub(1));
+            format!("{n} ({rows} steps done)")
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The finished runs' summaries as one table (study.csv: a row a run in the study's order,
