@@ -3,26 +3,24 @@
 //! the force on it and damped, over the gap problem of `gap_problem` (the unknown,
 //! constraints and force balance `r = S (g - g0) - p(g)` of the energy descent and Newton).
 //!
-//! The dynamics is FIRE's (Bitzek et al., Phys. Rev. Lett. 97, 2006; the constants of FIRE
-//! 2.0, Guenole et al., Comput. Mater. Sci. 175, 2020, but for a milder restart on coarse
-//! cells): `M dv/dt = -r`, `dg/dt = v`, with the velocity turned towards the force by a
-//! mixing that decays while the force does work and zeroed, with the time step cut, when it
-//! stops doing work. The mass `M = S_ii + max(K_ii,
-//! 0)` is the cell's own elastic stiffness and the stable part of the law's (`K = -dp/dg`,
-//! just above the wall many times a cell's), so that every cell has about the same natural
-//! period. For the line and surface laws, whose cell pressure is a mean over the gaps from
-//! the node to its +x neighbour, the mass also couples each cell to that neighbour as the
-//! law does (`Problem::precondition_rows`, solved along each row): with the diagonal alone,
-//! the law's one-sided coupling, as stiff as a cell's own just above the wall, took twice the
-//! steps. Each step is projected onto `g >= 0` (and the prescribed mean gap); a cell that
-//! meets the wall stops there, and so does a cell that would move against the force on it.
-//! Where the residual stops falling the longest step is cut ([`STALL`]). Only a stable state
-//! is a state of rest: perturbed, the dynamics carries it back; a saddle or an unstable
-//! branch repels it. This holds for laws without an energy too, which is why this is the
-//! method for the paper's surface law (Eq. 11) on cells coarser than the process zone: there
-//! every cell holds on or lets go alone, Eq. 11's forces are not the gradient of any energy,
-//! and Newton and the loops circle between states (`docs/validation.md`), where the
-//! relaxation settles.
+//! The dynamics is FIRE's (Bitzek et al., Phys. Rev. Lett. 97, 2006; the constants of FIRE 2.0,
+//! Guenole et al., Comput. Mater. Sci. 175, 2020, but for a milder restart on coarse cells): `M
+//! dv/dt = -r`, `dg/dt = v`, with the velocity turned towards the force by a mixing that decays
+//! while the force does work and zeroed, with the time step cut, when it stops doing work. The mass
+//! `M = S_ii + max(K_ii, 0)` is the cell's own elastic stiffness and the stable part of the law's
+//! (`K = -dp/dg`, just above the wall many times a cell's), so that every cell has about the same
+//! natural period. For the line and surface laws, whose cell pressure is a mean over the gaps from
+//! the node to its +x neighbour, the mass also couples each cell to that neighbour as the law does
+//! (`Problem::precondition_rows`, solved along each row): with the diagonal alone, the law's
+//! one-sided coupling, as stiff as a cell's own just above the wall, took twice the steps. Each
+//! step is projected onto `g >= 0` (and the prescribed mean gap); a cell that meets the wall stops
+//! there, and so does a cell that would move against the force on it. Where the residual stops
+//! falling the longest step is cut ([`STALL`]). Only a stable state is a state of rest: perturbed,
+//! the dynamics carries it back; a saddle or an unstable branch repels it. This holds for laws
+//! without an energy too, which is why this is the method for the paper's surface law (Eq. 11) on
+//! cells coarser than the process zone: there every cell holds on or lets go alone, Eq. 11's forces
+//! are not the gradient of any energy, and Newton and the loops circle between states
+//! (`docs/validation.md`), where the relaxation settles.
 //!
 //! The damping is strong enough that the states reached are those of the overdamped flow
 //! `M dg/dt = -r` from the same start, on the cases measured (`docs/decisions.md`), in a
@@ -432,10 +430,7 @@ impl FarField {
                         sums[6] += m * a;
                         sums[7] += m;
                     }
-                    sums[8] -= rs[k] * v;
-                    sums[9] += m * v * v;
-                    sums[10] += m * v * a;
-                    sums[11] += m * a * a;
+                    Moments::add(&mut sums[8..], rs[k], m, v, a);
                 }
                 sums
             })
@@ -488,15 +483,20 @@ impl Moments {
             let mut sums = [0.0; 4];
             for i in 0..mx {
                 let k = j * mx + i;
-                let (m, v, a) = (problem.mass(cs, j, i, k), vs[k], ps[k]);
-                sums[0] -= rs[k] * v;
-                sums[1] += m * v * v;
-                sums[2] += m * v * a;
-                sums[3] += m * a * a;
+                Moments::add(&mut sums, rs[k], problem.mass(cs, j, i, k), vs[k], ps[k]);
             }
             sums
         });
         Moments { power, vv, va, aa }
+    }
+
+    /// Adds a cell's terms to `[power, vv, va, aa]`: its force `r`, mass `m`, velocity `v`
+    /// and pull `a`.
+    fn add(sums: &mut [f64], r: f64, m: f64, v: f64, a: f64) {
+        sums[0] -= r * v;
+        sums[1] += m * v * v;
+        sums[2] += m * v * a;
+        sums[3] += m * a * a;
     }
 
     /// `sum m (v - dt a)^2`, with `v = 0` if `stopped`.
