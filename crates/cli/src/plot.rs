@@ -215,6 +215,8 @@ fn panels<DB: DrawingBackend>(charts: &[Chart], root: DrawingArea<DB, Shift>) ->
 }
 
 const SIZE: (u32, u32) = (900, 640);
+/// Points of a line above which it is drawn a pixel wide: about the plot's width in pixels.
+const DENSE: usize = 800;
 
 fn draw_err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
     anyhow!("drawing: {e:?}")
@@ -423,9 +425,12 @@ impl Chart {
                     .filter(|&&(k, _)| c.converged_at(k))
                     .map(|&(_, p)| p)
             };
+            // A line of more points than pixels across is drawn a pixel wide: plotters joins
+            // wide segments with mitres, which spike far off the plot where a dense line turns back.
+            let width = if all.len() > DENSE { 1 } else { 2 };
             let anno = match &c.mark {
                 Mark::Line => chart
-                    .draw_series(LineSeries::new(all, color.stroke_width(2)))
+                    .draw_series(LineSeries::new(all, color.stroke_width(width)))
                     .map_err(draw_err)?,
                 Mark::Dashed => chart
                     .draw_series(DashedLineSeries::new(all, 8, 5, color.stroke_width(2)))
@@ -458,7 +463,7 @@ impl Chart {
                 let mark = c.mark.clone();
                 anno.label(c.label.clone()).legend(move |(x, y)| match mark {
                     Mark::Line => {
-                        PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(2)).into_dyn()
+                        PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(width)).into_dyn()
                     }
                     // Two dashes, as the curve draws them (8 px on, 5 off).
                     Mark::Dashed => plotters::element::DashedPathElement::new(
