@@ -79,6 +79,28 @@ impl Convolution {
         self.fft.convolve(input, self.kernel.view(), out, ws);
     }
 
+    /// `out = K * input` with the input given row by row: `row(y, out)` writes row `y` of
+    /// it (`nx_in` values), so that an input computed from other fields needs no field of its
+    /// own.
+    ///
+    /// # Panics
+    /// If `out`'s shape differs from the plan's, or `ws` was made by another convolution.
+    pub fn apply_rows(
+        &self,
+        row: impl Fn(usize, &mut [f64]) + Sync,
+        out: ArrayViewMut2<f64>,
+        ws: &mut ConvWorkspace,
+    ) {
+        assert_eq!(out.dim(), self.output, "output shape");
+        assert_eq!(self.kernel.dim(), self.fft.spectrum_shape(), "kernel not set");
+        let (ny, nx) = self.input;
+        let padded = |y: usize, out: &mut [f64]| {
+            row(y, &mut out[..nx]);
+            out[nx..].iter_mut().for_each(|v| *v = 0.0);
+        };
+        self.fft.convolve_rows(ny, padded, self.kernel.view(), out, ws);
+    }
+
     /// The real part of the unscaled DFT of a full `(my, mx)` field given row by row
     /// (`row(y, out)` writes row `y`, `mx` values): the spectrum of an even kernel.
     pub fn real_spectrum(

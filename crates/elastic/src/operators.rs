@@ -121,6 +121,23 @@ impl PeriodicStiffness {
         Ok(())
     }
 
+    /// [`PeriodicStiffness::apply`] with the displacement given row by row: `displacement(y, row)`
+    /// writes its row `y`, so that a displacement computed from other fields needs no field of
+    /// its own.
+    ///
+    /// # Errors
+    /// [`ElasticError::ShapeMismatch`] if `pressure` is not `(ny, nx)`.
+    pub fn apply_rows(
+        &self,
+        displacement: impl Fn(usize, &mut [f64]) + Sync,
+        pressure: ArrayViewMut2<f64>,
+        ws: &mut Workspace,
+    ) -> Result<()> {
+        check("pressure", self.domain.shape(), pressure.dim())?;
+        self.conv.apply_rows(displacement, pressure, &mut ws.0);
+        Ok(())
+    }
+
     /// Writes the displacement \[m\] (zero mean) under `pressure` \[Pa\], whose mean is ignored:
     /// the inverse of [`PeriodicStiffness::apply`] on fields of zero mean (for preconditioning
     /// solvers over the displacement).
@@ -286,6 +303,23 @@ impl FreeStiffness {
         check("displacement", shape, displacement.dim())?;
         check("pressure", shape, pressure.dim())?;
         self.stiffness.apply(displacement, pressure, &mut ws.0);
+        Ok(())
+    }
+
+    /// [`FreeStiffness::apply`] with the displacement given row by row: `displacement(y, row)`
+    /// writes its row `y`, so that a displacement computed from other fields needs no field of
+    /// its own.
+    ///
+    /// # Errors
+    /// [`ElasticError::ShapeMismatch`] if `pressure` is not `(2ny, 2nx)`.
+    pub fn apply_rows(
+        &self,
+        displacement: impl Fn(usize, &mut [f64]) + Sync,
+        pressure: ArrayViewMut2<f64>,
+        ws: &mut Workspace,
+    ) -> Result<()> {
+        check("pressure", self.padded_shape(), pressure.dim())?;
+        self.stiffness.apply_rows(displacement, pressure, &mut ws.0);
         Ok(())
     }
 

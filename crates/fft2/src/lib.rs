@@ -250,11 +250,32 @@ impl Fft2 {
         assert_eq!(multiplier.dim(), self.spectrum_shape(), "multiplier shape");
         let (ny, nx) = input.dim();
         assert!(ny <= self.my && nx <= self.mx, "input larger than the plan");
+        self.convolve_rows(ny, padded_row(input), multiplier, out, ws);
+    }
+
+    /// [`Fft2::convolve`] of an input given row by row: `row(y, out)` writes row `y` (`mx`
+    /// values, zero-padded by the caller) of the first `ny` rows; the rest are zero. For an
+    /// input that is a function of fields the caller holds, which then needs no field of its
+    /// own (a field-sized write and read fewer).
+    ///
+    /// # Panics
+    /// If `ny` or `out` exceeds the plan's shape or `ws` was made by a plan of another shape.
+    pub fn convolve_rows(
+        &self,
+        ny: usize,
+        row: impl Fn(usize, &mut [f64]) + Sync,
+        multiplier: ArrayView2<f64>,
+        out: ArrayViewMut2<f64>,
+        ws: &mut Workspace,
+    ) {
+        self.check_workspace(ws);
+        assert_eq!(multiplier.dim(), self.spectrum_shape(), "multiplier shape");
+        assert!(ny <= self.my, "input larger than the plan");
         assert!(
             out.nrows() <= self.my && out.ncols() <= self.mx,
             "output larger than the plan"
         );
-        self.scatter(ny, padded_row(input), &mut ws.spectrum, &ws.scratch);
+        self.scatter(ny, row, &mut ws.spectrum, &ws.scratch);
         self.along_y(&mut ws.spectrum, ny, AlongY::Filter(multiplier), &ws.scratch);
         self.gather(ws.spectrum.view(), out, 1.0, &ws.scratch);
     }

@@ -6,11 +6,11 @@
 use ndarray::{ArrayBase, Data, DataMut, Ix2};
 
 /// The values of a row-major field, row after row.
-pub(crate) fn flat<S: Data<Elem = f64>>(a: &ArrayBase<S, Ix2>) -> &[f64] {
+pub(crate) fn flat<T, S: Data<Elem = T>>(a: &ArrayBase<S, Ix2>) -> &[T] {
     a.as_slice().expect("solver fields are row-major")
 }
 
 /// The values of a row-major field, row after row, to write.
-pub(crate) fn flat_mut<S: DataMut<Elem = f64>>(a: &mut ArrayBase<S, Ix2>) -> &mut [f64] {
+pub(crate) fn flat_mut<T, S: DataMut<Elem = T>>(a: &mut ArrayBase<S, Ix2>) -> &mut [T] {
     a.as_slice_mut().expect("solver fields are row-major")
 }

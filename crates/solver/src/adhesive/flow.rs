@@ -182,14 +182,16 @@ fn solve<'a>(
             break;
         }
         steps += 1;
-        let force_weight = if problem.coupled() {
-            problem.precondition_rows(&x, &mut pull)
-        } else {
-            problem.precondition(&x, &x.gradient, &mut pull)[0]
-        };
-        let moments = match &mut far_field {
-            Some(far_field) => far_field.update(&mut problem, &x, &velocity, &pull)?,
-            None => Moments::of(&problem, &x, &velocity, &pull),
+        let (force_weight, moments) = match &mut far_field {
+            Some(far_field) => far_field.update(&mut problem, &x, &velocity, &mut pull)?,
+            None => {
+                let force_weight = if problem.coupled() {
+                    problem.precondition_rows(&x, &mut pull)
+                } else {
+                    problem.precondition(&x, &x.gradient, &mut pull)[0]
+                };
+                (force_weight, Moments::of(&problem, &x, &velocity, &pull))
+            }
         };
         // Whether the velocity is zeroed before this step's update.
         let mut stopped = driver.since_progress(steps, sums.max * scale) > STALL;
@@ -237,7 +239,7 @@ fn solve<'a>(
             &mut trial.gap,
             shift,
             |v, k, inside| {
-                let a = if held.is_some_and(|h| h[k] == 0.0) {
+                let a = if held.is_some_and(|h| h[k] == 0) {
                     pulls[k] - mean
                 } else {
                     pulls[k]
@@ -264,7 +266,7 @@ fn solve<'a>(
             Zip::from(&mut velocity)
                 .and(&far_field.held)
                 .par_for_each(|v, &h| {
-                    if h == 0.0 {
+                    if h == 0 {
                         *v = 0.0
                     }
                 });
@@ -290,8 +292,9 @@ fn solve<'a>(
 ///   of the soft cells' wavelengths at once, by conjugate gradients with the other cells
 ///   held, where the flow's strongly damped dynamics takes ~250 steps a decade at 1024^2.
 struct FarField {
-    /// 1 on the cells the shift leaves, 0 on the soft cells it moves.
-    held: Array2<f64>,
+    /// 1 on the cells the shift leaves, 0 on the soft cells it moves (bytes: read twice a
+    /// step, a field of doubles costs a step's time on grids past the cache).
+    held: Array2<u8>,
     /// `S held` \[Pa per m\], recomputed only when the held cells change.
     response: Array2<f64>,
     /// `held^T S held` \[Pa/m, summed over cells\]: the soft cells' elastic stiffness for a
@@ -310,7 +313,7 @@ struct FarField {
 impl FarField {
     fn new(shape: (usize, usize)) -> FarField {
         FarField {
-            held: Array2::from_elem(shape, f64::NAN),
+            held: Array2::from_elem(shape, u8::MAX),
             response: Array2::zeros(shape),
             elastic: 0.0,
             step: 0.0,
@@ -339,7 +342,7 @@ impl FarField {
         Zip::from(&mut *residual)
             .and(held)
             .and(&x.gradient)
-            .par_for_each(|q, &h, &r| *q = if h == 0.0 { -r } else { 0.0 });
+            .par_for_each(|q, &h, &r| *q = if h == 0 { -r } else { 0.0 });
         // The preconditioned residual `z = q / mass`, kept in `direction` first.
         Zip::from(&mut *direction)
             .and(&*residual)
@@ -359,7 +362,7 @@ impl FarField {
                 .and(held)
                 .and(&*direction)
                 .and(&x.curvature)
-                .par_for_each(|a, &h, &d, &c| *a = if h == 0.0 { *a + law(c) * d } else { 0.0 });
+                .par_for_each(|a, &h, &d, &c| *a = if h == 0 { *a + law(c) * d } else { 0.0 });
             let curvature = crate::sum::dot_chunks(flat(direction), flat(applied), mx);
             if curvature <= 0.0 {
                 break;
@@ -385,43 +388,43 @@ impl FarField {
         problem.evaluate(trial)
     }
 
-    /// Finds the soft cells at `at`, the shift's step and the pull's mean over them; returns
-    /// the step's [`Moments`] with that mean taken out of the soft cells' pull, in the same
-    /// pass over the cells.
+    /// Writes the pull `M^-1 r` at `at` into `pull` and finds the soft cells there, the
+    /// shift's step and the pull's mean over them; returns the force weight `<r, M^-1 r>` and
+    /// the step's [`Moments`] with that mean taken out of the soft cells' pull, all in one pass
+    /// over the cells (on grids past the cache each pass is a step's cost).
     fn update(
         &mut self,
         problem: &mut Problem,
         at: &Point,
         velocity: &Array2<f64>,
-        pull: &Array2<f64>,
-    ) -> Result<Moments> {
+        pull: &mut Array2<f64>,
+    ) -> Result<(f64, Moments)> {
         use crate::fields::{flat, flat_mut};
         use rayon::prelude::*;
         let (rs, gs, cs) = (flat(&at.gradient), flat(&at.gap), flat(&at.curvature));
-        let (vs, ps) = (flat(velocity), flat(pull));
+        let vs = flat(velocity);
         let (mx, cell) = (problem.mx, problem.diagonal);
         let clearance = SOFT_CLEARANCE * problem.law.range();
         let shared = &*problem;
         // Per row: held cells changed; the law's stable stiffness, force, pull, number, and
-        // `sum m v`, `sum m a`, `sum m` over the soft cells; the moments over all cells.
-        let rows: Vec<[f64; 12]> = flat_mut(&mut self.held)
+        // `sum m v`, `sum m a`, `sum m` over the soft cells; the moments over all cells; the
+        // force weight.
+        let rows: Vec<[f64; 13]> = flat_mut(&mut self.held)
             .par_chunks_mut(mx)
+            .zip(flat_mut(pull).par_chunks_mut(mx))
             .enumerate()
-            .map(|(j, hr)| {
-                let mut sums = [0.0; 12];
-                for (i, h) in hr.iter_mut().enumerate() {
+            .map(|(j, (hr, pr))| {
+                let mut sums = [0.0; 13];
+                sums[12] = shared.pull_row(at, j, pr);
+                for (i, (h, &a)) in hr.iter_mut().zip(&*pr).enumerate() {
                     let k = j * mx + i;
-                    let held = if gs[k] < clearance || cs[k] > cell {
-                        1.0
-                    } else {
-                        0.0
-                    };
+                    let held = u8::from(gs[k] < clearance || cs[k] > cell);
                     if *h != held {
                         *h = held;
                         sums[0] = 1.0;
                     }
-                    let (m, v, a) = (shared.mass(cs, j, i, k), vs[k], ps[k]);
-                    if held == 0.0 {
+                    let (m, v) = (shared.mass(cs, j, i, k), vs[k]);
+                    if held == 0 {
                         sums[1] += cs[k].max(0.0);
                         sums[2] += rs[k];
                         sums[3] += a;
@@ -435,17 +438,46 @@ impl FarField {
                 sums
             })
             .collect();
-        let [changed, law, force, pulled, soft, mv, ma, mass, power, vv, va, aa] =
-            rows.iter().fold([0.0; 12], |mut a, r| {
-                a.iter_mut().zip(r).for_each(|(a, r)| *a += r);
-                a
-            });
+        let sums = rows.iter().fold([0.0; 13], |mut a, r| {
+            a.iter_mut().zip(r).for_each(|(a, r)| *a += r);
+            a
+        });
+        let [
+            changed,
+            law,
+            force,
+            pulled,
+            soft,
+            mv,
+            ma,
+            mass,
+            power,
+            vv,
+            va,
+            aa,
+            weight,
+        ] = sums;
         if changed > 0.0 {
-            problem
-                .stiffness
-                .apply(self.held.view(), self.response.view_mut(), &mut problem.ws)?;
+            let hs = flat(&self.held);
+            problem.stiffness.apply_rows(
+                |y, row| {
+                    let at = &hs[y * mx..(y + 1) * mx];
+                    row.iter_mut().zip(at).for_each(|(u, &h)| *u = f64::from(h));
+                },
+                self.response.view_mut(),
+                &mut problem.ws,
+            )?;
             problem.calls += 1;
-            self.elastic = crate::sum::dot_chunks(flat(&self.held), flat(&self.response), mx);
+            let response = flat(&self.response);
+            let [elastic] = crate::sum::ordered(problem.my, |j| {
+                let row = j * mx..(j + 1) * mx;
+                [hs[row.clone()]
+                    .iter()
+                    .zip(&response[row])
+                    .map(|(&h, r)| f64::from(h) * r)
+                    .sum::<f64>()]
+            });
+            self.elastic = elastic;
         }
         let stiffness = self.elastic + law;
         (self.step, self.mean) = if soft == 0.0 || stiffness <= 0.0 {
@@ -455,12 +487,13 @@ impl FarField {
         };
         // `a - mean` on the soft cells.
         let mean = self.mean;
-        Ok(Moments {
+        let moments = Moments {
             power,
             vv,
             va: va - mean * mv,
             aa: (aa - 2.0 * mean * ma + mean * mean * mass).max(0.0),
-        })
+        };
+        Ok((weight, moments))
     }
 }
 

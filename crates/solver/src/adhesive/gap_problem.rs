@@ -106,6 +106,20 @@ impl Stiffness {
         Ok(())
     }
 
+    /// [`Stiffness::apply`] to `u` given row by row (`u(y, row)` writes row `y`).
+    pub(super) fn apply_rows(
+        &self,
+        u: impl Fn(usize, &mut [f64]) + Sync,
+        p: ArrayViewMut2<f64>,
+        ws: &mut elastic::Workspace,
+    ) -> Result<()> {
+        match self {
+            Stiffness::Periodic(s) => s.apply_rows(u, p, ws),
+            Stiffness::Free(s) => s.apply_rows(u, p, ws),
+        }?;
+        Ok(())
+    }
+
     /// The inverse: the displacement under the pressure `p` (zero mean, periodic).
     pub(super) fn invert(
         &self,
@@ -168,7 +182,6 @@ pub(super) struct Problem<'a> {
     pub(super) mean_gap: Option<f64>,
     /// The prescribed mean pressure \[Pa\] (periodic load control: the mean gap is free).
     load: Option<f64>,
-    scratch: Array2<f64>,
     pub(super) calls: usize,
     /// The stiffness's diagonal `S_ii` [Pa/m] (the same for every cell).
     pub(super) diagonal: f64,
@@ -182,12 +195,11 @@ impl Problem<'_> {
     /// padding), with the shift `c` that restores a prescribed mean gap (else 0), except on
     /// cells of `from` on the wall that `d` leaves there, which stay: the projection of the
     /// step onto the constraints within the current face. `c` comes from Newton on the
-    /// convex, piecewise-linear mean (exact after finitely many steps). Also leaves
-    /// `gap - base` in the scratch field, for [`Problem::evaluate`]. With `hold` (periodic),
+    /// convex, piecewise-linear mean (exact after finitely many steps). With `hold` (periodic),
     /// cells of `from` with a gap at most `hold` \[m\] stay where they are and only the others
     /// shift (a warm start's first guess).
     pub(super) fn step_and_project(
-        &mut self,
+        &self,
         from: &Array2<f64>,
         d: &Array2<f64>,
         step: f64,
@@ -236,25 +248,19 @@ impl Problem<'_> {
             }
             c -= excess * n / free;
         }
-        let bs = flat(&self.base);
-        flat_mut(gap)
-            .par_chunks_mut(mx)
-            .zip(flat_mut(&mut self.scratch).par_chunks_mut(mx))
-            .enumerate()
-            .for_each(|(j, (gr, ur))| {
-                for i in 0..mx {
-                    let k = j * mx + i;
-                    let (f, inside) = (fs[k], j < ny && i < nx);
-                    gr[i] = if !inside {
-                        f + step * ds[k]
-                    } else if held(f, ds[k]) {
-                        f
-                    } else {
-                        (f + step * ds[k] + c).max(0.0)
-                    };
-                    ur[i] = gr[i] - bs[k];
-                }
-            });
+        flat_mut(gap).par_chunks_mut(mx).enumerate().for_each(|(j, gr)| {
+            for (i, g) in gr.iter_mut().enumerate() {
+                let k = j * mx + i;
+                let (f, inside) = (fs[k], j < ny && i < nx);
+                *g = if !inside {
+                    f + step * ds[k]
+                } else if held(f, ds[k]) {
+                    f
+                } else {
+                    (f + step * ds[k] + c).max(0.0)
+                };
+            }
+        });
     }
 
     /// Updates each cell's velocity \[m per time unit\] to `new(v, k, inside)` (`k` its flat
@@ -265,12 +271,12 @@ impl Problem<'_> {
     /// everywhere; no prescribed mean gap). Without a prescribed mean gap this is one pass over
     /// the fields.
     pub(super) fn move_cells(
-        &mut self,
+        &self,
         from: &Array2<f64>,
         velocity: &mut Array2<f64>,
         step: f64,
         gap: &mut Array2<f64>,
-        shift: Option<(&Array2<f64>, f64)>,
+        shift: Option<(&Array2<u8>, f64)>,
         new: impl Fn(f64, usize, bool) -> f64 + Sync,
     ) {
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
@@ -295,14 +301,13 @@ impl Problem<'_> {
                 });
             return;
         }
-        let (fs, bs) = (flat(from), flat(&self.base));
+        let fs = flat(from);
         let (held, by) = shift.map_or((None, 0.0), |(h, by)| (Some(flat(h)), by));
         flat_mut(gap)
             .par_chunks_mut(mx)
-            .zip(flat_mut(&mut self.scratch).par_chunks_mut(mx))
             .zip(flat_mut(velocity).par_chunks_mut(mx))
             .enumerate()
-            .for_each(|(j, ((gr, ur), vr))| {
+            .for_each(|(j, (gr, vr))| {
                 for i in 0..mx {
                     let (k, inside) = (j * mx + i, j < ny && i < nx);
                     let (f, v) = (fs[k], new(vr[i], k, inside));
@@ -314,21 +319,32 @@ impl Problem<'_> {
                         (f + step * v).max(0.0)
                     };
                     vr[i] = if inside && gr[i] <= 0.0 && v < 0.0 { 0.0 } else { v };
-                    if held.is_some_and(|h| h[k] == 0.0) {
+                    if held.is_some_and(|h| h[k] == 0) {
                         gr[i] = (gr[i] + by).max(0.0);
                     }
-                    ur[i] = gr[i] - bs[k];
                 }
             });
     }
 
-    /// Fills `at`'s fields, energy and raw gradient from its admissible gap, just made by
-    /// [`Problem::step_and_project`]; without a prescribed mean gap the gradient is projected
-    /// in the same pass ([`Problem::project_gradient`] then has nothing left to do).
+    /// Fills `at`'s fields, energy and raw gradient from its admissible gap (made by
+    /// [`Problem::step_and_project`] or [`Problem::move_cells`]); without a prescribed mean gap
+    /// the gradient is projected in the same pass ([`Problem::project_gradient`] then has
+    /// nothing left to do). The stiffness takes `gap - base` row by row as it goes, which no
+    /// field keeps.
     pub(super) fn evaluate(&mut self, at: &mut Point) -> Result<()> {
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
-        self.stiffness
-            .apply(self.scratch.view(), at.elastic.view_mut(), &mut self.ws)?;
+        let (gs, bs) = (flat(&at.gap), flat(&self.base));
+        self.stiffness.apply_rows(
+            |y, row| {
+                let at = y * mx..(y + 1) * mx;
+                row.iter_mut()
+                    .zip(&gs[at.clone()])
+                    .zip(&bs[at])
+                    .for_each(|((u, g), b)| *u = g - b);
+            },
+            at.elastic.view_mut(),
+            &mut self.ws,
+        )?;
         self.calls += 1;
         let energy = self.energy;
         match energy {
@@ -348,8 +364,7 @@ impl Problem<'_> {
         let load = self.load.unwrap_or(0.0);
         let project = self.mean_gap.is_none();
         let cell_energies = flat(&self.probe.0);
-        let gs = flat(&at.gap);
-        let ds = flat(&self.scratch);
+        let (gs, bs) = (flat(&at.gap), flat(&self.base));
         let es = flat(&at.elastic);
         let sums: Vec<[f64; 7]> = flat_mut(&mut at.law)
             .par_chunks_mut(mx)
@@ -363,22 +378,31 @@ impl Problem<'_> {
                 for i in 0..mx {
                     let k = j * mx + i;
                     let g = gs[k];
-                    sums[0] += ds[k] * es[k];
+                    sums[0] += (g - bs[k]) * es[k];
                     if !g.is_finite() {
                         sums[4] += 1.0;
                     }
                     if j >= ny || i >= nx {
-                        // The padding: elasticity alone.
-                        (lr[i], cr[i], rr[i]) = (0.0, 0.0, es[k]);
+                        // The padding: elasticity alone (the law's fields written only if not
+                        // zero already: the padding is 3/4 of a free grid).
+                        if lr[i] != 0.0 || cr[i] != 0.0 {
+                            (lr[i], cr[i]) = (0.0, 0.0);
+                        }
+                        rr[i] = es[k];
                         sums[6] = sums[6].max(es[k].abs());
                         continue;
                     }
-                    let (v, p, c) = match energy {
-                        Energy::Local(potential) => potential.evaluate(g),
-                        Energy::Field(_) => (cell_energies[j * nx + i], lr[i], cr[i]),
-                        Energy::None => (0.0, lr[i], cr[i]),
+                    // Only a local potential writes here: rewriting the law's fields unchanged
+                    // would cost two field-sized writes a step on grids past the cache.
+                    let (v, p) = match energy {
+                        Energy::Local(potential) => {
+                            let (v, p, c) = potential.evaluate(g);
+                            (lr[i], cr[i]) = (p, c);
+                            (v, p)
+                        }
+                        Energy::Field(_) => (cell_energies[j * nx + i], lr[i]),
+                        Energy::None => (0.0, lr[i]),
                     };
-                    (lr[i], cr[i]) = (p, c);
                     rr[i] = es[k] - p + load;
                     sums[1] += v + load * g;
                     sums[5] = sums[5].min(g);
@@ -626,6 +650,40 @@ impl Problem<'_> {
         self.solve_rows(at, &weight, &at.gradient, out)
     }
 
+    /// Row `j` of the pull `z = P^-1 r` of [`Problem::precondition_rows`] (coupled) or
+    /// [`Problem::precondition`] (not) into `zr`, where no mean gap is prescribed, for a pass
+    /// over the cells that uses it at once; returns the row's `<z, r>`.
+    pub(super) fn pull_row(&self, at: &Point, j: usize, zr: &mut [f64]) -> f64 {
+        debug_assert!(
+            self.mean_gap.is_none(),
+            "the mean gap's multiplier needs every row"
+        );
+        let mx = self.mx;
+        let (rs, cs) = (flat(&at.gradient), flat(&at.curvature));
+        let rr = &rs[j * mx..][..mx];
+        if self.couple {
+            let weight = |j: usize, i: usize, k: usize| {
+                if rs[k] == 0.0 {
+                    0.0
+                } else {
+                    1.0 / self.mass(cs, j, i, k)
+                }
+            };
+            self.solve_row(at, &weight, j, |k| rs[k], |i, z| zr[i] = z);
+            return zr.iter().zip(rr).map(|(z, v)| z * v).sum::<f64>();
+        }
+        let mut dot = 0.0;
+        for (i, (z, &r)) in zr.iter_mut().zip(rr).enumerate() {
+            *z = if r != 0.0 {
+                r * (1.0 / self.mass(cs, j, i, j * mx + i))
+            } else {
+                0.0
+            };
+            dot += *z * r;
+        }
+        dot
+    }
+
     /// `z = P^-1 (v - mu)` into `out`, with `P` the diagonal `1 / weight(j, i, k)` (held cells
     /// have weight 0 and get 0) plus the law's stiffness at `at` by the +x neighbour,
     /// `-dp_i/dg_j` ([`Problem::couple_rows`]; at most `ROW_COUPLING` times the cell's own
@@ -857,7 +915,6 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
             ny,
             mean_gap: load.is_none().then_some(mean_gap),
             load,
-            scratch: Array2::zeros(shape),
             calls: 0,
             diagonal: 0.0,
         };
@@ -910,7 +967,6 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
             ny,
             mean_gap: None,
             load: None,
-            scratch: Array2::zeros(padded),
             calls: 0,
             diagonal: 0.0,
         };
