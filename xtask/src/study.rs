@@ -29,7 +29,8 @@ pub const STUDIES: [(&str, &str); 5] = [
         "the contact-mechanics challenge's load cycle, relative contact area against the cell size for the \
          surface, line, point and exponential laws, one surface sampled on every grid, each run a resumable \
          sweep in target/challenge-mesh (SIZES=256,512,1024; LAWS=...; METHOD=auto; TOLERANCE=...; REFINE=k; \
-         FINEST=n, the grid the surface is made on, default the largest size)",
+         FINEST=n, the grid the surface is made on, default the largest size, finer sizes interpolated; \
+         CUT=n, the grid of whose cells four make the short cut-off, default the smallest size)",
     ),
     (
         "rough-sphere-mesh",
@@ -273,25 +274,34 @@ fn bench_gap(n: usize) -> Result<ndarray::Array2<f64>> {
 /// The contact-mechanics challenge (L = 100 um, H = 0.8, roll-off 20 um, RMS gradient 1, seed
 /// 1, E* = 25 MPa, w0 = 50 mJ/m^2, z0 = rho = 2.071 nm) under the loads p / (E* g_bar) =
 /// 0.00125 ... 0.04 and back, on grids of `SIZES` cells a side. One surface for all of them:
-/// made on the finest grid (or `FINEST`) with its short cut-off at four cells of the coarsest, and sampled
-/// at every k-th node for the coarser ones (band-limited, so the samples are the same
-/// surface). Prints the relative contact area of each law on each grid at each load.
+/// made on the finest grid (or `FINEST`) with its short cut-off at four cells of the coarsest
+/// (or `CUT`), and sampled at every k-th node for the coarser grids or interpolated through its
+/// spectrum for finer ones (band-limited, so either way the samples are the same surface).
+/// Prints the relative contact area of each law on each grid at each load.
 fn challenge_mesh() -> Result<()> {
     let sizes: Vec<usize> = list("SIZES", "256,512,1024")?;
     let laws: Vec<String> = list("LAWS", "surface,line,point,exponential")?;
-    // `FINEST=N`: the grid the surface is made on, if finer than every size run (so that a
-    // law's rows can share a surface with another law's finer ones).
+    // `FINEST=N`: the grid the surface is made on, if not the largest size run (so that a
+    // law's rows share a surface with another law's on other grids).
     let largest = *sizes.iter().max().context("SIZES is empty")?;
     let finest: usize = match std::env::var("FINEST") {
         Ok(n) => n.parse()?,
         Err(_) => largest,
     };
-    if finest < largest {
-        bail!("FINEST ({finest}) must be at least the largest size ({largest})");
+    // `CUT=N`: the grid whose four cells make the short cut-off, if not the smallest size run
+    // (so that a finer row can join the coarser rows' surface).
+    let coarsest = match std::env::var("CUT") {
+        Ok(n) => n.parse()?,
+        Err(_) => *sizes.iter().min().context("SIZES is empty")?,
+    };
+    if 2 * finest < coarsest {
+        bail!("the cut-off, four cells of {coarsest}, is finer than FINEST ({finest}) can carry");
     }
-    let coarsest = *sizes.iter().min().context("SIZES is empty")?;
-    if let Some(n) = sizes.iter().find(|&&n| !finest.is_multiple_of(n)) {
-        bail!("every size must divide the finest ({finest}); {n} does not");
+    if let Some(n) = sizes
+        .iter()
+        .find(|&&n| !finest.is_multiple_of(n) && !n.is_multiple_of(finest))
+    {
+        bail!("every size must divide FINEST ({finest}) or be a multiple of it; {n} is neither");
     }
     let (length, e_star, w0, z0) = (1e-4, 25e6, 0.05, 2.071e-9);
     let grid = surfgen::Grid::square(finest, length)?;
@@ -343,10 +353,14 @@ fn challenge_mesh() -> Result<()> {
             other => bail!("unknown law `{other}` (surface, line, point, surface-energy, exponential)"),
         };
         for &n in &sizes {
-            let stride = finest / n;
             let path = surfaces.join(format!("n{n}_of{finest}_cut{coarsest}.npy"));
             if !path.exists() {
-                let sampled = heights.slice(ndarray::s![..;stride, ..;stride]).to_owned();
+                let sampled = if n > finest {
+                    surfgen::refine(heights.view(), n / finest)?
+                } else {
+                    let stride = finest / n;
+                    heights.slice(ndarray::s![..;stride, ..;stride]).to_owned()
+                };
                 surfgen::io::write_npy(&sampled, &path)?;
             }
             let mut keys = toml::Table::new();

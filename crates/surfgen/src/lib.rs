@@ -32,6 +32,7 @@ pub mod generate;
 pub mod grid;
 pub mod io;
 pub mod psd;
+pub mod refine;
 pub mod stats;
 
 pub use error::{Result, SurfError};
@@ -39,6 +40,7 @@ pub use generate::{Amplitudes, Generated, Normalization, SurfaceSpec, generate};
 pub use grid::Grid;
 pub use io::{Metadata, ReadOptions, Surface};
 pub use psd::{Anisotropy, Psd};
+pub use refine::refine;
 pub use stats::{
     Analysis, Curvatures, HeightStats, HurstFit, RadialPsd, SpectralMoments, Statistics, bearing_area_curve,
     statistics,
