@@ -74,9 +74,8 @@ impl Convolution {
     /// If the shapes differ from the plan's, or `ws` was made by another convolution.
     pub fn apply(&self, input: ArrayView2<f64>, out: ArrayViewMut2<f64>, ws: &mut ConvWorkspace) {
         assert_eq!(input.dim(), self.input, "input shape");
-        assert_eq!(out.dim(), self.output, "output shape");
-        assert_eq!(self.kernel.dim(), self.fft.spectrum_shape(), "kernel not set");
-        self.fft.convolve(input, self.kernel.view(), out, ws);
+        let copy = |y: usize, row: &mut [f64]| row.iter_mut().zip(input.row(y)).for_each(|(d, s)| *d = *s);
+        self.apply_rows(copy, out, ws);
     }
 
     /// `out = K * input` with the input given row by row: `row(y, out)` writes row `y` of

@@ -639,15 +639,20 @@ impl Problem<'_> {
     /// As [`Problem::precondition`], with the mass `m` coupled to the +x neighbour as the law
     /// couples the cells (the line and surface laws), for the flow. Returns `<z, r>`.
     pub(super) fn precondition_rows(&self, at: &Point, out: &mut Array2<f64>) -> f64 {
+        self.solve_rows(at, &self.pull_weight(at), &at.gradient, out)
+    }
+
+    /// The flow's weight `1 / m` of cell `(j, i)` (flat index `k`), 0 where the projected
+    /// gradient holds it.
+    fn pull_weight<'a>(&'a self, at: &'a Point) -> impl Fn(usize, usize, usize) -> f64 + Sync + 'a {
         let (rs, cs) = (flat(&at.gradient), flat(&at.curvature));
-        let weight = |j: usize, i: usize, k: usize| {
+        move |j, i, k| {
             if rs[k] == 0.0 {
                 0.0
             } else {
                 1.0 / self.mass(cs, j, i, k)
             }
-        };
-        self.solve_rows(at, &weight, &at.gradient, out)
+        }
     }
 
     /// Row `j` of the pull `z = P^-1 r` of [`Problem::precondition_rows`] (coupled) or
@@ -659,23 +664,17 @@ impl Problem<'_> {
             "the mean gap's multiplier needs every row"
         );
         let mx = self.mx;
-        let (rs, cs) = (flat(&at.gradient), flat(&at.curvature));
+        let rs = flat(&at.gradient);
         let rr = &rs[j * mx..][..mx];
+        let weight = self.pull_weight(at);
         if self.couple {
-            let weight = |j: usize, i: usize, k: usize| {
-                if rs[k] == 0.0 {
-                    0.0
-                } else {
-                    1.0 / self.mass(cs, j, i, k)
-                }
-            };
             self.solve_row(at, &weight, j, |k| rs[k], |i, z| zr[i] = z);
             return zr.iter().zip(rr).map(|(z, v)| z * v).sum::<f64>();
         }
         let mut dot = 0.0;
         for (i, (z, &r)) in zr.iter_mut().zip(rr).enumerate() {
             *z = if r != 0.0 {
-                r * (1.0 / self.mass(cs, j, i, j * mx + i))
+                r * weight(j, i, j * mx + i)
             } else {
                 0.0
             };
