@@ -27,8 +27,9 @@ pub const STUDIES: [(&str, &str); 5] = [
     (
         "challenge-mesh",
         "the contact-mechanics challenge's load cycle, relative contact area against the cell size for the \
-         surface, line, point and exponential laws, one surface sampled on every grid, each run a resumable \
-         sweep in target/challenge-mesh (SIZES=256,512,1024; LAWS=...; METHOD=auto; TOLERANCE=...; REFINE=k; \
+         surface, line, point and exponential laws (and `none`), one surface sampled on every grid, each run a \
+         resumable sweep in target/challenge-mesh (SIZES=256,512,1024; LAWS=...; METHOD=auto; TOLERANCE=...; \
+         REFINE=k; TABOR=mu, w0 set for it by the surface's RMS curvature as Fig. 10, else the challenge's 0.05 J/m^2; \
          FINEST=n, the grid the surface is made on, default the largest size, finer sizes interpolated; \
          CUT=n, the grid of whose cells four make the short cut-off, default the smallest size)",
     ),
@@ -303,7 +304,7 @@ fn challenge_mesh() -> Result<()> {
     {
         bail!("every size must divide FINEST ({finest}) or be a multiple of it; {n} is neither");
     }
-    let (length, e_star, w0, z0) = (1e-4, 25e6, 0.05, 2.071e-9);
+    let (length, e_star, z0) = (1e-4, 25e6, 2.071e-9);
     let grid = surfgen::Grid::square(finest, length)?;
     let spec = surfgen::SurfaceSpec {
         grid,
@@ -313,6 +314,20 @@ fn challenge_mesh() -> Result<()> {
         seed: 1,
     };
     let heights = surfgen::generate(&spec)?.heights;
+    // `TABOR=mu`: the work of adhesion set, as Fig. 10 does, for the Tabor parameter mu on the
+    // surface's local radius (its inverse RMS curvature); else the challenge's 0.05 J/m^2.
+    let tabor: Option<f64> = std::env::var("TABOR").ok().map(|t| t.parse()).transpose()?;
+    let w0 = match tabor {
+        Some(mu) if mu.is_finite() && mu > 0.0 => {
+            let top = heights.fold(f64::NEG_INFINITY, |m, &v| m.max(v));
+            let gap = heights.mapv(|v| top - v);
+            let radius = surfgen::statistics(gap.view(), &grid, true, None).local_radius;
+            crate::challenge::work_for_tabor(radius, mu)
+        }
+        Some(mu) => bail!("TABOR must be a Tabor parameter > 0, not {mu}"),
+        None => 0.05,
+    };
+    eprintln!("work of adhesion {w0:.6e} J/m^2");
     let loads: [f64; 11] = [
         0.00125, 0.0025, 0.005, 0.01, 0.02, 0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125,
     ];
@@ -341,16 +356,20 @@ fn challenge_mesh() -> Result<()> {
     if refine > 1 {
         variant += &format!("_refine{refine}");
     }
+    if let Some(mu) = tabor {
+        variant += &format!("_tabor{mu}");
+    }
     let dir = std::path::PathBuf::from("target/challenge-mesh");
     let surfaces = dir.join("surfaces");
     std::fs::create_dir_all(&surfaces)?;
     let mut sweeps = Vec::new();
     let mut rows = Vec::new();
     for law in &laws {
-        let (law_key, range_key) = match law.as_str() {
-            "surface" | "line" | "point" | "surface-energy" => (law.as_str(), "z0"),
-            "exponential" => ("exponential", "range"),
-            other => bail!("unknown law `{other}` (surface, line, point, surface-energy, exponential)"),
+        let adhesion = match law.as_str() {
+            "surface" | "line" | "point" | "surface-energy" => Some((law.as_str(), "z0")),
+            "exponential" => Some(("exponential", "range")),
+            "none" => None,
+            other => bail!("unknown law `{other}` (surface, line, point, surface-energy, exponential, none)"),
         };
         for &n in &sizes {
             let path = surfaces.join(format!("n{n}_of{finest}_cut{coarsest}.npy"));
@@ -368,10 +387,12 @@ fn challenge_mesh() -> Result<()> {
             keys.insert("surface".into(), path.into());
             keys.insert("length".into(), length.into());
             keys.insert("modulus".into(), e_star.into());
-            keys.insert("law".into(), law_key.into());
-            keys.insert("work_of_adhesion".into(), w0.into());
-            keys.insert(range_key.into(), z0.into());
-            keys.insert("solver".into(), method.clone().into());
+            if let Some((law_key, range_key)) = adhesion {
+                keys.insert("law".into(), law_key.into());
+                keys.insert("work_of_adhesion".into(), w0.into());
+                keys.insert(range_key.into(), z0.into());
+                keys.insert("solver".into(), method.clone().into());
+            }
             keys.insert("max_iterations".into(), 1_000_000i64.into());
             keys.insert("mean_pressures".into(), pressures.clone().into());
             if let Some(t) = tolerance {
