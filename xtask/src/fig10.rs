@@ -175,10 +175,11 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
          so a spot's growth is barely resolved here; but the grid is not what separates us from the paper: on \
          the same surface (ḡ = 1) refined to 1024² and 2048², 2.8 cells a JKR radius, the gain over our \
          non-adhesive run rises only to 1.04 and 1.06 (`TABOR=3 cargo xtask study challenge-mesh`, \
-         docs/validation.md). On cells this coarse the law traps, and a solve that puts every overlapping cell on \
-         the wall at once lands in a state with far more contact: 2.6 times the quasi-static area at the same \
-         mean gap on the challenge at 1024² with the exponential law (docs/performance.md). That may be where \
-         the paper's factor comes from; it is not measured on this figure.",
+         docs/validation.md). On cells this coarse the law traps, and the solver's path picks the state: on the \
+         challenge at 1024² with the exponential law, at the same mean gap, Tamaas's iteration lands in one with \
+         1.43 times our quasi-static area and a start with every overlapping cell on the wall in one with 2.6 \
+         times (docs/performance.md). That may be where the paper's factor comes from; it is not measured on \
+         this figure.",
         gradients
             .iter()
             .zip(&gains)
