@@ -178,8 +178,9 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
          docs/validation.md). On cells this coarse the law traps, and the solver's path picks the state: on the \
          challenge at 1024² with the exponential law, at the same mean gap, Tamaas's iteration lands in one with \
          1.43 times our quasi-static area and a start with every overlapping cell on the wall in one with 2.6 \
-         times (docs/performance.md). That may be where the paper's factor comes from; it is not measured on \
-         this figure.",
+         times (docs/performance.md), and Fig. 8's unloading branch holds 1.3-3.5 times the loading area. \
+         States off the quasi-static loading path may be where the paper's factor comes from; that is not \
+         measured on this figure.",
         gradients
             .iter()
             .zip(&gains)
