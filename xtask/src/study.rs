@@ -424,9 +424,13 @@ fn challenge_mesh() -> Result<()> {
             .map(|a| format!("{a:.5}"))
             .collect();
         let solve: f64 = curve.numbers("wall_time_s")?.iter().sum();
+        let zones = if law == "none" {
+            "-".to_string()
+        } else {
+            format!("{:.0}", length / *n as f64 / zone)
+        };
         println!(
-            "| {law} | {n} | {:.0} | {} | {solve:.0} | {} |",
-            length / *n as f64 / zone,
+            "| {law} | {n} | {zones} | {} | {solve:.0} | {} |",
             areas.join(" | "),
             curve.converged()?.iter().all(|&c| c)
         );
