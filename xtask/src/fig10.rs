@@ -173,8 +173,8 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
          the lightest load: {}. {}Adhesion enlarges each contact spot towards the JKR size of its asperity, and \
          an asperity of the local radius has a JKR contact radius at zero load (9π w0 R²/(2E*))^(1/3) of {}, \
          so a spot's growth is barely resolved here; but the grid is not what separates us from the paper: on \
-         the same surface (ḡ = 1) refined to 1024² and 2048², 2.8 cells a JKR radius, the gain over our \
-         non-adhesive run rises only to 1.04 and 1.06 (`TABOR=3 cargo xtask study challenge-mesh`, \
+         full mode's ḡ = 1 surface (512², gain 1.03) refined to 1024² and 2048², 2.8 cells a JKR radius, the gain \
+         over our non-adhesive run rises only to 1.04 and 1.06 (`TABOR=3 cargo xtask study challenge-mesh`, \
          docs/validation.md). On cells this coarse the law traps, and the solver's path picks the state: on the \
          challenge at 1024² with the exponential law, at the same mean gap, Tamaas's iteration lands in one with \
          1.43 times our quasi-static area and a start with every overlapping cell on the wall in one with 2.6 \

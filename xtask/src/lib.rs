@@ -218,9 +218,14 @@ pub fn surface_statistics(case: &case::Case) -> Result<(f64, f64, f64, f64)> {
     let (h, lx, ly) = case.heights()?.context("the case has no roughness")?;
     let (ny, nx) = h.dim();
     let grid = surfgen::Grid::new(nx, ny, lx, ly)?;
-    // The gap of a flat on the heights, as the problem sees it (`max(H) - H`).
-    let top = h.fold(f64::NEG_INFINITY, |m, &v| m.max(v));
-    let g0 = h.mapv(|v| top - v);
-    let s = surfgen::statistics(g0.view(), &grid, true, None);
+    let s = gap_statistics(&h, &grid);
     Ok((s.rms_gradient, s.local_radius, s.heights.rms_height, grid.dx()))
+}
+
+/// The statistics of the gap a flat leaves on periodic `heights`, as the problem sees it
+/// (`max(H) - H`).
+pub fn gap_statistics(heights: &ndarray::Array2<f64>, grid: &surfgen::Grid) -> surfgen::Statistics {
+    let top = heights.fold(f64::NEG_INFINITY, |m, &v| m.max(v));
+    let g0 = heights.mapv(|v| top - v);
+    surfgen::statistics(g0.view(), grid, true, None)
 }

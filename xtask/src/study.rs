@@ -319,9 +319,7 @@ fn challenge_mesh() -> Result<()> {
     let tabor: Option<f64> = std::env::var("TABOR").ok().map(|t| t.parse()).transpose()?;
     let w0 = match tabor {
         Some(mu) if mu.is_finite() && mu > 0.0 => {
-            let top = heights.fold(f64::NEG_INFINITY, |m, &v| m.max(v));
-            let gap = heights.mapv(|v| top - v);
-            let radius = surfgen::statistics(gap.view(), &grid, true, None).local_radius;
+            let radius = crate::gap_statistics(&heights, &grid).local_radius;
             crate::challenge::work_for_tabor(radius, mu)
         }
         Some(mu) => bail!("TABOR must be a Tabor parameter > 0, not {mu}"),
