@@ -218,7 +218,8 @@ pub fn counts(iterations: &Iterations) -> String {
     match *iterations {
         Iterations::Loop { outer, inner, .. } => format!("{outer} outer, {inner} inner"),
         Iterations::Descent { iterations } => format!("{iterations} descent"),
-        Iterations::Flow { steps } => format!("{steps} flow steps"),
+        Iterations::Flow { steps, newton: 0 } => format!("{steps} flow steps"),
+        Iterations::Flow { steps, newton } => format!("{steps} flow steps, then {newton} Newton steps"),
         Iterations::Newton {
             steps,
             krylov,

@@ -57,6 +57,13 @@ impl<'a> Driver<'a> {
         k == self.max_iterations
     }
 
+    /// Records the residual of another method's iteration `k` that the solve hands over to,
+    /// and shows it to the observer; whether to go on.
+    pub fn record(&mut self, k: usize, residual: f64) -> bool {
+        self.history.push(residual);
+        (self.observer)(k, residual)
+    }
+
     /// The last residual recorded.
     pub fn last(&self) -> Option<f64> {
         self.history.last().copied()

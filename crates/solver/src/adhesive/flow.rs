@@ -27,6 +27,13 @@
 //! fraction of its steps (a fifth on the challenge at 256^2): the inertia carries the long
 //! wavelengths, which the overdamped flow moves slowly.
 //!
+//! Near a fold a patch of cells can crawl for thousands of steps past the ghost of a state
+//! that has just vanished (its soft mode nearly unstiffened, FIRE's restarts keeping it from
+//! gathering speed). Under approach control, once the flow stalls at the cut step
+//! ([`SAFE_STEP`]), it hands its point to Newton ([`hand_over`]), whose implicit steps cross
+//! such a mode in a few: on the rough spheres of Figs. 11-14 it lands on the state the flow
+//! reaches when let run (`docs/decisions.md`). If Newton does not converge, the flow goes on.
+//!
 //! Under load control the mean gap is free, and the free surface far from the wall is the
 //! slowest part of all: its shift as a whole and its long wavelengths, which the flow alone
 //! moves for thousands of steps after the contact set has settled. The cells far from the
@@ -43,7 +50,7 @@
 
 use super::driver::Driver;
 use super::gap_problem::{Energy, Point, Problem, Setup, check_control, finish, setup};
-use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job};
+use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start, newton};
 use crate::error::{Result, SolverError};
 use crate::report::Termination;
 use ndarray::{Array2, Zip};
@@ -85,6 +92,10 @@ const STALL_CUT: f64 = 0.5;
 /// a few cells whose law stiffens faster than their mass tells chatter about their state
 /// at a long step (the surface law at a Tabor parameter of 5, `docs/decisions.md`).
 const STALL: usize = 500;
+/// Under approach control, the Newton steps the flow hands a crawl to at most: after a stall
+/// at the cut step ([`SAFE_STEP`]), a patch passing the ghost of a vanished state near a fold
+/// (`docs/decisions.md`).
+const HANDOVER_STEPS: usize = 300;
 /// Under load control, the share of its Newton step the rigid shift of the soft cells takes a
 /// step, times the time step squared (the flow's own scaling, so the two cannot fight), and
 /// the clearance, in ranges of the law, that keeps cells near the wall out of the soft set
@@ -111,7 +122,7 @@ impl AdhesiveMethod for Flow {
         job: &Job,
         observer: &mut dyn FnMut(usize, f64) -> bool,
     ) -> Result<(AdhesiveState, AdhesiveReport)> {
-        solve(job, energy(job)?, observer, Far::ShiftAndRelax)
+        solve(job, energy(job)?, observer, Far::ShiftAndRelax, Handover::OnCrawl)
     }
 }
 
@@ -139,12 +150,24 @@ enum Far {
     ShiftAndRelax,
 }
 
-/// The relaxation of `job`, with the far field under load control as `far` says.
+/// When the flow hands its point to Newton under approach control ([`hand_over`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Handover {
+    /// When it crawls: a stall at the cut step ([`SAFE_STEP`]).
+    OnCrawl,
+    /// Once the residual is below this, in ranges: to test the handover itself.
+    #[cfg(test)]
+    Below(f64),
+}
+
+/// The relaxation of `job`, with the far field under load control as `far` says and the
+/// handover to Newton under approach control as `handover` says.
 fn solve<'a>(
     job: &Job<'a>,
     energy: Energy<'a>,
     observer: &mut dyn FnMut(usize, f64) -> bool,
     far: Far,
+    handover: Handover,
 ) -> Result<(AdhesiveState, AdhesiveReport)> {
     let started = Instant::now();
     let Job { law, settings, .. } = *job;
@@ -170,7 +193,7 @@ fn solve<'a>(
         (DELAY, CUT)
     };
     let mut max_step = MAX_STEP;
-    let mut steps = 0;
+    let (mut steps, mut newton_steps) = (0, None);
     let mut far_field = load.filter(|_| far != Far::Plain).map(|_| FarField::new(unknown));
     loop {
         if driver.stop(steps, sums.max * scale, true) {
@@ -195,6 +218,23 @@ fn solve<'a>(
         };
         // Whether the velocity is zeroed before this step's update.
         let mut stopped = driver.since_progress(steps, sums.max * scale) > STALL;
+        let crawling = match handover {
+            Handover::OnCrawl => stopped && max_step <= SAFE_STEP,
+            #[cfg(test)]
+            Handover::Below(residual) => sums.max * scale < residual,
+        };
+        if crawling && load.is_none() && newton_steps.is_none() {
+            let (state, mut report) = hand_over(job, &mut problem, &x, delta, &mut driver, steps)?;
+            let newton = report.iterations.count();
+            newton_steps = Some(newton);
+            if report.converged() || report.termination == Termination::Interrupted {
+                report.iterations = Iterations::Flow { steps, newton };
+                report.operator_calls += problem.calls;
+                report.residual_history = driver.finish(report.iterations, 0).history;
+                report.wall_time_s = started.elapsed().as_secs_f64();
+                return Ok((state, report));
+            }
+        }
         if stopped {
             // Cells chattering about a state the step is too long to settle in.
             max_step = (max_step * STALL_CUT).max(SAFE_STEP);
@@ -272,8 +312,47 @@ fn solve<'a>(
                 });
         }
     }
-    let outcome = driver.finish(Iterations::Flow { steps }, problem.calls);
+    let newton = newton_steps.unwrap_or(0);
+    let outcome = driver.finish(Iterations::Flow { steps, newton }, problem.calls);
     Ok(finish(job, &problem, x, &sums, (delta, load), outcome))
+}
+
+/// Newton (pseudo-transient, from the flow's point `x` at the approach `delta`, for at most
+/// [`HANDOVER_STEPS`]) where the flow crawls: its implicit steps cross the soft mode a patch
+/// crawls along near a fold in a few steps where the flow's explicit ones take thousands, and
+/// its small pseudo-time steps far from a solution follow the same relaxation. Its iterations
+/// are recorded by `driver` after the flow's `steps`.
+fn hand_over(
+    job: &Job,
+    problem: &mut Problem,
+    x: &Point,
+    delta: f64,
+    driver: &mut Driver,
+    steps: usize,
+) -> Result<(AdhesiveState, AdhesiveReport)> {
+    let mut at = Point::new(x.gap.clone());
+    problem.evaluate(&mut at)?;
+    let sums = problem.project_gradient(&mut at);
+    let outcome = Outcome {
+        iterations: Iterations::Flow { steps, newton: 0 },
+        operator_calls: 0,
+        history: Vec::new(),
+        termination: Termination::MaxIterations,
+        started: Instant::now(),
+    };
+    let (state, _) = finish(job, problem, at, &sums, (delta, None), outcome);
+    let settings = crate::Settings {
+        max_iterations: HANDOVER_STEPS,
+        ..*job.settings
+    };
+    let newton = Job {
+        start: Start::Warm(&state),
+        settings: &settings,
+        ..*job
+    };
+    newton::iterate(&newton, false, &mut |k, residual| {
+        driver.record(steps + k, residual)
+    })
 }
 
 /// Under load control, the far field: the soft cells, farther than [`SOFT_CLEARANCE`] ranges
@@ -584,7 +663,13 @@ mod tests {
                     method: Method::Flow,
                     start: states.last().map_or(Start::Loading, |(s, _)| Start::Warm(s)),
                 };
-                let solved = solve(&job, energy(&job).unwrap(), &mut |_, _| true, far);
+                let solved = solve(
+                    &job,
+                    energy(&job).unwrap(),
+                    &mut |_, _| true,
+                    far,
+                    Handover::OnCrawl,
+                );
                 states.push(solved.unwrap());
             }
             states
@@ -629,6 +714,74 @@ mod tests {
                 3 * applications < plain_applications,
                 "{far:?}: {applications} / {plain_applications}"
             );
+        }
+    }
+
+    /// Newton from the flow's point lands on the state the flow settles on: a rough sphere
+    /// with the surface law on cells 1.25 ranges wide, stepped out of contact,
+    /// the flow alone against the flow handing over as soon as its residual is below a
+    /// hundred tolerances (where it crawls, a residual that long stopped falling).
+    #[test]
+    fn newton_takes_over_from_the_flow_at_the_flows_state() {
+        let (n, side, z0) = (48, 60e-9, 1e-9);
+        let heights = Array2::from_shape_fn((n, n), |(j, i)| {
+            0.4 * z0
+                * ((i as f64 * 0.7).sin() * (j as f64 * 0.9).cos() + (i as f64 * 0.3 + j as f64 * 0.4).cos())
+        });
+        let problem = ContactProblem::builder()
+            .roughness(heights, side, side)
+            .sphere(1e-6)
+            .modulus(1e9)
+            .law(SurfaceLaw(LennardJones::new(0.05, z0).unwrap()))
+            .build()
+            .unwrap();
+        let settings = Settings {
+            tolerance: 1e-8,
+            max_iterations: 100_000,
+            ..Settings::with_method(Method::Flow)
+        };
+        let solve_at = |delta: f64, start: Start, handover: Handover| {
+            let job = Job {
+                op: problem.operator.as_ref(),
+                law: problem.law.as_ref(),
+                g0: problem.initial_gap.view(),
+                control: Control::Approach(delta),
+                settings: &settings,
+                method: Method::Flow,
+                start,
+            };
+            solve(
+                &job,
+                energy(&job).unwrap(),
+                &mut |_, _| true,
+                Far::ShiftAndRelax,
+                handover,
+            )
+            .unwrap()
+        };
+        let (loaded, _) = solve_at(1.0 * z0, Start::Loading, Handover::OnCrawl);
+        for delta in [0.0, -0.5 * z0] {
+            let (flow, flow_report) = solve_at(delta, Start::Warm(&loaded), Handover::OnCrawl);
+            let (handed, report) = solve_at(delta, Start::Warm(&loaded), Handover::Below(1e-6));
+            assert!(flow_report.converged() && report.converged());
+            let Iterations::Flow { steps, newton } = report.iterations else {
+                panic!("the flow reports its own counts: {:?}", report.iterations)
+            };
+            assert!(newton > 0 && report.method == Method::Flow);
+            assert_eq!(report.residual_history.len(), steps + newton + 1);
+            let moved = (&handed.contact.gap - &flow.contact.gap)
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()));
+            println!(
+                "approach {:.2} z0: loads {:.6e} / {:.6e} N, gaps within {:.1e} z0; {steps} + {newton} against {} steps",
+                delta / z0,
+                report.load,
+                flow_report.load,
+                moved / z0,
+                flow_report.iterations.count()
+            );
+            assert!(moved < 1e-5 * z0);
+            assert!((report.load - flow_report.load).abs() < 1e-6 * flow_report.load.abs());
         }
     }
 

@@ -102,6 +102,9 @@ pub enum Iterations {
     Flow {
         /// Explicit steps.
         steps: usize,
+        /// Newton steps after the flow crawled near a fold and handed its point to Newton
+        /// (under approach control; 0 if it did not).
+        newton: usize,
     },
     /// Newton.
     Newton {
@@ -122,17 +125,19 @@ impl Iterations {
         match *self {
             Iterations::Loop { outer, .. } => outer,
             Iterations::Descent { iterations } => iterations,
-            Iterations::Flow { steps } => steps,
+            Iterations::Flow { steps, .. } => steps,
             Iterations::Newton { steps, .. } => steps,
         }
     }
 
     /// The iterations of the solver inside a step: conjugate gradients of the dual loops,
-    /// Krylov iterations of Newton; the descent has none.
+    /// Krylov iterations of Newton, the Newton steps a flow handed over to (if any); the
+    /// descent has none.
     pub fn inner(&self) -> Option<usize> {
         match *self {
             Iterations::Loop { inner, .. } => Some(inner),
-            Iterations::Descent { .. } | Iterations::Flow { .. } => None,
+            Iterations::Descent { .. } => None,
+            Iterations::Flow { newton, .. } => (newton > 0).then_some(newton),
             Iterations::Newton { krylov, .. } => Some(krylov),
         }
     }
@@ -158,7 +163,10 @@ impl Iterations {
                 *relaxation = *r;
             }
             (Iterations::Descent { iterations }, Iterations::Descent { iterations: i }) => *iterations += i,
-            (Iterations::Flow { steps }, Iterations::Flow { steps: s }) => *steps += s,
+            (Iterations::Flow { steps, newton }, Iterations::Flow { steps: s, newton: n }) => {
+                *steps += s;
+                *newton += n;
+            }
             (
                 Iterations::Newton {
                     steps,

@@ -352,7 +352,7 @@ fn solve(job: &Job, observer: &mut dyn FnMut(usize, f64) -> bool) -> Result<(Adh
 /// Newton from the start of `job`; with `give_up`, it stops (unconverged) as soon as it has to
 /// fall back on the smallest pseudo-time step or a Krylov solve stops short of its forcing
 /// term.
-fn iterate(
+pub(super) fn iterate(
     job: &Job,
     give_up: bool,
     observer: &mut dyn FnMut(usize, f64) -> bool,
