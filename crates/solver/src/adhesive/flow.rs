@@ -224,10 +224,13 @@ fn solve<'a>(
             Handover::Below(residual) => sums.max * scale < residual,
         };
         if crawling && load.is_none() && newton_steps.is_none() {
-            let (state, mut report) = hand_over(job, &mut problem, &x, delta, &mut driver, steps)?;
-            let newton = report.iterations.count();
-            newton_steps = Some(newton);
-            if report.converged() || report.termination == Termination::Interrupted {
+            // Newton failing in any way (a non-finite linearisation too) leaves the flow to go on.
+            let handed = hand_over(job, &mut problem, &x, delta, &mut driver, steps).ok();
+            newton_steps = Some(handed.as_ref().map_or(0, |(_, r)| r.iterations.count()));
+            if let Some((state, mut report)) = handed
+                && (report.converged() || report.termination == Termination::Interrupted)
+            {
+                let newton = report.iterations.count();
                 report.iterations = Iterations::Flow { steps, newton };
                 report.operator_calls += problem.calls;
                 report.residual_history = driver.finish(report.iterations, 0).history;
