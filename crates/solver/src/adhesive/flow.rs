@@ -15,7 +15,7 @@
 //! one-sided coupling, as stiff as a cell's own just above the wall, took twice the steps. Each
 //! step is projected onto `g >= 0` (and the prescribed mean gap); a cell that meets the wall stops
 //! there, and so does a cell that would move against the force on it. Where the residual stops
-//! falling the longest step is cut ([`STALL`]). Only a stable state is a state of rest: perturbed,
+//! falling ([`STALL`]), the longest step is cut under load control. Only a stable state is a state of rest: perturbed,
 //! the dynamics carries it back; a saddle or an unstable branch repels it. This holds for laws
 //! without an energy too, which is why this is the method for the paper's surface law (Eq. 11) on
 //! cells coarser than the process zone: there every cell holds on or lets go alone, Eq. 11's forces
@@ -29,10 +29,10 @@
 //!
 //! Near a fold a patch of cells can crawl for thousands of steps past the ghost of a state
 //! that has just vanished (its soft mode nearly unstiffened, FIRE's restarts keeping it from
-//! gathering speed). Under approach control, once the flow stalls at the cut step
-//! ([`SAFE_STEP`]), it hands its point to Newton ([`hand_over`]), whose implicit steps cross
-//! such a mode in a few: on the rough spheres of Figs. 11-14 it lands on the state the flow
-//! reaches when let run (`docs/decisions.md`). If Newton does not converge, the flow goes on.
+//! gathering speed). Under approach control, once the flow stalls a second time, it hands its
+//! point to Newton ([`hand_over`]), whose implicit steps cross such a mode in a few: on the
+//! rough spheres of Figs. 11-14 it lands on the state the flow reaches when let run
+//! (`docs/decisions.md`). If Newton does not converge, the flow goes on.
 //!
 //! Under load control the mean gap is free, and the free surface far from the wall is the
 //! slowest part of all: its shift as a whole and its long wavelengths, which the flow alone
@@ -63,9 +63,9 @@ const FIRST_STEP: f64 = 0.25;
 /// Brillouin zone against the mean of `E* |q| / 2`), with a margin for the law's stiffness
 /// rising within a step (`docs/decisions.md`).
 const MAX_STEP: f64 = 1.0;
-/// The largest time step after a stall: a cell stopped every step moves by `dt^2` times its
-/// pull, which is stable while its stiffness is below `2 / dt^2` times its mass (8 here, 2 at
-/// [`MAX_STEP`]).
+/// The largest time step after a stall under load control: a cell stopped every step moves by
+/// `dt^2` times its pull, which is stable while its stiffness is below `2 / dt^2` times its
+/// mass (8 here, 2 at [`MAX_STEP`]).
 const SAFE_STEP: f64 = 0.5;
 /// The smallest time step.
 const MIN_STEP: f64 = 0.005;
@@ -88,13 +88,15 @@ const SNAPPING_CUT: f64 = 0.9;
 const SNAPPING: f64 = 100.0;
 /// The cut of the largest time step after a stall ([`STALL`]).
 const STALL_CUT: f64 = 0.5;
-/// Steps without a 10 % fall of the best residual after which the largest time step is cut:
-/// a few cells whose law stiffens faster than their mass tells chatter about their state
-/// at a long step (the surface law at a Tabor parameter of 5, `docs/decisions.md`).
+/// Steps without a 10 % fall of the best residual after which the velocity is zeroed and,
+/// under load control, the largest time step is cut: a few cells whose law stiffens faster
+/// than their mass tells chatter about their state at a long step (the surface law at a Tabor
+/// parameter of 5, `docs/decisions.md`). Under approach control the cut made the rough
+/// spheres' crawls and peels twice as slow, and the second stall hands over to Newton instead
+/// ([`HANDOVER_STEPS`]).
 const STALL: usize = 500;
-/// Under approach control, the Newton steps the flow hands a crawl to at most: after a stall
-/// at the cut step ([`SAFE_STEP`]), a patch passing the ghost of a vanished state near a fold
-/// (`docs/decisions.md`).
+/// Under approach control, the Newton steps the flow hands a crawl to at most: after a second
+/// stall, a patch passing the ghost of a vanished state near a fold (`docs/decisions.md`).
 const HANDOVER_STEPS: usize = 300;
 /// Under load control, the share of its Newton step the rigid shift of the soft cells takes a
 /// step, times the time step squared (the flow's own scaling, so the two cannot fight), and
@@ -153,7 +155,7 @@ enum Far {
 /// When the flow hands its point to Newton under approach control ([`hand_over`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Handover {
-    /// When it crawls: a stall at the cut step ([`SAFE_STEP`]).
+    /// When it crawls: a second stall ([`STALL`]).
     OnCrawl,
     /// Once the residual is below this, in ranges: to test the handover itself.
     #[cfg(test)]
@@ -193,7 +195,7 @@ fn solve<'a>(
         (DELAY, CUT)
     };
     let mut max_step = MAX_STEP;
-    let (mut steps, mut newton_steps) = (0, None);
+    let (mut steps, mut stalls, mut newton_steps) = (0, 0, None);
     let mut far_field = load.filter(|_| far != Far::Plain).map(|_| FarField::new(unknown));
     loop {
         if driver.stop(steps, sums.max * scale, true) {
@@ -218,8 +220,9 @@ fn solve<'a>(
         };
         // Whether the velocity is zeroed before this step's update.
         let mut stopped = driver.since_progress(steps, sums.max * scale) > STALL;
+        stalls += usize::from(stopped);
         let crawling = match handover {
-            Handover::OnCrawl => stopped && max_step <= SAFE_STEP,
+            Handover::OnCrawl => stopped && stalls >= 2,
             #[cfg(test)]
             Handover::Below(residual) => sums.max * scale < residual,
         };
@@ -239,9 +242,11 @@ fn solve<'a>(
             }
         }
         if stopped {
-            // Cells chattering about a state the step is too long to settle in.
-            max_step = (max_step * STALL_CUT).max(SAFE_STEP);
-            dt = dt.min(max_step);
+            if load.is_some() {
+                // Cells chattering about a state the step is too long to settle in.
+                max_step = (max_step * STALL_CUT).max(SAFE_STEP);
+                dt = dt.min(max_step);
+            }
             driver.restart_stall_count(steps);
         }
         // The force's power on the velocity: stop when it turns against it.
