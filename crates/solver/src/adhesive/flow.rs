@@ -15,12 +15,12 @@
 //! one-sided coupling, as stiff as a cell's own just above the wall, took twice the steps. Each
 //! step is projected onto `g >= 0` (and the prescribed mean gap); a cell that meets the wall stops
 //! there, and so does a cell that would move against the force on it. Where the residual stops
-//! falling ([`STALL`]), the longest step is cut under load control. Only a stable state is a state of rest: perturbed,
-//! the dynamics carries it back; a saddle or an unstable branch repels it. This holds for laws
-//! without an energy too, which is why this is the method for the paper's surface law (Eq. 11) on
-//! cells coarser than the process zone: there every cell holds on or lets go alone, Eq. 11's forces
-//! are not the gradient of any energy, and Newton and the loops circle between states
-//! (`docs/validation.md`), where the relaxation settles.
+//! falling ([`STALL`]), the longest step is cut under load control. Only a stable state is a
+//! state of rest: perturbed, the dynamics carries it back; a saddle or an unstable branch
+//! repels it. This holds for laws without an energy too, which is why this is the method for
+//! the paper's surface law (Eq. 11) on cells coarser than the process zone: there every cell
+//! holds on or lets go alone, Eq. 11's forces are not the gradient of any energy, and Newton
+//! and the loops circle between states (`docs/validation.md`), where the relaxation settles.
 //!
 //! The damping is strong enough that the states reached are those of the overdamped flow
 //! `M dg/dt = -r` from the same start, on the cases measured (`docs/decisions.md`), in a
@@ -726,9 +726,9 @@ mod tests {
     }
 
     /// Newton from the flow's point lands on the state the flow settles on: a rough sphere
-    /// with the surface law on cells 1.25 ranges wide, stepped out of contact,
-    /// the flow alone against the flow handing over as soon as its residual is below a
-    /// hundred tolerances (where it crawls, a residual that long stopped falling).
+    /// with the surface law on cells 1.25 ranges wide, stepped out of contact, the flow alone
+    /// against the flow handing over as soon as its residual is below a hundred tolerances
+    /// (where it crawls, a residual that long stopped falling).
     #[test]
     fn newton_takes_over_from_the_flow_at_the_flows_state() {
         let (n, side, z0) = (48, 60e-9, 1e-9);
