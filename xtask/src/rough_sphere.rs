@@ -6,7 +6,8 @@
 //! cent above the point law's there (its cell mean converges slowly on a rough contact's
 //! steep edges), and the energy descent solves the point law 2.5 times faster than the flow
 //! solves the surface law (`--rough-law surface` takes the paper's; docs/validation.md has
-//! the measurements). The pull-off force is the most negative load of a
+//! the measurements). Each figure draws the other law's points beside its own where their
+//! runs have all finished ([`beside`]). The pull-off force is the most negative load of a
 //! displacement-controlled unloading from a fixed preload
 //! ([`solver::ContactProblem::pull_off`]).
 
@@ -202,6 +203,16 @@ impl Job {
             ]);
         }
         keys.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
+    }
+
+    /// The job as a run of the figures' studies (`OUT/studies/rough-spheres-rough` or
+    /// `-smooth`).
+    fn sweep(&self) -> crate::series::Sweep {
+        crate::series::Sweep {
+            study: format!("rough-spheres-{}", if self.rq > 0.0 { "rough" } else { "smooth" }),
+            name: self.name(),
+            keys: self.keys(None),
+        }
     }
 
     /// The method: the energy descent for the laws with an energy, the flow for the surface
@@ -506,14 +517,7 @@ pub fn sweeps(ctx: &crate::Context, wanted: &[Spec]) -> (Vec<Job>, Vec<crate::se
             jobs.push(job);
         }
     }
-    let sweeps = jobs
-        .iter()
-        .map(|j| crate::series::Sweep {
-            study: format!("rough-spheres-{}", if j.rq > 0.0 { "rough" } else { "smooth" }),
-            name: j.name(),
-            keys: j.keys(None),
-        })
-        .collect();
+    let sweeps = jobs.iter().map(Job::sweep).collect();
     (jobs, sweeps)
 }
 
@@ -547,6 +551,57 @@ pub fn points(ctx: &crate::Context, wanted: &[Spec]) -> Result<Vec<Point>> {
             }
         })
         .collect())
+}
+
+/// The other law than the plan's: the surface law beside the point law, the point law beside
+/// the surface law.
+fn other(law: Law) -> Law {
+    match law {
+        Law::Point => Law::Surface,
+        _ => Law::Point,
+    }
+}
+
+/// The points of `specs` by the [`other`] law whose realisations have all finished in
+/// `OUT/studies` (left by an earlier build with that `--rough-law`, or by `roughcontact
+/// study` by hand); none is run here, so a figure draws them beside its own only once whole.
+pub fn beside(ctx: &crate::Context, specs: &[Spec]) -> Result<Vec<Point>> {
+    let own = plan(ctx);
+    let plan = Plan {
+        law: other(own.law),
+        ..own
+    };
+    let studies = ctx.options.out.join("studies");
+    let mut points = Vec::new();
+    for &spec in specs {
+        let jobs = realisations(&plan, spec);
+        let sweeps: Vec<_> = jobs.iter().map(Job::sweep).collect();
+        let Some(dirs) = crate::series::finished(&studies, &sweeps)
+            .into_iter()
+            .collect::<Option<Vec<_>>>()
+        else {
+            continue;
+        };
+        let outcomes = jobs
+            .iter()
+            .zip(&dirs)
+            .map(|(j, d)| j.outcome(d))
+            .collect::<Result<_>>()?;
+        points.push(Point {
+            spec,
+            outcomes,
+            job: jobs[0],
+        });
+    }
+    Ok(points)
+}
+
+/// The law and its method as the figures' legends and reports name them.
+fn law_words(law: Law) -> &'static str {
+    match law {
+        Law::Point => "point law (by the energy descent)",
+        _ => "surface law (Eq. 11, by the flow)",
+    }
 }
 
 /// Where a falling curve `(x, y)` (sorted by x) first drops to `level`, by linear
@@ -598,34 +653,6 @@ impl PullOffFigure<'_> {
     ) -> Result<(crate::FigureReport, Vec<MuCurve>)> {
         use crate::plot::{Chart, Curve, Mark};
         let mut report = crate::FigureReport::new(self.number, self.title);
-        let mut table = crate::Table::new(
-            format!("fig{}", self.number),
-            &[
-                "mu",
-                "rq_nominal_z0",
-                "hurst",
-                self.x_name,
-                "pull_off_pi_r_w0",
-                "std_pi_r_w0",
-                "standard_error_pi_r_w0",
-                "realisations",
-                "all_converged",
-            ],
-        );
-        let mut each = crate::Table::new(
-            format!("fig{}_realisations", self.number),
-            &[
-                "mu",
-                "rq_nominal_z0",
-                "hurst",
-                "seed",
-                self.x_name,
-                "rq_measured_nm",
-                "rms_gradient_measured",
-                "pull_off_pi_r_w0",
-                "converged",
-            ],
-        );
         let mut chart = Chart::new(self.title, self.x_label, "pull-off force F/(πRw0)");
         chart.x_log = self.x_log;
         chart.legend = self.legend;
@@ -647,8 +674,9 @@ impl PullOffFigure<'_> {
             let color = crate::tabor_colour(mu as f64);
             chart.curves.push(Curve::solved(
                 format!(
-                    "μ = {mu} (w0 = {} J/m²): mean ± standard error",
-                    work_of_adhesion(mu)
+                    "μ = {mu} (w0 = {} J/m²), {}: mean ± standard error",
+                    work_of_adhesion(mu),
+                    law_words(ctx.options.rough_law)
                 ),
                 pts.iter().map(|p| (p.0, p.1, p.3)).collect(),
                 Mark::ErrorBars(pts.iter().map(|p| p.2).collect()),
@@ -663,38 +691,50 @@ impl PullOffFigure<'_> {
             curves.push((mu, pts.iter().map(|p| (p.0, p.1)).collect()));
         }
         let plan = plan(ctx);
-        for p in points {
-            let (m, s) = p.pull_off();
-            let (mu, rq, roughness) = (p.spec.mu as f64, p.spec.rq, p.spec.hurst);
-            table.push(vec![
-                mu,
-                rq,
-                roughness,
-                x(p),
-                m,
-                s,
-                p.standard_error(),
-                p.outcomes.len() as f64,
-                p.outcomes.iter().all(|o| o.all_converged) as u8 as f64,
-            ]);
-            for (job, o) in realisations(&plan, p.spec).iter().zip(&p.outcomes) {
-                each.push(vec![
-                    mu,
-                    rq,
-                    roughness,
-                    job.seed as f64,
-                    x(p),
-                    o.rq * 1e9,
-                    o.rms_gradient,
-                    o.pull_off / job.force_unit(),
-                    o.all_converged as u8 as f64,
-                ]);
+        let specs: Vec<Spec> = points.iter().map(|p| p.spec).collect();
+        let beside = beside(ctx, &specs)?;
+        let other = other(plan.law);
+        for &mu in &mus {
+            let mut pts: Vec<(f64, f64, bool)> = beside
+                .iter()
+                .filter(|p| p.spec.mu == mu)
+                .map(|p| (x(p), p.pull_off().0, p.outcomes.iter().all(|o| o.all_converged)))
+                .collect();
+            if pts.is_empty() {
+                continue;
             }
-            report.solver_seconds += p.outcomes.iter().map(|o| o.wall_time_s).sum::<f64>();
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let color = crate::tabor_colour(mu as f64);
+            chart.curves.push(Curve::solved(
+                format!("μ = {mu}, {}: mean", law_words(other)),
+                pts.clone(),
+                Mark::Triangles,
+                color,
+            ));
+            chart.curves.push(Curve::new(
+                "",
+                pts.iter().map(|p| (p.0, p.1)).collect(),
+                Mark::Dashed,
+                color,
+            ));
         }
+        report.solver_seconds += points
+            .iter()
+            .flat_map(|p| &p.outcomes)
+            .map(|o| o.wall_time_s)
+            .sum::<f64>();
         report.save(&[chart], &ctx.options.out, &format!("fig{}", self.number))?;
-        report.tables.push(table);
-        report.tables.push(each);
+        let stem = format!("fig{}", self.number);
+        report.tables.extend(self.tables(&stem, &plan, points, &x));
+        if !beside.is_empty() {
+            let stem = format!("fig{}_{}_law", self.number, other.name());
+            report
+                .tables
+                .extend(self.tables(&stem, &Plan::new(ctx.quick(), other), &beside, &x));
+            report
+                .agreement
+                .push(self.compared(points, &beside, plan.law, other));
+        }
         report.computed.push(format!(
             "Rigid sphere R* = 100 µm with self-affine roughness (H = 0.8 unless said otherwise, Rq as on the axis) on \
              a free grid, E* = 50 GPa, z0 = 0.3 nm, {}, tolerance {:e} z0; {} seeds per rough point (error bars: ± one \
@@ -757,6 +797,129 @@ impl PullOffFigure<'_> {
             ));
         }
         Ok((report, curves))
+    }
+}
+
+impl PullOffFigure<'_> {
+    /// The tables `stem.csv` (a row a point) and `stem_realisations.csv` (a row a realisation)
+    /// of `points`, realised by `plan`.
+    fn tables(
+        &self,
+        stem: &str,
+        plan: &Plan,
+        points: &[Point],
+        x: &impl Fn(&Point) -> f64,
+    ) -> [crate::Table; 2] {
+        let mut table = crate::Table::new(
+            stem.to_string(),
+            &[
+                "mu",
+                "rq_nominal_z0",
+                "hurst",
+                self.x_name,
+                "pull_off_pi_r_w0",
+                "std_pi_r_w0",
+                "standard_error_pi_r_w0",
+                "realisations",
+                "all_converged",
+            ],
+        );
+        let mut each = crate::Table::new(
+            format!("{stem}_realisations"),
+            &[
+                "mu",
+                "rq_nominal_z0",
+                "hurst",
+                "seed",
+                self.x_name,
+                "rq_measured_nm",
+                "rms_gradient_measured",
+                "pull_off_pi_r_w0",
+                "converged",
+            ],
+        );
+        for p in points {
+            let (m, s) = p.pull_off();
+            let (mu, rq, roughness) = (p.spec.mu as f64, p.spec.rq, p.spec.hurst);
+            table.push(vec![
+                mu,
+                rq,
+                roughness,
+                x(p),
+                m,
+                s,
+                p.standard_error(),
+                p.outcomes.len() as f64,
+                p.outcomes.iter().all(|o| o.all_converged) as u8 as f64,
+            ]);
+            for (job, o) in realisations(plan, p.spec).iter().zip(&p.outcomes) {
+                each.push(vec![
+                    mu,
+                    rq,
+                    roughness,
+                    job.seed as f64,
+                    x(p),
+                    o.rq * 1e9,
+                    o.rms_gradient,
+                    o.pull_off / job.force_unit(),
+                    o.all_converged as u8 as f64,
+                ]);
+            }
+        }
+        [table, each]
+    }
+
+    /// The report's line on the other law's points beside the figure's own: per Tabor
+    /// parameter, how many are whole and their pull-off over the figure's law's, realisation
+    /// by realisation (the same surfaces).
+    fn compared(&self, points: &[Point], beside: &[Point], own: Law, other: Law) -> String {
+        let mut mus: Vec<u32> = points.iter().map(|p| p.spec.mu).collect();
+        mus.dedup();
+        let parts: Vec<String> = mus
+            .iter()
+            .map(|&mu| {
+                let ratios: Vec<f64> = points
+                    .iter()
+                    .filter(|p| p.spec.mu == mu)
+                    .filter_map(|p| {
+                        let b = beside.iter().find(|b| {
+                            b.spec.mu == mu && b.spec.rq == p.spec.rq && b.spec.hurst == p.spec.hurst
+                        })?;
+                        let pairs: Vec<f64> = p
+                            .outcomes
+                            .iter()
+                            .zip(&b.outcomes)
+                            .filter(|(a, _)| a.pull_off > 0.0)
+                            .map(|(a, b)| b.pull_off / a.pull_off)
+                            .collect();
+                        (!pairs.is_empty()).then(|| mean_std(&pairs).0)
+                    })
+                    .collect();
+                let wanted = points.iter().filter(|p| p.spec.mu == mu).count();
+                if ratios.is_empty() {
+                    format!("μ = {mu}: 0 of {wanted} points")
+                } else {
+                    let (lo, hi) = ratios
+                        .iter()
+                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &r| {
+                            (a.min(r), b.max(r))
+                        });
+                    format!(
+                        "μ = {mu}: {} of {wanted} points, {lo:.3} to {hi:.3}",
+                        ratios.len()
+                    )
+                }
+            })
+            .collect();
+        format!(
+            "Beside it (triangles, dashed lines): the {} at every point whose realisations have all finished (not \
+             run by this build; `--rough-law {}` runs them), on the same surfaces; its pull-off over the {} \
+             law's, seed by seed, averaged a point: {}.",
+            law_words(other),
+            other.name(),
+            own.name(),
+            parts.join("; "),
+        )
     }
 }
 

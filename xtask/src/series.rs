@@ -77,6 +77,26 @@ pub fn run(dir: &Path, sweeps: &[Sweep]) -> Result<Vec<PathBuf>> {
         .collect()
 }
 
+/// The run directory of each of `sweeps` that has finished in `dir` with the keys it has now
+/// (as `roughcontact study` would find it, and not run it again), else `None`; nothing is run.
+/// For a series drawn beside a figure's own from the runs earlier builds or studies left.
+pub fn finished(dir: &Path, sweeps: &[Sweep]) -> Vec<Option<PathBuf>> {
+    sweeps
+        .iter()
+        .map(|s| {
+            let run = dir.join(&s.study).join("runs").join(&s.name);
+            let keys = std::fs::read_to_string(run.join("run.toml"))
+                .ok()
+                .and_then(|text| toml::from_str::<toml::Table>(&text).ok())
+                .map(|mut keys| {
+                    keys.remove("out");
+                    keys
+                });
+            (run.join("summary.json").exists() && keys.as_ref() == Some(&s.keys)).then_some(run)
+        })
+        .collect()
+}
+
 /// A finished or half-finished sweep's `curve.csv`, read a column at a time.
 pub struct Curve {
     path: PathBuf,
@@ -130,5 +150,35 @@ impl Curve {
     /// Whether each step converged.
     pub fn converged(&self) -> Result<Vec<bool>> {
         Ok(self.text("converged")?.into_iter().map(|v| v == "true").collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_run_counts_as_finished_only_with_its_summary_and_the_keys_it_has_now() {
+        let dir = std::env::temp_dir().join(format!("xtask-series-{}", std::process::id()));
+        let keys: toml::Table = toml::from_str("n = 64\nlength = 1e-6\nlaw = \"surface\"").unwrap();
+        let sweep = |keys: &toml::Table| Sweep {
+            study: "s".into(),
+            name: "a".into(),
+            keys: keys.clone(),
+        };
+        let run = dir.join("s/runs/a");
+        std::fs::create_dir_all(&run).unwrap();
+        let mut written = keys.clone();
+        written.insert("out".into(), "elsewhere/a".into());
+        std::fs::write(run.join("run.toml"), toml::to_string(&written).unwrap()).unwrap();
+        // Half done: no summary yet.
+        assert_eq!(finished(&dir, &[sweep(&keys)]), vec![None]);
+        std::fs::write(run.join("summary.json"), "{}").unwrap();
+        assert_eq!(finished(&dir, &[sweep(&keys)]), vec![Some(run.clone())]);
+        // A key changed since: the run no longer answers the sweep.
+        let mut changed = keys.clone();
+        changed.insert("n".into(), 128.into());
+        assert_eq!(finished(&dir, &[sweep(&changed)]), vec![None]);
+        std::fs::remove_dir_all(&dir).ok();
     }
 }
