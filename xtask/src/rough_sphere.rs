@@ -562,9 +562,10 @@ fn other(law: Law) -> Law {
     }
 }
 
-/// The points of `specs` by the [`other`] law whose realisations have all finished in
-/// `OUT/studies` (left by an earlier build with that `--rough-law`, or by `roughcontact
-/// study` by hand); none is run here, so a figure draws them beside its own only once whole.
+/// The points of `specs` by the other law than the plan's whose realisations have all
+/// finished in `OUT/studies` (left by an earlier build with that `--rough-law`, or by
+/// `roughcontact study` by hand); none is run here, so a figure draws them beside its own
+/// only once whole.
 pub fn beside(ctx: &crate::Context, specs: &[Spec]) -> Result<Vec<Point>> {
     let own = plan(ctx);
     let plan = Plan {
