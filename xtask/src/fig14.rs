@@ -17,6 +17,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_name: "ciavarella_variable",
         x_log: true,
         legend: crate::plot::Legend::LowerLeft,
+        collapse: true,
     };
     let x = |pt: &crate::rough_sphere::Point| {
         theory::rough::ciavarella_variable(

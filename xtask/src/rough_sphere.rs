@@ -640,6 +640,9 @@ pub struct PullOffFigure<'a> {
     pub x_name: &'a str,
     pub x_log: bool,
     pub legend: crate::plot::Legend,
+    /// Whether the figure claims that its abscissa collapses the Tabor parameters' curves:
+    /// then the other law's spread ([`largest_spread`]) is reported too, once it is whole.
+    pub collapse: bool,
 }
 
 impl PullOffFigure<'_> {
@@ -695,6 +698,7 @@ impl PullOffFigure<'_> {
         let specs: Vec<Spec> = points.iter().map(|p| p.spec).collect();
         let beside = beside(ctx, &specs)?;
         let other = other(plan.law);
+        let mut beside_curves = Vec::new();
         for &mu in &mus {
             let mut pts: Vec<(f64, f64, bool)> = beside
                 .iter()
@@ -718,6 +722,7 @@ impl PullOffFigure<'_> {
                 Mark::Dashed,
                 color,
             ));
+            beside_curves.push(pts.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>());
         }
         report.solver_seconds += points
             .iter()
@@ -735,6 +740,15 @@ impl PullOffFigure<'_> {
             report
                 .agreement
                 .push(self.compared(points, &beside, plan.law, other));
+            let whole = beside.len() == points.len() && beside_curves.len() > 1;
+            if let Some(spread) = largest_spread(&beside_curves).filter(|_| self.collapse && whole) {
+                report.agreement.push(format!(
+                    "The {}'s spread between the Tabor parameters (the same measure): {:.0} % at equal {}.",
+                    law_words(other),
+                    100.0 * spread,
+                    self.x_label
+                ));
+            }
         }
         report.computed.push(format!(
             "Rigid sphere R* = 100 µm with self-affine roughness (H = 0.8 unless said otherwise, Rq as on the axis) on \
