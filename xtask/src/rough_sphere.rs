@@ -739,7 +739,7 @@ impl PullOffFigure<'_> {
                 .extend(self.tables(&stem, &Plan::new(ctx.quick(), other), &beside, &x));
             report
                 .agreement
-                .push(self.compared(points, &beside, plan.law, other));
+                .push(Self::compared(points, &beside, plan.law, other));
             let whole = beside.len() == points.len() && beside_curves.len() > 1;
             if let Some(spread) = largest_spread(&beside_curves).filter(|_| self.collapse && whole) {
                 report.agreement.push(format!(
@@ -887,7 +887,7 @@ impl PullOffFigure<'_> {
     /// The report's line on the other law's points beside the figure's own: per Tabor
     /// parameter, how many are whole and their pull-off over the figure's law's, realisation
     /// by realisation (the same surfaces).
-    fn compared(&self, points: &[Point], beside: &[Point], own: Law, other: Law) -> String {
+    fn compared(points: &[Point], beside: &[Point], own: Law, other: Law) -> String {
         let mut mus: Vec<u32> = points.iter().map(|p| p.spec.mu).collect();
         mus.dedup();
         let parts: Vec<String> = mus
