@@ -919,10 +919,10 @@ impl PullOffFigure<'_> {
                         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &r| {
                             (a.min(r), b.max(r))
                         });
-                    format!(
-                        "μ = {mu}: {} of {wanted} points, {lo:.3} to {hi:.3}",
-                        ratios.len()
-                    )
+                    match ratios.len() {
+                        1 => format!("μ = {mu}: 1 of {wanted} points, {lo:.3}"),
+                        k => format!("μ = {mu}: {k} of {wanted} points, {lo:.3} to {hi:.3}"),
+                    }
                 }
             })
             .collect();
