@@ -567,11 +567,7 @@ fn other(law: Law) -> Law {
 /// `roughcontact study` by hand); none is run here, so a figure draws them beside its own
 /// only once whole.
 pub fn beside(ctx: &crate::Context, specs: &[Spec]) -> Result<Vec<Point>> {
-    let own = plan(ctx);
-    let plan = Plan {
-        law: other(own.law),
-        ..own
-    };
+    let plan = Plan::new(ctx.quick(), other(ctx.options.rough_law));
     let studies = ctx.options.out.join("studies");
     let mut points = Vec::new();
     for &spec in specs {
@@ -813,9 +809,7 @@ impl PullOffFigure<'_> {
         }
         Ok((report, curves))
     }
-}
 
-impl PullOffFigure<'_> {
     /// The tables `stem.csv` (a row a point) and `stem_realisations.csv` (a row a realisation)
     /// of `points`, realised by `plan`.
     fn tables(
