@@ -12,7 +12,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 #[derive(Args, Debug)]
 pub struct StudyArgs {
@@ -29,6 +29,11 @@ pub struct StudyArgs {
     /// runs left to do; or --threads each).
     #[arg(long, default_value_t = 1)]
     jobs: usize,
+    /// Start no run once this much wall time has passed since the study began (a number with
+    /// the unit s, m or h: `90m`, `1.5h`); the runs under way finish and the rest are left for
+    /// the next call, which resumes. For a batch job's time limit, less a run's length.
+    #[arg(long, value_name = "TIME", value_parser = parse_duration)]
+    start_within: Option<Duration>,
     /// Only this shard of the runs, I/N (1 <= I <= N): run k belongs to shard (k mod N) + 1.
     /// For job arrays (Slurm); `--merge` then combines the shards' runs.
     #[arg(long, value_name = "I/N")]
@@ -393,6 +398,7 @@ pub fn run(study: &Path, out: &Path, jobs: usize, threads: Option<usize>) -> Res
         study: study.to_path_buf(),
         out: Some(out.to_path_buf()),
         jobs,
+        start_within: None,
         shard: None,
         merge: false,
         group_over: None,
@@ -403,6 +409,7 @@ pub fn run(study: &Path, out: &Path, jobs: usize, threads: Option<usize>) -> Res
 
 pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
     let study = Study::read(&a.study)?;
+    let starts_until = a.start_within.map(|d| Instant::now() + d);
     let root = a.out.clone().unwrap_or_else(|| a.study.with_extension(""));
     let runs_dir = root.join("runs");
     if a.dry_run {
@@ -413,6 +420,9 @@ pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
     }
     if a.jobs == 0 {
         bail!("--jobs must be at least 1");
+    }
+    if a.merge && a.start_within.is_some() {
+        bail!("--merge runs nothing: --start-within has nothing to limit");
     }
     let group_over = match &a.group_over {
         Some(g) if !study.axes.iter().any(|(k, _)| k == g) => {
@@ -458,6 +468,7 @@ pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
                     &mine,
                     &runs_dir,
                     threads.unwrap_or((cores / local).max(1)),
+                    starts_until,
                 ))
             }
             None => None,
@@ -480,26 +491,52 @@ pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
                     &runs_dir,
                     jobs,
                     threads.unwrap_or((cores / jobs).max(1)),
+                    starts_until,
                 )
             }
         }
     }
     let (rows, failed, missing) = merge(&study, &runs_dir)?;
     let table = root.join("study.csv");
+    std::fs::create_dir_all(&root).with_context(|| format!("creating {}", root.display()))?;
     std::fs::write(&table, &rows).with_context(|| format!("writing {}", table.display()))?;
     if let Some(g) = &group_over {
         let groups = group(&rows, &study, g)?;
         let path = root.join("study-groups.csv");
         std::fs::write(&path, groups).with_context(|| format!("writing {}", path.display()))?;
     }
+    let late = match (a.start_within, starts_until) {
+        (Some(d), Some(t)) if missing > 0 && Instant::now() >= t => format!(
+            " (none started after --start-within {}s: the same command resumes)",
+            d.as_secs_f64()
+        ),
+        _ => String::new(),
+    };
     println!(
-        "{} runs: {} finished, {failed} failed, {missing} not run; wrote {}{}",
+        "{} runs: {} finished, {failed} failed, {missing} not run{late}; wrote {}{}",
         study.runs.len(),
         study.runs.len() - failed - missing,
         table.display(),
         group_over.map_or(String::new(), |g| format!(" and study-groups.csv (over {g})"))
     );
     Ok(())
+}
+
+/// A wall time from `90`, `90s`, `30m` or `1.5h` (seconds without a unit).
+fn parse_duration(text: &str) -> Result<Duration, String> {
+    let t = text.trim();
+    let (number, seconds) = match t.char_indices().last() {
+        Some((i, 's')) => (&t[..i], 1.0),
+        Some((i, 'm')) => (&t[..i], 60.0),
+        Some((i, 'h')) => (&t[..i], 3600.0),
+        _ => (t, 1.0),
+    };
+    match number.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok(Duration::from_secs_f64(x * seconds)),
+        _ => Err(format!(
+            "`{text}` is not a wall time: a number >= 0 with the unit s, m or h (`90m`, `1.5h`)"
+        )),
+    }
 }
 
 fn axis_names(study: &Study) -> String {
@@ -511,9 +548,17 @@ fn axis_names(study: &Study) -> String {
         .join(", ")
 }
 
-/// Runs `runs`, `jobs` at a time, each on `threads` threads, with one progress bar that
-/// names the runs under way and their finished steps (without a terminal, a line a minute).
-fn run_all(study: &Study, runs: &[&Run], runs_dir: &Path, jobs: usize, threads: usize) {
+/// Runs `runs`, `jobs` at a time, each on `threads` threads, none started after
+/// `starts_until`, with one progress bar that names the runs under way and their finished
+/// steps (without a terminal, a line a minute).
+fn run_all(
+    study: &Study,
+    runs: &[&Run],
+    runs_dir: &Path,
+    jobs: usize,
+    threads: usize,
+    starts_until: Option<Instant>,
+) {
     crate::set_quiet(true);
     let bar = ProgressBar::new(runs.len() as u64).with_style(
         ProgressStyle::with_template("{bar:30} {pos}/{len} runs, {elapsed} elapsed, ~{eta} left  {msg}")
@@ -526,6 +571,9 @@ fn run_all(study: &Study, runs: &[&Run], runs_dir: &Path, jobs: usize, threads: 
             .map(|_| {
                 s.spawn(|| {
                     loop {
+                        if starts_until.is_some_and(|t| Instant::now() >= t) {
+                            break;
+                        }
                         let k = next.fetch_add(1, Ordering::SeqCst);
                         let Some(run) = runs.get(k) else { break };
                         under_way.lock().expect("not poisoned").push(&run.name);
@@ -743,6 +791,20 @@ mod tests {
     }
 
     #[test]
+    fn wall_times_read_with_their_units() {
+        for (text, seconds) in [("90", 90.0), ("90s", 90.0), ("30m", 1800.0), ("1.5h", 5400.0)] {
+            assert_eq!(
+                parse_duration(text),
+                Ok(Duration::from_secs_f64(seconds)),
+                "{text}"
+            );
+        }
+        for bad in ["", "h", "-1m", "2d", "inf", "1 hour"] {
+            assert!(parse_duration(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
     fn axes_expand_into_named_runs() {
         let s = study(
             "command = \"sweep\"\ncase = { modulus = 1e9, surface = \"a.npy\" }\n[axes]\nseed = [1, 2]\nlaw = [\"point\", \"surface\"]\n",
@@ -816,7 +878,7 @@ mod ranks {
     use mpi::traits::*;
     use std::path::Path;
     use std::sync::mpsc;
-    use std::time::Duration;
+    use std::time::{Duration, Instant};
 
     const ASK: i32 = 1;
     const GIVE: i32 = 2;
@@ -842,7 +904,14 @@ mod ranks {
 
         /// Runs `runs` across the ranks, `threads` threads each; whether this is rank 0 (which
         /// then merges).
-        pub fn share(&self, study: &Study, runs: &[&Run], runs_dir: &Path, threads: usize) -> bool {
+        pub fn share(
+            &self,
+            study: &Study,
+            runs: &[&Run],
+            runs_dir: &Path,
+            threads: usize,
+            starts_until: Option<Instant>,
+        ) -> bool {
             crate::set_quiet(true);
             let root = self.world.process_at_rank(0);
             if self.world.rank() != 0 {
@@ -863,7 +932,8 @@ mod ranks {
             let mut hand_out = || {
                 let k = next;
                 next += 1;
-                (k < runs.len()).then_some(k)
+                let late = starts_until.is_some_and(|t| Instant::now() >= t);
+                (k < runs.len() && !late).then_some(k)
             };
             let (give, take) = mpsc::channel::<Option<usize>>();
             let (finished, done) = mpsc::channel::<()>();

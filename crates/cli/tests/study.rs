@@ -180,6 +180,21 @@ fn copy_without_states(from: &Path, to: &Path) {
 }
 
 #[test]
+fn no_run_starts_after_the_time_given() {
+    let dir = fresh("study-start-within");
+    let o = study(&dir, &["--start-within", "0m"]);
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        said.contains("9 runs: 0 finished, 0 failed, 9 not run (none started after --start-within 0s"),
+        "{said}"
+    );
+    let started = std::fs::read_dir(dir.join("study").join("runs")).map_or(0, |d| d.count());
+    assert_eq!(started, 0);
+    let (table, _) = tables(&dir);
+    assert_eq!(table.lines().filter(|r| r.contains(",not run,")).count(), 9);
+}
+
+#[test]
 fn bad_study_arguments_are_refused() {
     let dir = fresh("study-bad");
     let file = dir.join("study.toml");
@@ -187,6 +202,14 @@ fn bad_study_arguments_are_refused() {
     for (args, message) in [
         (vec!["study", f, "--jobs", "0"], "--jobs must be at least 1"),
         (vec!["study", f, "--shard", "3/2"], "--shard is I/N"),
+        (
+            vec!["study", f, "--start-within", "2d"],
+            "`2d` is not a wall time",
+        ),
+        (
+            vec!["study", f, "--merge", "--start-within", "1h"],
+            "--merge runs nothing",
+        ),
         (
             vec!["study", f, "--group-over", "z0"],
             "no such axis (its axes: seed, work_of_adhesion)",
