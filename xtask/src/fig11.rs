@@ -22,6 +22,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_name: "rq_nm",
         x_log: false,
         legend: crate::plot::Legend::UpperRight,
+        legend_room: true,
         collapse: false,
     };
     let (mut report, curves) = fig.draw(ctx, &pts, |pt| pt.mean(|o| o.rq) * 1e9, Vec::new())?;

@@ -34,6 +34,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_name: "rms_gradient",
         x_log: false,
         legend: crate::plot::Legend::UpperRight,
+        legend_room: true,
         collapse: false,
     };
     let (mut report, curves) = fig.draw(ctx, &pts, |pt| pt.mean(|o| o.rms_gradient), Vec::new())?;

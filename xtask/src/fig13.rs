@@ -29,6 +29,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_name: "johnson_parameter",
         x_log: true,
         legend: crate::plot::Legend::LowerRight,
+        legend_room: false,
         collapse: true,
     };
     let johnson = |pt: &crate::rough_sphere::Point| {

@@ -17,6 +17,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         x_name: "ciavarella_variable",
         x_log: true,
         legend: crate::plot::Legend::LowerLeft,
+        legend_room: false,
         collapse: true,
     };
     let x = |pt: &crate::rough_sphere::Point| {
