@@ -658,6 +658,7 @@ impl PullOffFigure<'_> {
         let mut chart = Chart::new(self.title, self.x_label, "pull-off force F/(πRw0)");
         chart.x_log = self.x_log;
         chart.legend = self.legend;
+        chart.legend_room = self.legend_room;
         chart.curves = extra;
         let mut mus: Vec<u32> = points.iter().map(|p| p.spec.mu).collect();
         mus.dedup();
@@ -727,9 +728,6 @@ impl PullOffFigure<'_> {
             .flat_map(|p| &p.outcomes)
             .map(|o| o.wall_time_s)
             .sum::<f64>();
-        if self.legend_room {
-            chart.y_range = legend_room(&chart);
-        }
         report.save(&[chart], &ctx.options.out, &format!("fig{}", self.number))?;
         let stem = format!("fig{}", self.number);
         report.tables.extend(self.tables(&stem, &plan, points, &x));
@@ -935,38 +933,6 @@ impl PullOffFigure<'_> {
             parts.join("; "),
         )
     }
-}
-
-/// The y range of `chart`'s data (error bars included) with a margin, widened on the
-/// legend's side so that the legend, as wide as the figure's long labels, covers no point.
-fn legend_room(chart: &crate::plot::Chart) -> Option<(f64, f64)> {
-    use crate::plot::{Legend, Mark};
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for c in &chart.curves {
-        for (k, p) in c.points.iter().enumerate() {
-            let e = match &c.mark {
-                Mark::ErrorBars(e) => e.get(k).copied().unwrap_or(0.0),
-                _ => 0.0,
-            };
-            if p.1.is_finite() && e.is_finite() {
-                (lo, hi) = (lo.min(p.1 - e), hi.max(p.1 + e));
-            }
-        }
-    }
-    if hi <= lo {
-        return None;
-    }
-    let entries = chart.curves.iter().filter(|c| !c.label.is_empty()).count()
-        + usize::from(chart.curves.iter().any(|c| c.unconverged() > 0));
-    // The legend's share of the plot's height: 19 px a line and a frame, of about 480 px.
-    let share = ((entries as f64 * 19.0 + 16.0) / 480.0).min(0.6);
-    let data = 1.1 * (hi - lo);
-    let room = data / (1.0 - share) - data;
-    let (lo, hi) = (lo - 0.05 * (hi - lo), hi + 0.05 * (hi - lo));
-    Some(match chart.legend {
-        Legend::UpperLeft | Legend::UpperRight => (lo, hi + room),
-        Legend::LowerLeft | Legend::LowerRight => (lo - room, hi),
-    })
 }
 
 /// How [`largest_spread`] measures the collapse of curves, for the reports.

@@ -176,6 +176,9 @@ pub struct Chart {
     pub x_range: Option<(f64, f64)>,
     pub y_range: Option<(f64, f64)>,
     pub legend: Legend,
+    /// Whether the data's y range (linear axes) widens on the legend's side so that the legend,
+    /// as wide as long labels make it, covers no point.
+    pub legend_room: bool,
 }
 
 impl Default for Chart {
@@ -190,6 +193,7 @@ impl Default for Chart {
             x_range: None,
             y_range: None,
             legend: Legend::UpperLeft,
+            legend_room: false,
         }
     }
 }
@@ -336,9 +340,21 @@ impl Chart {
                 (lo - 0.05 * d, hi + 0.05 * d)
             }
         };
+        let mut y = pad(ys, self.y_log);
+        if self.legend_room && !self.y_log {
+            let entries = self.curves.iter().filter(|c| !c.label.is_empty()).count()
+                + usize::from(self.curves.iter().any(|c| c.unconverged() > 0));
+            // The legend's share of the plot's height: 19 px a line and a frame, of about 480 px.
+            let share = ((entries as f64 * 19.0 + 16.0) / 480.0).min(0.6);
+            let room = (y.1 - y.0) * share / (1.0 - share);
+            match self.legend {
+                Legend::UpperLeft | Legend::UpperRight => y.1 += room,
+                Legend::LowerLeft | Legend::LowerRight => y.0 -= room,
+            }
+        }
         Ok((
             self.x_range.unwrap_or_else(|| pad(xs, self.x_log)),
-            self.y_range.unwrap_or_else(|| pad(ys, self.y_log)),
+            self.y_range.unwrap_or(y),
         ))
     }
 
