@@ -192,25 +192,11 @@ impl Run {
     }
 }
 
-/// Every challenge run the figures being built ask for (Figs. 8-10 among `--only`).
-fn all_runs(ctx: &crate::Context) -> Result<Vec<Run>> {
-    let only = &ctx.options.only;
-    let built = |n: u32| only.is_empty() || only.contains(&n);
-    let mut all = Vec::new();
-    if built(8) || built(9) {
-        all.extend(crate::fig08::runs(ctx));
-    }
-    if built(10) {
-        all.extend(crate::fig10::runs(ctx)?.0);
-    }
-    Ok(all)
-}
-
 /// The sweeps of `runs` and of every run of the figures being built, each once: a run asked
 /// for twice (Figs. 8 and 10 share the plain one in quick mode) keeps the steps either keeps.
 pub fn sweeps(ctx: &crate::Context, runs: &[Run]) -> Result<Vec<crate::series::Sweep>> {
     let mut sweeps: Vec<crate::series::Sweep> = Vec::new();
-    for run in all_runs(ctx)?.iter().chain(runs) {
+    for run in crate::challenge_runs(ctx)?.iter().chain(runs) {
         let (g, ..) = crate::surface_statistics(&run.case)?;
         let sweep = run.sweep(g)?;
         match sweeps

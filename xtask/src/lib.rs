@@ -109,6 +109,11 @@ impl Context {
         self.options.quick
     }
 
+    /// Whether figure `n` is among those being built (`--only`, all when empty).
+    pub fn builds(&self, n: u32) -> bool {
+        self.options.only.is_empty() || self.options.only.contains(&n)
+    }
+
     /// `quick` in quick mode, `full` otherwise.
     pub fn pick<T>(&self, quick: T, full: T) -> T {
         if self.options.quick { quick } else { full }
@@ -169,6 +174,35 @@ fn context(options: Options) -> Result<(Vec<u32>, Context)> {
         std::fs::remove_dir_all(&studies).with_context(|| format!("removing {}", studies.display()))?;
     }
     Ok((only, Context { options, cache }))
+}
+
+/// Every challenge run the figures being built ask for (Figs. 8-10 among `--only`): the
+/// challenge's studies run them together, whichever figure asks first.
+pub fn challenge_runs(ctx: &Context) -> Result<Vec<challenge::Run>> {
+    let mut all = Vec::new();
+    if ctx.builds(8) || ctx.builds(9) {
+        all.extend(fig08::runs(ctx));
+    }
+    if ctx.builds(10) {
+        all.extend(fig10::runs(ctx)?.0);
+    }
+    Ok(all)
+}
+
+/// Every rough-sphere point the figures being built ask for (Figs. 11-14 among `--only`),
+/// run together in the same way.
+pub fn rough_sphere_specs(ctx: &Context) -> Vec<rough_sphere::Spec> {
+    let mut all = Vec::new();
+    if ctx.builds(11) {
+        all.extend(fig11::wanted(ctx));
+    }
+    if ctx.builds(12) {
+        all.extend(fig12::wanted(ctx));
+    }
+    if ctx.builds(13) || ctx.builds(14) {
+        all.extend(fig13::wanted(ctx));
+    }
+    all
 }
 
 /// Writes the study files of the requested figures' rough-sphere and challenge series into

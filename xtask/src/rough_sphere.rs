@@ -485,30 +485,12 @@ impl Point {
     }
 }
 
-/// Every rough-sphere point the figures being built ask for (Figs. 11-14 among
-/// `--only`).
-fn all_wanted(ctx: &crate::Context) -> Vec<Spec> {
-    let only = &ctx.options.only;
-    let built = |n: u32| only.is_empty() || only.contains(&n);
-    let mut all = Vec::new();
-    if built(11) {
-        all.extend(crate::fig11::wanted(ctx));
-    }
-    if built(12) {
-        all.extend(crate::fig12::wanted(ctx));
-    }
-    if built(13) || built(14) {
-        all.extend(crate::fig13::wanted(ctx));
-    }
-    all
-}
-
 /// The jobs of `wanted`'s realisations and of every point the figures being built ask for,
 /// each once, and their sweeps.
 pub fn sweeps(ctx: &crate::Context, wanted: &[Spec]) -> (Vec<Job>, Vec<crate::series::Sweep>) {
     let plan = plan(ctx);
     let mut jobs: Vec<Job> = Vec::new();
-    for job in all_wanted(ctx)
+    for job in crate::rough_sphere_specs(ctx)
         .iter()
         .chain(wanted)
         .flat_map(|&s| realisations(&plan, s))
