@@ -2,7 +2,7 @@
 //! that results do not depend on the number of threads. Every reduction of the solvers goes
 //! through here.
 
-use ndarray::ArrayView2;
+use ndarray::{Array2, ArrayView2};
 use rayon::prelude::*;
 
 /// `K` sums over `parts` parts, each computed by `part(k)` (in parallel) and added in the
@@ -52,4 +52,12 @@ pub(crate) fn dot_chunks(a: &[f64], b: &[f64], chunk: usize) -> f64 {
             .sum::<f64>()]
     });
     sum
+}
+
+/// Elements per chunk of [`dot`].
+const CHUNK: usize = 4096;
+
+/// `<a, b>` over two fields of one shape, in chunks of [`CHUNK`] values added in order.
+pub(crate) fn dot(a: &Array2<f64>, b: &Array2<f64>) -> f64 {
+    dot_chunks(crate::fields::flat(a), crate::fields::flat(b), CHUNK)
 }

@@ -1,8 +1,8 @@
 //! Restarted GMRES (Saad & Schultz, SIAM J. Sci. Stat. Comput. 7, 1986), right-preconditioned,
 //! over any linear operator given as a [`LinearOperator`]: the linear solves of Newton.
 
-use super::newton::dot;
 use crate::error::Result;
+use crate::sum::dot;
 use ndarray::{Array2, Zip};
 
 /// A linear operator `A` and a preconditioner `M^-1` on fields of one shape.

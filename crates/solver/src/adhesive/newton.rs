@@ -35,6 +35,7 @@ use crate::error::{Result, SolverError};
 use crate::fields::{flat, flat_mut};
 use crate::options::Control;
 use crate::report::Termination;
+use crate::sum::dot;
 use ndarray::{Array2, Zip, s};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -72,8 +73,6 @@ const PATIENCE: usize = 150;
 /// Consecutive steps raising the residual after which further rising steps do not count
 /// towards a stall (a two-cycle never makes two).
 const ESCAPE: usize = 5;
-/// Elements per chunk of the deterministic parallel sums.
-const CHUNK: usize = 4096;
 /// Halvings of a step that raises the residual before a new direction is sought.
 const BACKTRACKS: usize = 3;
 
@@ -82,11 +81,6 @@ const BACKTRACKS: usize = 3;
 pub(crate) fn restart_for(cells: usize) -> usize {
     let fields = (BASIS_BYTES / (8.0 * cells as f64)).floor() as usize;
     fields.saturating_sub(1).clamp(MIN_RESTART, RESTART)
-}
-
-/// `<a, b>` in chunks of [`CHUNK`] values added in order.
-pub(super) fn dot(a: &Array2<f64>, b: &Array2<f64>) -> f64 {
-    crate::sum::dot_chunks(flat(a), flat(b), CHUNK)
 }
 
 /// Subtracts from `out` its mean over the moving cells (those where `mask > 0`), which
