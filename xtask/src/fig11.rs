@@ -1,6 +1,6 @@
 //! Fig. 11: pull-off force of rough spheres against the RMS roughness, Tabor parameters 2 and 5.
 
-use crate::rough_sphere::{PullOffFigure, Spec, falling, plan, points};
+use crate::rough_sphere::{Drawn, PullOffFigure, Spec, falling, plan, points};
 use crate::{Context, FigureReport};
 use anyhow::Result;
 
@@ -25,7 +25,9 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         legend_room: true,
         collapse: false,
     };
-    let (mut report, curves) = fig.draw(ctx, &pts, |pt| pt.mean(|o| o.rq) * 1e9, Vec::new())?;
+    let Drawn {
+        mut report, curves, ..
+    } = fig.draw(ctx, &pts, |pt| pt.mean(|o| o.rq) * 1e9, Vec::new())?;
     let all_fall = curves.iter().all(|(_, c)| falling(c, 0.02));
     report.claim =
         "The pull-off force of a rough sphere falls with the RMS roughness, more slowly at the larger \

@@ -6,7 +6,7 @@
 //! the gradient (H = 0.8: 0.0042 to 0.0061 over cutoffs of 205 to 51 nm); moving the roll-off
 //! moves the largest wavelength with it.
 
-use crate::rough_sphere::{Point, PullOffFigure, Spec, curve_of, falling, plan, points};
+use crate::rough_sphere::{Drawn, Point, PullOffFigure, Spec, curve_of, falling, plan, points};
 use crate::{Context, FigureReport};
 use anyhow::Result;
 
@@ -37,7 +37,9 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         legend_room: true,
         collapse: false,
     };
-    let (mut report, curves) = fig.draw(ctx, &pts, |pt| pt.mean(|o| o.rms_gradient), Vec::new())?;
+    let Drawn {
+        mut report, curves, ..
+    } = fig.draw(ctx, &pts, |pt| pt.mean(|o| o.rms_gradient), Vec::new())?;
     let all_fall = curves.iter().all(|(_, c)| falling(c, 0.02));
     let changes: Vec<(u32, Change)> = curves.iter().map(|(mu, _)| (*mu, change(&pts, *mu))).collect();
     report.claim =

@@ -1,7 +1,9 @@
 //! Fig. 13: pull-off force against the modified Johnson parameter alpha* (Eq. 15) for Tabor
 //! parameters 2, 5 and 7.
 
-use crate::rough_sphere::{MODULUS, PullOffFigure, Spec, Z0, largest_spread, plan, points, work_of_adhesion};
+use crate::rough_sphere::{
+    Drawn, MODULUS, PullOffFigure, Spec, Z0, largest_spread, plan, points, work_of_adhesion,
+};
 use crate::{Context, FigureReport};
 use anyhow::Result;
 use std::f64::consts::PI;
@@ -43,7 +45,11 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
             pt.spec.hurst,
         )
     };
-    let (mut report, curves) = fig.draw(ctx, &pts, johnson, Vec::new())?;
+    let Drawn {
+        mut report,
+        curves,
+        other_spread,
+    } = fig.draw(ctx, &pts, johnson, Vec::new())?;
     report.computed.push(format!(
         "α* = (4 w0 q1^(0.8H-1) / (π E* Rq² q0^(0.8H)))² with q0 = 2π/L (the box), q1 the short cutoff, H = 0.8, \
          Rq measured; roughness {:?} z0 (z0 = {} nm).",
@@ -85,8 +91,9 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         },
         match spread {
             Some(s) => format!(
-                "; the curves spread by {:.0} % at equal α* (the paper: \"very similar\").",
-                100.0 * s
+                "; the curves spread by {:.0} % at equal α*{} (the paper: \"very similar\").",
+                100.0 * s,
+                crate::rough_sphere::other_words(ctx, other_spread)
             ),
             None => ".".into(),
         }

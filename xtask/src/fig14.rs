@@ -3,7 +3,7 @@
 
 use crate::plot::{Curve, GREY, Mark};
 use crate::rough_sphere::{
-    MODULUS, PullOffFigure, crossing, curve_of, largest_spread, points, work_of_adhesion,
+    Drawn, MODULUS, PullOffFigure, crossing, curve_of, largest_spread, points, work_of_adhesion,
 };
 use crate::{Context, FigureReport};
 use anyhow::Result;
@@ -35,7 +35,11 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         Mark::Dashed,
         GREY,
     );
-    let (mut report, curves) = fig.draw(ctx, &pts, x, vec![threshold])?;
+    let Drawn {
+        mut report,
+        curves,
+        other_spread,
+    } = fig.draw(ctx, &pts, x, vec![threshold])?;
     report.computed.push(
         "λL is the longest wavelength of the roughness: the box side (the spectrum is flat from 2π/L to the \
          roll-off)."
@@ -86,14 +90,16 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         ));
         report.verdict = match spread {
             Some(s) if s <= 0.1 => format!(
-                "Reproduced: the Tabor parameters collapse within {:.0} %.",
-                100.0 * s
+                "Reproduced: the Tabor parameters collapse within {:.0} %{}.",
+                100.0 * s,
+                crate::rough_sphere::other_words(ctx, other_spread)
             ),
             Some(s) => format!(
                 "Partly reproduced: the variable brings the Tabor parameters together ({:.0} % against {} at \
-                 equal Rq), but not \"almost perfectly\" as the paper says.",
+                 equal Rq{}), but not \"almost perfectly\" as the paper says.",
                 100.0 * s,
-                in_rq
+                in_rq,
+                crate::rough_sphere::other_words(ctx, other_spread)
             ),
             None => "Not tested: the Tabor parameters share no range of the variable.".into(),
         };

@@ -583,6 +583,18 @@ fn law_words(law: Law) -> &'static str {
     }
 }
 
+/// `", the <other law> N %"`: the other law's spread for a verdict, or nothing while its
+/// points are not all finished.
+pub fn other_words(ctx: &crate::Context, spread: Option<f64>) -> String {
+    spread.map_or(String::new(), |s| {
+        format!(
+            ", the {} {:.0} %",
+            law_words(other(ctx.options.rough_law)),
+            100.0 * s
+        )
+    })
+}
+
 /// Where a falling curve `(x, y)` (sorted by x) first drops to `level`, by linear
 /// interpolation.
 pub fn crossing(curve: &[(f64, f64)], level: f64) -> Option<f64> {
@@ -609,6 +621,16 @@ pub fn curve_of(points: &[Point], mu: u32, f: impl Fn(&Point) -> (f64, f64)) -> 
 /// A Tabor parameter's curve `(x, mean pull-off / (pi R w0))`, sorted by x.
 pub type MuCurve = (u32, Vec<(f64, f64)>);
 
+/// What [`PullOffFigure::draw`] leaves for a figure's own verdict.
+pub struct Drawn {
+    pub report: crate::FigureReport,
+    /// The plan's law's curves, one a Tabor parameter.
+    pub curves: Vec<MuCurve>,
+    /// The other law's [`largest_spread`], where the figure claims a collapse and the other
+    /// law's points are all finished.
+    pub other_spread: Option<f64>,
+}
+
 /// The common part of Figs. 11-14: per Tabor parameter a curve `x -> pull-off / (pi R w0)`
 /// with error bars over the realisations, drawn and tabulated.
 pub struct PullOffFigure<'a> {
@@ -626,15 +648,15 @@ pub struct PullOffFigure<'a> {
 }
 
 impl PullOffFigure<'_> {
-    /// Draws `points` grouped by mu, at `x(point)`; returns the report with the table and
-    /// the per-mu curves (x, mean pull-off).
+    /// Draws `points` grouped by mu, at `x(point)`, with the other law's finished points
+    /// beside them.
     pub fn draw(
         &self,
         ctx: &crate::Context,
         points: &[Point],
         x: impl Fn(&Point) -> f64,
         extra: Vec<crate::plot::Curve>,
-    ) -> Result<(crate::FigureReport, Vec<MuCurve>)> {
+    ) -> Result<Drawn> {
         use crate::plot::{Chart, Curve, Mark};
         let mut report = crate::FigureReport::new(self.number, self.title);
         let mut chart = Chart::new(self.title, self.x_label, "pull-off force F/(πRw0)");
@@ -711,6 +733,7 @@ impl PullOffFigure<'_> {
             .map(|o| o.wall_time_s)
             .sum::<f64>();
         report.save(&[chart], &ctx.options.out, &format!("fig{}", self.number))?;
+        let mut other_spread = None;
         let stem = format!("fig{}", self.number);
         report.tables.extend(self.tables(&stem, &plan, points, &x));
         if !beside.is_empty() {
@@ -722,7 +745,8 @@ impl PullOffFigure<'_> {
                 .agreement
                 .push(Self::compared(points, &beside, plan.law, other));
             let whole = beside.len() == points.len() && beside_curves.len() > 1;
-            if let Some(spread) = largest_spread(&beside_curves).filter(|_| self.collapse && whole) {
+            other_spread = largest_spread(&beside_curves).filter(|_| self.collapse && whole);
+            if let Some(spread) = other_spread {
                 report.agreement.push(format!(
                     "The {}'s spread between the Tabor parameters (the same measure): {:.0} % at equal {}.",
                     law_words(other),
@@ -792,7 +816,11 @@ impl PullOffFigure<'_> {
                 "{failed} run(s) had a step that did not converge (see the CSV)."
             ));
         }
-        Ok((report, curves))
+        Ok(Drawn {
+            report,
+            curves,
+            other_spread,
+        })
     }
 
     /// The tables `stem.csv` (a row a point) and `stem_realisations.csv` (a row a realisation)
