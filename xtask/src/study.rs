@@ -28,7 +28,7 @@ pub const STUDIES: [(&str, &str); 5] = [
         "challenge-mesh",
         "the contact-mechanics challenge's load cycle, relative contact area against the cell size for the \
          surface, line, point and exponential laws (and `none`), one surface sampled on every grid, each run a \
-         resumable sweep in target/challenge-mesh (SIZES=256,512,1024; LAWS=...; METHOD=auto; TOLERANCE=...; \
+         resumable sweep in target/challenge-mesh or DIR (SIZES=256,512,1024; LAWS=...; METHOD=auto; TOLERANCE=...; \
          REFINE=k; TABOR=mu, w0 set for it by the surface's RMS curvature as Fig. 10, else the challenge's 0.05 J/m^2; \
          FINEST=n, the grid the surface is made on, default the largest size, finer sizes interpolated; \
          CUT=n, the grid of whose cells four make the short cut-off, default the smallest size)",
@@ -357,7 +357,9 @@ fn challenge_mesh() -> Result<()> {
     if let Some(mu) = tabor {
         variant += &format!("_tabor{mu}");
     }
-    let dir = std::path::PathBuf::from("target/challenge-mesh");
+    // `DIR=path`: where the runs go, for a row longer than target/ lives.
+    let dir =
+        std::path::PathBuf::from(std::env::var("DIR").unwrap_or_else(|_| "target/challenge-mesh".into()));
     let surfaces = dir.join("surfaces");
     std::fs::create_dir_all(&surfaces)?;
     let mut sweeps = Vec::new();
