@@ -748,7 +748,7 @@ impl PullOffFigure<'_> {
             other_spread = largest_spread(&beside_curves).filter(|_| self.collapse && whole);
             if let Some(spread) = other_spread {
                 report.agreement.push(format!(
-                    "The {}'s spread between the Tabor parameters (the same measure): {:.0} % at equal {}.",
+                    "Spread of the {} between the Tabor parameters (the same measure): {:.0} % at equal {}.",
                     law_words(other),
                     100.0 * spread,
                     self.x_label
