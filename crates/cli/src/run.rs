@@ -4,7 +4,8 @@
 //! Layout: `case.toml` (the resolved case), `summary.json`, the fields of the solution as
 //! `.npy` (SI units, listed in the summary), and for a sweep `curve.csv` (a row a step),
 //! `state/` (the last step's fields, to resume from) and with `--save-states`
-//! `states/step-NNNN/` (every step's). A saved state's `manifest.json` holds its approach and
+//! `states/step-NNNN/` (every step's), and while a sweep runs inside a study `progress.txt`
+//! (where its running step's solve stands, [`RunDir::write_progress`]). A saved state's `manifest.json` holds its approach and
 //! a fingerprint of each field, so that a state mixed from two steps is refused.
 //!
 //! One run at a time: a run holds an exclusive lock on `.lock` in its directory (released by
@@ -21,6 +22,12 @@ use std::fs::{File, OpenOptions, TryLockError};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+/// Where the running step of the sweep in `dir` stands, if it has written so
+/// ([`RunDir::write_progress`]).
+pub fn read_progress(dir: &Path) -> Option<String> {
+    std::fs::read_to_string(dir.join(PROGRESS)).ok()
+}
+
 /// The columns of `curve.csv`.
 const HEADER: &str = "step,approach,load,mean_pressure,contact_area_fraction,attractive_area_fraction,\
 attached_area_fraction,central_gap,branch,iterations,inner_iterations,converged,residual,wall_time_s,\
@@ -28,7 +35,7 @@ retries";
 
 /// The files and directories a run writes: what makes a directory "another run's", and what
 /// `--overwrite` removes (nothing else in the directory is touched).
-const RUN_FILES: [&str; 14] = [
+const RUN_FILES: [&str; 15] = [
     "case.toml",
     "summary.json",
     "curve.csv",
@@ -43,7 +50,11 @@ const RUN_FILES: [&str; 14] = [
     "state.new",
     "state.old",
     "states",
+    PROGRESS,
 ];
+
+/// Where a sweep's running step stands, for a study's progress line.
+const PROGRESS: &str = "progress.txt";
 
 /// How a run may use a directory that already holds another run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -115,6 +126,17 @@ impl RunDir {
 
     pub fn path(&self) -> &Path {
         &self.path
+    }
+
+    /// Writes `text` as where the running step's solve stands (its iteration and residual),
+    /// which a study shows beside the run's finished steps ([`read_progress`]); `None` removes
+    /// it. A progress line that cannot be written is left out: it is no result.
+    pub fn write_progress(&self, text: Option<&str>) {
+        let path = self.path.join(PROGRESS);
+        let _ = match text {
+            Some(text) => std::fs::write(path, text),
+            None => std::fs::remove_file(path),
+        };
     }
 
     /// Writes the resolved case (TOML) the run was made with.

@@ -611,14 +611,19 @@ fn run_all(
     crate::set_quiet(false);
 }
 
-/// Each of the runs `names` with the steps its curve has so far.
+/// Each of the runs `names` with the steps its curve has so far and where its running step
+/// stands.
 fn standing(runs_dir: &Path, names: &[&str]) -> String {
     names
         .iter()
         .map(|n| {
-            let rows = std::fs::read_to_string(runs_dir.join(n).join("curve.csv"))
+            let dir = runs_dir.join(n);
+            let rows = std::fs::read_to_string(dir.join("curve.csv"))
                 .map_or(0, |t| t.lines().count().saturating_sub(1));
-            format!("{n} ({rows} steps done)")
+            match crate::run::read_progress(&dir) {
+                Some(progress) => format!("{n} ({rows} steps done; {})", progress.trim()),
+                None => format!("{n} ({rows} steps done)"),
+            }
         })
         .collect::<Vec<_>>()
         .join(", ")
@@ -788,6 +793,25 @@ mod tests {
 
     fn study(text: &str) -> Result<Study> {
         Study::parse(text, Path::new("/studies/s.toml"))
+    }
+
+    /// A run under way shows its finished steps and, once its sweep has written it, where its
+    /// running step stands; a finished step clears that.
+    #[test]
+    fn runs_under_way_show_where_their_step_stands() {
+        let runs = std::env::temp_dir().join(format!("roughcontact-standing-{}", std::process::id()));
+        let dir = crate::run::RunDir::open(&runs.join("a"), crate::run::Reuse::Refuse).unwrap();
+        std::fs::write(dir.path().join("curve.csv"), "step\n0\n1\n").unwrap();
+        assert_eq!(standing(&runs, &["a"]), "a (2 steps done)");
+        dir.write_progress(Some("step 3/11: iteration 40, residual 1.00e-2"));
+        assert_eq!(
+            standing(&runs, &["a"]),
+            "a (2 steps done; step 3/11: iteration 40, residual 1.00e-2)"
+        );
+        dir.write_progress(None);
+        assert_eq!(standing(&runs, &["a"]), "a (2 steps done)");
+        drop(dir);
+        std::fs::remove_dir_all(&runs).unwrap();
     }
 
     #[test]

@@ -239,6 +239,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         bar: &bar,
         last: String::new(),
         quiet_since: Instant::now(),
+        progress_since: Instant::now(),
         error: None,
         problem,
         edge: None,
@@ -517,6 +518,9 @@ fn force_unit(v: f64) -> (f64, &'static str) {
 
 /// Writes each finished step (its row of curve.csv, its state) and shows where the sweep
 /// stands; a write that fails stops the sweep and is kept in `error`.
+/// How often a sweep inside a study writes where its running step stands.
+const PROGRESS_EVERY: std::time::Duration = std::time::Duration::from_secs(10);
+
 struct StepWriter<'a> {
     run: &'a RunDir,
     /// Steps finished (before this run too, when resumed), and the steps in all.
@@ -531,6 +535,8 @@ struct StepWriter<'a> {
     /// The last finished step, shown beside the running solve's iteration and residual.
     last: String,
     quiet_since: Instant,
+    /// When the running step's progress was last written for a study ([`PROGRESS_EVERY`]).
+    progress_since: Instant,
     error: Option<anyhow::Error>,
     problem: &'a solver::ContactProblem,
     /// The first step whose contact reached a free grid's edge, as a warning.
@@ -547,6 +553,15 @@ impl Observer for StepWriter<'_> {
                 self.steps
             );
             self.quiet_since = Instant::now();
+        }
+        // Inside a study (quiet), where the running step stands goes to the run's directory.
+        if crate::quiet() && self.progress_since.elapsed() >= PROGRESS_EVERY {
+            self.run.write_progress(Some(&format!(
+                "step {}/{}: iteration {iteration}, residual {residual:.2e}",
+                self.done + 1,
+                self.steps
+            )));
+            self.progress_since = Instant::now();
         }
         if iteration.is_multiple_of(10) {
             self.bar.set_message(format!(
@@ -569,6 +584,7 @@ impl Observer for StepWriter<'_> {
             self.bar.suspend(|| note!("warning: {w}"));
             self.edge = Some(w);
         }
+        self.run.write_progress(None);
         let saved = self
             .run
             .save_state(k, state, self.save_states || self.keep.contains(&k))
