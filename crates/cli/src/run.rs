@@ -5,8 +5,9 @@
 //! `.npy` (SI units, listed in the summary), and for a sweep `curve.csv` (a row a step),
 //! `state/` (the last step's fields, to resume from) and with `--save-states`
 //! `states/step-NNNN/` (every step's), and while a sweep runs inside a study `progress.txt`
-//! (where its running step's solve stands, [`RunDir::write_progress`]). A saved state's `manifest.json` holds its approach and
-//! a fingerprint of each field, so that a state mixed from two steps is refused.
+//! (where its running step's solve stands, [`RunDir::write_progress`]). A saved state's
+//! `manifest.json` holds its approach and a fingerprint of each field, so that a state mixed
+//! from two steps is refused.
 //!
 //! One run at a time: a run holds an exclusive lock on `.lock` in its directory (released by
 //! the system when the process ends, also when it is killed), and a directory that holds

@@ -516,11 +516,11 @@ fn force_unit(v: f64) -> (f64, &'static str) {
     }
 }
 
-/// Writes each finished step (its row of curve.csv, its state) and shows where the sweep
-/// stands; a write that fails stops the sweep and is kept in `error`.
 /// How often a sweep inside a study writes where its running step stands.
 const PROGRESS_EVERY: std::time::Duration = std::time::Duration::from_secs(10);
 
+/// Writes each finished step (its row of curve.csv, its state) and shows where the sweep
+/// stands; a write that fails stops the sweep and is kept in `error`.
 struct StepWriter<'a> {
     run: &'a RunDir,
     /// Steps finished (before this run too, when resumed), and the steps in all.
