@@ -85,23 +85,18 @@ pub(crate) fn neighbours(
     Ok(())
 }
 
-/// As [`neighbours`], with `cell` giving three values a cell, written into `outs` in order (a
-/// cell's pressure and its stiffness by its own column and by its +x neighbour's, say).
-pub(crate) fn neighbours3(
+/// Runs `row(y, scratch, [a, b, c])` on every row `y` of the three outputs in parallel,
+/// `scratch` a row's room, and reports the first non-finite gap if the first output has a
+/// non-finite value.
+pub(crate) fn rows3(
     gap: ArrayView2<f64>,
-    cells: &Cells,
     outs: [ArrayViewMut2<f64>; 3],
-    node: impl Fn(f64) -> f64 + Sync,
-    cell: impl Fn(f64, f64, f64, f64, f64) -> [f64; 3] + Sync,
+    row: impl Fn(usize, &mut [f64], [&mut [f64]; 3]) + Sync,
 ) -> Result<()> {
     for out in &outs {
         check_shapes(&gap, out)?;
     }
-    let (ny, nx) = gap.dim();
-    if ny == 0 || nx == 0 {
-        return Ok(());
-    }
-    let last_x = next(nx - 1, nx, cells.periodic);
+    let nx = gap.ncols();
     let [mut a, mut b, mut c] = outs;
     let bad = Zip::indexed(a.rows_mut())
         .and(b.rows_mut())
@@ -110,23 +105,16 @@ pub(crate) fn neighbours3(
         .map_init(
             || vec![0.0; nx],
             |t, (y, mut a, mut b, mut c)| {
-                let (g, u) = row_and_next(&gap, y, cells.periodic, &node, t);
-                let (a, b, c) = (
-                    a.as_slice_mut().expect("standard layout"),
-                    b.as_slice_mut().expect("standard layout"),
-                    c.as_slice_mut().expect("standard layout"),
+                let a = a.as_slice_mut().expect("standard layout");
+                row(
+                    y,
+                    t,
+                    [
+                        &mut *a,
+                        b.as_slice_mut().expect("standard layout"),
+                        c.as_slice_mut().expect("standard layout"),
+                    ],
                 );
-                // Zipped slices rather than indices, as in `neighbours`.
-                let m = nx - 1;
-                a[..m]
-                    .iter_mut()
-                    .zip(b[..m].iter_mut().zip(c[..m].iter_mut()))
-                    .zip(g[..m].iter().zip(&g[1..]))
-                    .zip(u[..m].iter().zip(t[..m].iter().zip(&t[1..])))
-                    .for_each(|(((a, (b, c)), (&g1, &g2)), (&g3, (&t1, &t2)))| {
-                        [*a, *b, *c] = cell(g1, g2, g3, t1, t2);
-                    });
-                [a[m], b[m], c[m]] = cell(g[m], g[last_x], u[m], t[m], t[last_x]);
                 a.iter().any(|v| !v.is_finite())
             },
         )
@@ -135,6 +123,37 @@ pub(crate) fn neighbours3(
         locate_bad_gap(&gap)?;
     }
     Ok(())
+}
+
+/// Row `y` of a law whose `cell` gives three values a cell (a cell's pressure and its
+/// stiffness by its own column and by its +x neighbour's, say), with the neighbours of
+/// [`neighbours`], into `[a, b, c]`; `t` is a row's room for `node`.
+pub(crate) fn neighbours3_row(
+    gap: ArrayView2<f64>,
+    cells: &Cells,
+    y: usize,
+    t: &mut [f64],
+    [a, b, c]: [&mut [f64]; 3],
+    node: impl Fn(f64) -> f64,
+    cell: impl Fn(f64, f64, f64, f64, f64) -> [f64; 3],
+) {
+    let nx = gap.ncols();
+    if nx == 0 {
+        return;
+    }
+    let last_x = next(nx - 1, nx, cells.periodic);
+    let (g, u) = row_and_next(&gap, y, cells.periodic, &node, t);
+    // Zipped slices rather than indices, as in `neighbours`.
+    let m = nx - 1;
+    a[..m]
+        .iter_mut()
+        .zip(b[..m].iter_mut().zip(c[..m].iter_mut()))
+        .zip(g[..m].iter().zip(&g[1..]))
+        .zip(u[..m].iter().zip(t[..m].iter().zip(&t[1..])))
+        .for_each(|(((a, (b, c)), (&g1, &g2)), (&g3, (&t1, &t2)))| {
+            [*a, *b, *c] = cell(g1, g2, g3, t1, t2);
+        });
+    [a[m], b[m], c[m]] = cell(g[m], g[last_x], u[m], t[m], t[last_x]);
 }
 
 /// Row `y` of `gap` and its +y neighbour row (wrapped or mirrored as [`next`]), with `node` of

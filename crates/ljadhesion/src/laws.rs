@@ -4,7 +4,7 @@
 use crate::error::{Result, positive};
 use crate::field;
 use crate::lj::LennardJones;
-use crate::{AdhesionLaw, Cells, FieldPotential, LocalPotential};
+use crate::{AdhesionLaw, Cells, FieldPotential, LocalPotential, StiffnessRows};
 use ndarray::{Array2, ArrayView2, ArrayViewMut2};
 
 /// The trait methods the three Lennard-Jones laws take from their [`LennardJones`].
@@ -121,27 +121,8 @@ impl AdhesionLaw for LineLaw {
             |_, _, _, v1, v2| lj.mean_pressure_v(v1, v2),
         )
     }
-    fn pressure_and_stiffness_field(
-        &self,
-        gap: ArrayView2<f64>,
-        cells: &Cells,
-        pressure: ArrayViewMut2<f64>,
-        own: ArrayViewMut2<f64>,
-        next: ArrayViewMut2<f64>,
-    ) -> Result<bool> {
-        let lj = self.0;
-        let z0 = lj.z0();
-        field::neighbours3(
-            gap,
-            cells,
-            [pressure, own, next],
-            |g| z0 / lj.separation(g),
-            |g1, g2, _, v1, v2| {
-                let (d1, d2) = lj.mean_pressure_slopes_v(v1, v2);
-                [lj.mean_pressure_v(v1, v2), -open(g1) * d1, -open(g2) * d2]
-            },
-        )?;
-        Ok(true)
+    fn stiffness_rows(&self) -> Option<&dyn StiffnessRows> {
+        Some(self)
     }
     lennard_jones_scales!("line");
     fn flat_potential(&self) -> Option<&dyn LocalPotential> {
@@ -166,21 +147,61 @@ impl AdhesionLaw for SurfaceLaw {
             },
         )
     }
-    fn pressure_and_stiffness_field(
+    fn stiffness_rows(&self) -> Option<&dyn StiffnessRows> {
+        Some(self)
+    }
+    // The stiffness bound is that of the mean pressure; the area factor `S` multiplies it
+    // where the gap is steep.
+    lennard_jones_scales!("surface");
+    fn flat_potential(&self) -> Option<&dyn LocalPotential> {
+        Some(self)
+    }
+}
+
+impl StiffnessRows for LineLaw {
+    fn stiffness_row(
         &self,
         gap: ArrayView2<f64>,
         cells: &Cells,
-        pressure: ArrayViewMut2<f64>,
-        own: ArrayViewMut2<f64>,
-        next: ArrayViewMut2<f64>,
-    ) -> Result<bool> {
+        y: usize,
+        scratch: &mut [f64],
+        out: [&mut [f64]; 3],
+    ) {
+        let lj = self.0;
+        let z0 = lj.z0();
+        field::neighbours3_row(
+            gap,
+            cells,
+            y,
+            scratch,
+            out,
+            |g| z0 / lj.separation(g),
+            |g1, g2, _, v1, v2| {
+                let (d1, d2) = lj.mean_pressure_slopes_v(v1, v2);
+                [lj.mean_pressure_v(v1, v2), -open(g1) * d1, -open(g2) * d2]
+            },
+        );
+    }
+}
+
+impl StiffnessRows for SurfaceLaw {
+    fn stiffness_row(
+        &self,
+        gap: ArrayView2<f64>,
+        cells: &Cells,
+        y: usize,
+        scratch: &mut [f64],
+        out: [&mut [f64]; 3],
+    ) {
         let lj = self.0;
         let z0 = lj.z0();
         let (ix, iy) = (1.0 / cells.dx, 1.0 / cells.dy);
-        field::neighbours3(
+        field::neighbours3_row(
             gap,
             cells,
-            [pressure, own, next],
+            y,
+            scratch,
+            out,
             |g| z0 / lj.separation(g),
             |g1, g2, g3, v1, v2| {
                 let (z1, z2, z3) = (lj.separation(g1), lj.separation(g2), lj.separation(g3));
@@ -197,14 +218,7 @@ impl AdhesionLaw for SurfaceLaw {
                     -open(g2) * (area * d2 + a2 * mean),
                 ]
             },
-        )?;
-        Ok(true)
-    }
-    // The stiffness bound is that of the mean pressure; the area factor `S` multiplies it
-    // where the gap is steep.
-    lennard_jones_scales!("surface");
-    fn flat_potential(&self) -> Option<&dyn LocalPotential> {
-        Some(self)
+        );
     }
 }
 

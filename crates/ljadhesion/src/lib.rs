@@ -68,7 +68,8 @@ pub trait AdhesionLaw: Sync + Send {
     /// of nodes moves and when its +x neighbour's does, `-dp/dg` (the surface law's area
     /// factor also depends on the +y neighbour, which is in the cell's own column), for the
     /// laws whose cell mixes its gap with its neighbours' (line and surface), in closed form in
-    /// one pass. Returns `false`, with nothing written, for the other laws.
+    /// one pass: their [`AdhesionLaw::stiffness_rows`] on every row. Returns `false`, with
+    /// nothing written, for the other laws.
     ///
     /// # Errors
     /// As [`AdhesionLaw::pressure_field`].
@@ -80,8 +81,20 @@ pub trait AdhesionLaw: Sync + Send {
         own: ArrayViewMut2<f64>,
         next: ArrayViewMut2<f64>,
     ) -> Result<bool> {
-        let _ = (gap, cells, pressure, own, next);
-        Ok(false)
+        let Some(rows) = self.stiffness_rows() else {
+            return Ok(false);
+        };
+        field::rows3(gap, [pressure, own, next], |y, scratch, out| {
+            rows.stiffness_row(gap, cells, y, scratch, out)
+        })?;
+        Ok(true)
+    }
+
+    /// The law's [`AdhesionLaw::pressure_and_stiffness_field`] one row at a time, if it has
+    /// one (line and surface): for a solver's pass over the rows that uses each row of the
+    /// three fields at once rather than storing them.
+    fn stiffness_rows(&self) -> Option<&dyn StiffnessRows> {
+        None
     }
 
     /// An upper bound of `|dp/dg|` [Pa/m], for choosing a stable relaxation.
@@ -123,6 +136,24 @@ pub trait AdhesionLaw: Sync + Send {
     fn field_potential(&self) -> Option<&dyn FieldPotential> {
         None
     }
+}
+
+/// A law's pressure and stiffness on one row of cells ([`AdhesionLaw::stiffness_rows`]): a
+/// cell depends on its node and its +x and +y neighbours, so a row on its own row of gaps and
+/// the next (wrapped or mirrored as [`Cells`] says).
+pub trait StiffnessRows: Sync + Send {
+    /// Writes row `y` of [`AdhesionLaw::pressure_and_stiffness_field`] (bit for bit) into
+    /// `[pressure, own, next]`, each `gap.ncols()` long, with `scratch` as room for a row.
+    /// `gap` must be in standard layout. A non-finite gap gives non-finite values, not an
+    /// error: the caller checks.
+    fn stiffness_row(
+        &self,
+        gap: ArrayView2<f64>,
+        cells: &Cells,
+        y: usize,
+        scratch: &mut [f64],
+        out: [&mut [f64]; 3],
+    );
 }
 
 /// A law that derives from an interaction energy of the whole gap field, each cell's energy

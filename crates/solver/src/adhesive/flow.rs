@@ -51,7 +51,7 @@
 //! to [`RELAX_ITERATIONS`] applications every [`RELAX_EVERY`] steps.
 
 use super::driver::Driver;
-use super::gap_problem::{Energy, Point, Problem, Setup, check_control, finish, setup};
+use super::gap_problem::{Energy, Point, Problem, Row, Setup, check_control, finish, setup};
 use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start, newton};
 use crate::error::{Result, SolverError};
 use crate::report::Termination;
@@ -204,6 +204,8 @@ fn solve<'a>(
         .then(|| FarField::new(unknown))
         .filter(|_| far != Far::Plain);
     let shifted = far_field.is_some() && load.is_some();
+    // The far field's update at `x`, where made with its evaluation.
+    let mut next = None;
     loop {
         if driver.stop(steps, sums.max * scale, true) {
             break;
@@ -215,7 +217,10 @@ fn solve<'a>(
         }
         steps += 1;
         let (force_weight, moments) = match &mut far_field {
-            Some(far_field) if shifted => far_field.update(&mut problem, &x, &velocity, &mut pull)?,
+            Some(far_field) if shifted => match next.take() {
+                Some(update) => update,
+                None => far_field.update(&mut problem, &x, &velocity, &mut pull)?,
+            },
             _ => {
                 let force_weight = if problem.coupled() {
                     problem.precondition_rows(&x, &mut pull)
@@ -304,19 +309,22 @@ fn solve<'a>(
                 if inside && v * a > 0.0 { 0.0 } else { v }
             },
         );
-        problem.evaluate(&mut trial)?;
+        let relaxing = far == Far::ShiftAndRelax && steps % RELAX_EVERY == 0;
+        // The next step's far-field pass rides on this evaluation, unless a relaxation comes
+        // between them.
+        match far_field.as_mut().filter(|_| shifted && !relaxing) {
+            Some(far_field) => {
+                next = Some(far_field.evaluate_and_update(&mut problem, &mut trial, &velocity, &mut pull)?)
+            }
+            None => problem.evaluate(&mut trial)?,
+        }
         std::mem::swap(&mut x, &mut trial);
         sums = problem.project_gradient(&mut x);
-        if let Some(far_field) = far_field
-            .as_mut()
-            .filter(|_| far == Far::ShiftAndRelax && steps % RELAX_EVERY == 0)
-        {
+        if let Some(far_field) = far_field.as_mut().filter(|_| relaxing) {
             if !shifted {
                 far_field.mark(&problem, &x);
             }
             far_field.relax(&mut problem, &x, &mut trial)?;
-            std::mem::swap(&mut x, &mut trial);
-            sums = problem.project_gradient(&mut x);
             // The soft cells arrive at rest.
             Zip::from(&mut velocity)
                 .and(&far_field.held)
@@ -325,8 +333,16 @@ fn solve<'a>(
                         *v = 0.0
                     }
                 });
+            if shifted {
+                next = Some(far_field.evaluate_and_update(&mut problem, &mut trial, &velocity, &mut pull)?);
+            } else {
+                problem.evaluate(&mut trial)?;
+            }
+            std::mem::swap(&mut x, &mut trial);
+            sums = problem.project_gradient(&mut x);
         }
     }
+    problem.store_law(&mut x)?;
     let newton = newton_steps.unwrap_or(0);
     let outcome = driver.finish(Iterations::Flow { steps, newton }, problem.calls);
     Ok(finish(job, &problem, x, &sums, (delta, load), outcome))
@@ -427,8 +443,8 @@ impl FarField {
             .par_for_each(|h, &g, &c| *h = soft_or_held(g, c, clearance, cell));
     }
 
-    /// Writes into `trial` the point `x` with its soft cells moved towards their balance with
-    /// the other cells held: conjugate gradients on `(S + max(K, 0)) d = -r` restricted to the
+    /// Writes into `trial`'s gap (to be evaluated) the point `x` with its soft cells moved
+    /// towards their balance with the other cells held: conjugate gradients on `(S + max(K, 0)) d = -r` restricted to the
     /// soft cells (positive definite: the held cells give even the uniform mode a stiffness),
     /// preconditioned by its diagonal, for at most [`RELAX_ITERATIONS`]. The law's curvature
     /// enters by its stable part only and is weak this far from the wall, so the move falls
@@ -525,7 +541,7 @@ impl FarField {
             qz = qz_new;
         }
         problem.step_and_project(&x.gap, delta, 1.0, &mut trial.gap, None);
-        problem.evaluate(trial)
+        Ok(())
     }
 
     /// Writes the pull `M^-1 r` at `at` into `pull` and finds the soft cells there, the
@@ -541,43 +557,75 @@ impl FarField {
     ) -> Result<(f64, Moments)> {
         use crate::fields::{flat, flat_mut};
         use rayon::prelude::*;
-        let (rs, gs, cs) = (flat(&at.gradient), flat(&at.gap), flat(&at.curvature));
-        let vs = flat(velocity);
-        let (mx, cell) = (problem.mx, problem.diagonal);
-        let clearance = SOFT_CLEARANCE * problem.law.range();
-        let shared = &*problem;
-        // Per row: held cells changed; the law's stable stiffness, force, pull, number, and
-        // `sum m v`, `sum m a`, `sum m` over the soft cells; the moments over all cells; the
-        // force weight.
+        let (mx, shared) = (problem.mx, &*problem);
         let rows: Vec<[f64; 13]> = flat_mut(&mut self.held)
             .par_chunks_mut(mx)
             .zip(flat_mut(pull).par_chunks_mut(mx))
             .enumerate()
-            .map(|(j, (hr, pr))| {
-                let mut sums = [0.0; 13];
-                sums[12] = shared.pull_row(at, j, pr);
-                for (i, (h, &a)) in hr.iter_mut().zip(&*pr).enumerate() {
-                    let k = j * mx + i;
-                    let held = soft_or_held(gs[k], cs[k], clearance, cell);
-                    if *h != held {
-                        *h = held;
-                        sums[0] = 1.0;
-                    }
-                    let (m, v) = (shared.mass(cs, j, i, k), vs[k]);
-                    if held == 0 {
-                        sums[1] += cs[k].max(0.0);
-                        sums[2] += rs[k];
-                        sums[3] += a;
-                        sums[4] += 1.0;
-                        sums[5] += m * v;
-                        sums[6] += m * a;
-                        sums[7] += m;
-                    }
-                    Moments::add(&mut sums[8..], rs[k], m, v, a);
-                }
-                sums
-            })
+            .map(|(j, (hr, pr))| FarField::update_row(shared, shared.row(at, j), flat(velocity), hr, pr))
             .collect();
+        self.settle(problem, &rows)
+    }
+
+    /// Evaluates `at` ([`Problem::evaluate`]) and makes the far field's [`FarField::update`]
+    /// there in the same pass over the rows, with the law's fields made a row at a time and
+    /// not stored ([`Problem::evaluate_rows`]): the same numbers, bit for bit, in fewer passes
+    /// over the fields.
+    fn evaluate_and_update(
+        &mut self,
+        problem: &mut Problem,
+        at: &mut Point,
+        velocity: &Array2<f64>,
+        pull: &mut Array2<f64>,
+    ) -> Result<(f64, Moments)> {
+        use crate::fields::{flat, flat_mut};
+        let mx = problem.mx;
+        let rows: Vec<(&mut [u8], &mut [f64])> = flat_mut(&mut self.held)
+            .chunks_mut(mx)
+            .zip(flat_mut(pull).chunks_mut(mx))
+            .collect();
+        let vs = flat(velocity);
+        let rows = problem.evaluate_rows(at, true, rows, |problem, row, (hr, pr)| {
+            FarField::update_row(problem, row, vs, hr, pr)
+        })?;
+        self.settle(problem, &rows)
+    }
+
+    /// Row `row.j` of [`FarField::update`]: writes the row's pull into `pr` and its held cells
+    /// into `hr`; returns whether any held cell changed, the law's stable stiffness, force,
+    /// pull, number, and `sum m v`, `sum m a`, `sum m` over the soft cells; the moments over
+    /// all cells; the force weight.
+    fn update_row(problem: &Problem, row: Row, vs: &[f64], hr: &mut [u8], pr: &mut [f64]) -> [f64; 13] {
+        let (cell, clearance) = (problem.diagonal, SOFT_CLEARANCE * problem.law.range());
+        let vs = &vs[row.j * problem.mx..][..problem.mx];
+        let (gs, cs, rs) = (row.gap, row.curvature, row.gradient);
+        let mut sums = [0.0; 13];
+        sums[12] = problem.pull_row(&row, pr);
+        for (i, (h, &a)) in hr.iter_mut().zip(&*pr).enumerate() {
+            let held = soft_or_held(gs[i], cs[i], clearance, cell);
+            if *h != held {
+                *h = held;
+                sums[0] = 1.0;
+            }
+            let (m, v) = (problem.row_mass(&row, i), vs[i]);
+            if held == 0 {
+                sums[1] += cs[i].max(0.0);
+                sums[2] += rs[i];
+                sums[3] += a;
+                sums[4] += 1.0;
+                sums[5] += m * v;
+                sums[6] += m * a;
+                sums[7] += m;
+            }
+            Moments::add(&mut sums[8..], rs[i], m, v, a);
+        }
+        sums
+    }
+
+    /// The rest of [`FarField::update`] from its rows' sums.
+    fn settle(&mut self, problem: &mut Problem, rows: &[[f64; 13]]) -> Result<(f64, Moments)> {
+        use crate::fields::flat;
+        let mx = problem.mx;
         let sums = rows.iter().fold([0.0; 13], |mut a, r| {
             a.iter_mut().zip(r).for_each(|(a, r)| *a += r);
             a

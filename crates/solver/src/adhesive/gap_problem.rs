@@ -54,6 +54,9 @@ pub(super) struct Point {
     free: (f64, f64),
     /// The smallest gap \[m\] (on the domain's block).
     pub(super) min_gap: f64,
+    /// Whether `law`, `curvature` and `coupling` hold the law at `gap`: not after
+    /// [`Problem::evaluate_rows`] with the law by rows, until [`Problem::store_law`].
+    law_stored: bool,
 }
 
 impl Point {
@@ -70,12 +73,24 @@ impl Point {
             free: (0.0, 0.0),
             largest: 0.0,
             min_gap: 0.0,
+            law_stored: false,
         }
     }
 
     pub(super) fn total_energy(&self) -> f64 {
         self.energy.0 + self.energy.1
     }
+}
+
+/// Row `j` of a point's fields ([`Problem::row`], [`Problem::evaluate_rows`]), each the
+/// row of the [`Point`] field of that name.
+pub(super) struct Row<'r> {
+    pub(super) j: usize,
+    pub(super) gap: &'r [f64],
+    pub(super) gradient: &'r [f64],
+    pub(super) curvature: &'r [f64],
+    /// Where the problem couples rows and the row is on the block; else empty.
+    pub(super) coupling: &'r [f64],
 }
 
 /// What the solver needs of a projected gradient `rho`.
@@ -332,6 +347,23 @@ impl Problem<'_> {
     /// nothing left to do). The stiffness takes `gap - base` row by row as it goes, which no
     /// field keeps.
     pub(super) fn evaluate(&mut self, at: &mut Point) -> Result<()> {
+        self.evaluate_rows(at, false, vec![(); self.my], |_, _, _| ())
+            .map(|_| ())
+    }
+
+    /// As [`Problem::evaluate`], handing each row of the point, once made, with the row's
+    /// item of `extra` (one a row of the unknown) to `then`, whose results come back in order
+    /// of the rows: a pass that uses the fields of a row at once rather than reading them
+    /// again. With `by_rows`, where the problem couples rows and the law gives its stiffness
+    /// by rows, the law's three fields are made a row at a time and not stored (a step's six
+    /// field-sized passes fewer on grids past the cache), until [`Problem::store_law`].
+    pub(super) fn evaluate_rows<T: Send, S: Send>(
+        &mut self,
+        at: &mut Point,
+        by_rows: bool,
+        extra: Vec<T>,
+        then: impl Fn(&Problem, Row<'_>, T) -> S + Sync,
+    ) -> Result<Vec<S>> {
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
         let (gs, bs) = (flat(&at.gap), flat(&self.base));
         self.stiffness.apply_rows(
@@ -347,7 +379,13 @@ impl Problem<'_> {
         )?;
         self.calls += 1;
         let energy = self.energy;
+        // By rows on a periodic grid only: the unknown is the block, with no padding.
+        let law_rows = by_rows
+            .then(|| self.law.stiffness_rows())
+            .flatten()
+            .filter(|_| self.couple && (mx, self.my) == (nx, ny));
         match energy {
+            Energy::None if law_rows.is_some() => {}
             Energy::None => self.law_on_block(at)?,
             Energy::Field(field) => {
                 let block = s![..self.ny, ..self.nx];
@@ -366,57 +404,82 @@ impl Problem<'_> {
         let cell_energies = flat(&self.probe.0);
         let (gs, bs) = (flat(&at.gap), flat(&self.base));
         let es = flat(&at.elastic);
-        let sums: Vec<[f64; 7]> = flat_mut(&mut at.law)
+        let (block_gap, cs) = (at.gap.slice(s![..ny, ..nx]), flat(&at.coupling));
+        let shared = &*self;
+        let rows: Vec<([f64; 7], S)> = flat_mut(&mut at.law)
             .par_chunks_mut(mx)
             .zip(flat_mut(&mut at.curvature).par_chunks_mut(mx))
             .zip(flat_mut(&mut at.gradient).par_chunks_mut(mx))
+            .zip(extra)
             .enumerate()
-            .map(|(j, ((lr, cr), rr))| {
-                // Elastic energy, interaction energy and the load's potential, free gradient
-                // and count, non-finite gaps, smallest gap, largest projected gradient.
-                let mut sums = [0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY, 0.0];
-                for i in 0..mx {
-                    let k = j * mx + i;
-                    let g = gs[k];
-                    sums[0] += (g - bs[k]) * es[k];
-                    if !g.is_finite() {
-                        sums[4] += 1.0;
-                    }
-                    if j >= ny || i >= nx {
-                        // The padding: elasticity alone (the law's fields written only if not
-                        // zero already: the padding is 3/4 of a free grid).
-                        if lr[i] != 0.0 || cr[i] != 0.0 {
-                            (lr[i], cr[i]) = (0.0, 0.0);
+            .map_init(
+                || law_rows.map(|_| std::array::from_fn::<_, 4, _>(|_| vec![0.0; nx])),
+                |scratch, (j, (((lr, cr), rr), extra))| {
+                    // The law's pressure, stiffness and coupling of this row: made here, or stored.
+                    let (lr, cr, coupling): (&mut [f64], &mut [f64], &[f64]) = match (scratch, law_rows) {
+                        (Some([t, p, c, d]), Some(rows)) => {
+                            if j < ny {
+                                rows.stiffness_row(block_gap, &shared.cells, j, t, [p, c, d]);
+                            }
+                            (p, c, d)
                         }
-                        rr[i] = es[k];
-                        sums[6] = sums[6].max(es[k].abs());
-                        continue;
-                    }
-                    // Only a local potential writes here: rewriting the law's fields unchanged
-                    // would cost two field-sized writes a step on grids past the cache.
-                    let (v, p) = match energy {
-                        Energy::Local(potential) => {
-                            let (v, p, c) = potential.evaluate(g);
-                            (lr[i], cr[i]) = (p, c);
-                            (v, p)
-                        }
-                        Energy::Field(_) => (cell_energies[j * nx + i], lr[i]),
-                        Energy::None => (0.0, lr[i]),
+                        _ if j < ny && shared.couple => (lr, cr, &cs[j * nx..][..nx]),
+                        _ => (lr, cr, &[]),
                     };
-                    rr[i] = es[k] - p + load;
-                    sums[1] += v + load * g;
-                    sums[5] = sums[5].min(g);
-                    if g > 0.0 {
-                        sums[2] += rr[i];
-                        sums[3] += 1.0;
-                    } else if project && rr[i] >= 0.0 {
-                        rr[i] = 0.0;
+                    // Elastic energy, interaction energy and the load's potential, free gradient
+                    // and count, non-finite gaps, smallest gap, largest projected gradient.
+                    let mut sums = [0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY, 0.0];
+                    for i in 0..mx {
+                        let k = j * mx + i;
+                        let g = gs[k];
+                        sums[0] += (g - bs[k]) * es[k];
+                        if !g.is_finite() {
+                            sums[4] += 1.0;
+                        }
+                        if j >= ny || i >= nx {
+                            // The padding: elasticity alone (the law's fields written only if not
+                            // zero already: the padding is 3/4 of a free grid).
+                            if lr[i] != 0.0 || cr[i] != 0.0 {
+                                (lr[i], cr[i]) = (0.0, 0.0);
+                            }
+                            rr[i] = es[k];
+                            sums[6] = sums[6].max(es[k].abs());
+                            continue;
+                        }
+                        // Only a local potential writes here: rewriting the law's fields unchanged
+                        // would cost two field-sized writes a step on grids past the cache.
+                        let (v, p) = match energy {
+                            Energy::Local(potential) => {
+                                let (v, p, c) = potential.evaluate(g);
+                                (lr[i], cr[i]) = (p, c);
+                                (v, p)
+                            }
+                            Energy::Field(_) => (cell_energies[j * nx + i], lr[i]),
+                            Energy::None => (0.0, lr[i]),
+                        };
+                        rr[i] = es[k] - p + load;
+                        sums[1] += v + load * g;
+                        sums[5] = sums[5].min(g);
+                        if g > 0.0 {
+                            sums[2] += rr[i];
+                            sums[3] += 1.0;
+                        } else if project && rr[i] >= 0.0 {
+                            rr[i] = 0.0;
+                        }
+                        sums[6] = sums[6].max(rr[i].abs());
                     }
-                    sums[6] = sums[6].max(rr[i].abs());
-                }
-                sums
-            })
+                    let row = Row {
+                        j,
+                        gap: &gs[j * mx..][..mx],
+                        gradient: rr,
+                        curvature: cr,
+                        coupling,
+                    };
+                    (sums, then(shared, row, extra))
+                },
+            )
             .collect();
+        let (sums, results): (Vec<[f64; 7]>, Vec<S>) = rows.into_iter().unzip();
         let t = sums
             .iter()
             .fold([0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY, 0.0], |mut a, b| {
@@ -439,7 +502,37 @@ impl Problem<'_> {
         at.free = (t[2], t[3]);
         at.min_gap = t[5];
         at.largest = t[6];
+        at.law_stored = law_rows.is_none();
+        Ok(results)
+    }
+
+    /// Stores the law's fields at `at` where [`Problem::evaluate_rows`] left them unstored,
+    /// for what reads them whole (the far field's relaxation, the state at the end): the same
+    /// values, bit for bit.
+    pub(super) fn store_law(&mut self, at: &mut Point) -> Result<()> {
+        if !at.law_stored {
+            self.law_on_block(at)?;
+            at.law_stored = true;
+        }
         Ok(())
+    }
+
+    /// Row `j` of `at`'s stored fields.
+    pub(super) fn row<'r>(&self, at: &'r Point, j: usize) -> Row<'r> {
+        debug_assert!(at.law_stored, "the law's fields are not stored");
+        let (mx, nx) = (self.mx, self.nx);
+        let coupling = if self.couple && j < self.ny {
+            &flat(&at.coupling)[j * nx..][..nx]
+        } else {
+            &[]
+        };
+        Row {
+            j,
+            gap: &flat(&at.gap)[j * mx..][..mx],
+            gradient: &flat(&at.gradient)[j * mx..][..mx],
+            curvature: &flat(&at.curvature)[j * mx..][..mx],
+            coupling,
+        }
     }
 
     /// Writes the law's pressure at `at`'s gaps on the domain's block into `at.law`, and its
@@ -639,45 +732,41 @@ impl Problem<'_> {
     /// As [`Problem::precondition`], with the mass `m` coupled to the +x neighbour as the law
     /// couples the cells (the line and surface laws), for the flow. Returns `<z, r>`.
     pub(super) fn precondition_rows(&self, at: &Point, out: &mut Array2<f64>) -> f64 {
-        self.solve_rows(at, &self.pull_weight(at), &at.gradient, out)
-    }
-
-    /// The flow's weight `1 / m` of cell `(j, i)` (flat index `k`), 0 where the projected
-    /// gradient holds it.
-    fn pull_weight<'a>(&'a self, at: &'a Point) -> impl Fn(usize, usize, usize) -> f64 + Sync + 'a {
         let (rs, cs) = (flat(&at.gradient), flat(&at.curvature));
-        move |j, i, k| {
+        let weight = |j: usize, i: usize, k: usize| {
             if rs[k] == 0.0 {
                 0.0
             } else {
                 1.0 / self.mass(cs, j, i, k)
             }
-        }
+        };
+        self.solve_rows(at, &weight, &at.gradient, out)
     }
 
-    /// Row `j` of the pull `z = P^-1 r` of [`Problem::precondition_rows`] (coupled) or
+    /// Row `row.j` of the pull `z = P^-1 r` of [`Problem::precondition_rows`] (coupled) or
     /// [`Problem::precondition`] (not) into `zr`, where no mean gap is prescribed, for a pass
     /// over the cells that uses it at once; returns the row's `<z, r>`.
-    pub(super) fn pull_row(&self, at: &Point, j: usize, zr: &mut [f64]) -> f64 {
+    pub(super) fn pull_row(&self, row: &Row, zr: &mut [f64]) -> f64 {
         debug_assert!(
             self.mean_gap.is_none(),
             "the mean gap's multiplier needs every row"
         );
-        let mx = self.mx;
-        let rs = flat(&at.gradient);
-        let rr = &rs[j * mx..][..mx];
-        let weight = self.pull_weight(at);
+        let rr = row.gradient;
+        // The flow's weight `1 / m`, 0 where the projected gradient holds the cell.
+        let weight = |i: usize| {
+            if rr[i] == 0.0 {
+                0.0
+            } else {
+                1.0 / self.row_mass(row, i)
+            }
+        };
         if self.couple {
-            self.solve_row(at, &weight, j, |k| rs[k], |i, z| zr[i] = z);
+            self.solve_row(row.j, row.coupling, weight, |i| rr[i], |i, z| zr[i] = z);
             return zr.iter().zip(rr).map(|(z, v)| z * v).sum::<f64>();
         }
         let mut dot = 0.0;
         for (i, (z, &r)) in zr.iter_mut().zip(rr).enumerate() {
-            *z = if r != 0.0 {
-                r * weight(j, i, j * mx + i)
-            } else {
-                0.0
-            };
+            *z = if r != 0.0 { r * weight(i) } else { 0.0 };
             dot += *z * r;
         }
         dot
@@ -707,15 +796,23 @@ impl Problem<'_> {
                 .sum::<f64>()
         };
         let prescribed = self.mean_gap.is_some();
+        let coupling = |j: usize| {
+            if self.couple && j < self.ny {
+                &flat(&at.coupling)[j * self.nx..][..self.nx]
+            } else {
+                &[]
+            }
+        };
         // `P^-1 v` into `out`, with each row's sum, that of `P^-1 1` (its values not kept) and
         // `<z, v>`.
         let rows: Vec<[f64; 3]> = flat_mut(out)
             .par_chunks_mut(mx)
             .enumerate()
             .map(|(j, zr)| {
-                let a = self.solve_row(at, weight, j, |k| vs[k], |i, z| zr[i] = z);
+                let (cs, w, v) = (coupling(j), |i| weight(j, i, j * mx + i), &vs[j * mx..][..mx]);
+                let a = self.solve_row(j, cs, w, |i| v[i], |i, z| zr[i] = z);
                 let b = if prescribed {
-                    self.solve_row(at, weight, j, |_| 1.0, |_, _| {})
+                    self.solve_row(j, cs, w, |_| 1.0, |_, _| {})
                 } else {
                     0.0
                 };
@@ -737,7 +834,8 @@ impl Problem<'_> {
             .enumerate()
             .map(|(j, zr)| {
                 if mu != 0.0 {
-                    self.solve_row(at, weight, j, |_| 1.0, |i, z| zr[i] -= mu * z);
+                    let w = |i| weight(j, i, j * mx + i);
+                    self.solve_row(j, coupling(j), w, |_| 1.0, |i, z| zr[i] -= mu * z);
                 }
                 dot_row(j, zr)
             })
@@ -746,25 +844,24 @@ impl Problem<'_> {
             .sum()
     }
 
-    /// `P^-1 rhs` on row `j` of [`Problem::solve_rows`] by back substitution, each `z_i` handed
-    /// to `sink(i, z_i)`; returns the sum of the `z`.
+    /// `P^-1 rhs` on row `j` of [`Problem::solve_rows`] by back substitution, with the row's
+    /// `coupling` (empty off the block) and `weight` by column, each `z_i` handed to
+    /// `sink(i, z_i)`; returns the sum of the `z`.
     fn solve_row(
         &self,
-        at: &Point,
-        weight: &impl Fn(usize, usize, usize) -> f64,
         j: usize,
+        coupling: &[f64],
+        weight: impl Fn(usize) -> f64,
         rhs: impl Fn(usize) -> f64,
         mut sink: impl FnMut(usize, f64),
     ) -> f64 {
         const ROW_COUPLING: f64 = 0.9;
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
-        let ds = flat(&at.coupling);
         let mut sum = 0.0;
         // `z` and the weight of the +x neighbour, solved just before.
         let (mut next, mut next_weight) = (0.0, 0.0);
         for i in (0..mx).rev() {
-            let k = j * mx + i;
-            let w = weight(j, i, k);
+            let w = weight(i);
             let z = if w == 0.0 {
                 0.0
             } else {
@@ -776,11 +873,11 @@ impl Problem<'_> {
                     } else {
                         1.0 / w
                     };
-                    ds[j * nx + i].clamp(-ROW_COUPLING * bound, ROW_COUPLING * bound)
+                    coupling[i].clamp(-ROW_COUPLING * bound, ROW_COUPLING * bound)
                 } else {
                     0.0
                 };
-                (rhs(k) - c * next) * w
+                (rhs(i) - c * next) * w
             };
             sink(i, z);
             (next, next_weight) = (z, w);
@@ -794,6 +891,15 @@ impl Problem<'_> {
     pub(super) fn mass(&self, curvature: &[f64], j: usize, i: usize, k: usize) -> f64 {
         if j < self.ny && i < self.nx {
             self.diagonal + curvature[k].max(0.0)
+        } else {
+            self.diagonal
+        }
+    }
+
+    /// [`Problem::mass`] of cell `i` of `row`.
+    pub(super) fn row_mass(&self, row: &Row, i: usize) -> f64 {
+        if row.j < self.ny && i < self.nx {
+            self.diagonal + row.curvature[i].max(0.0)
         } else {
             self.diagonal
         }
