@@ -920,6 +920,72 @@ mod tests {
         }
     }
 
+    /// The far field's update made in the evaluation's pass over the rows, the law's fields
+    /// unstored, gives what the evaluation and then the update over the stored fields give, to
+    /// the last bit: the pull, the held cells, the gradient and the step's sums; and the law's
+    /// fields stored afterwards are those the evaluation stores.
+    #[test]
+    fn the_update_in_the_evaluations_pass_is_the_update_after_it() {
+        let (n, length) = (24, 2.4e-7);
+        let lj = LennardJones::new(0.05, 2.071e-9).unwrap();
+        let heights = Array2::from_shape_fn((n, n), |(j, i)| {
+            3e-9 * ((i as f64 * 0.7).sin() * (j as f64 * 0.9).cos() + (i as f64 * 0.3 + j as f64 * 0.5).cos())
+        });
+        let problem = ContactProblem::builder()
+            .roughness(heights, length, length)
+            .periodic(true)
+            .modulus(25e6)
+            .law(SurfaceLaw(lj))
+            .build()
+            .unwrap();
+        let settings = Settings::with_method(Method::Flow);
+        let job = Job {
+            op: problem.operator.as_ref(),
+            law: problem.law.as_ref(),
+            g0: problem.initial_gap.view(),
+            control: Control::MeanPressure(2e4),
+            settings: &settings,
+            method: Method::Flow,
+            start: Start::Loading,
+        };
+        let Setup {
+            mut problem, mut x, ..
+        } = setup(&job, energy(&job).unwrap()).unwrap();
+        problem.couple_rows(&mut x).unwrap();
+        // Gaps from the wall to ten ranges, a few cells on it; some velocity.
+        let gap = Array2::from_shape_fn((n, n), |(j, i)| {
+            (((i * 7 + j * 13) % 23) as f64 / 2.2 - 0.5).max(0.0) * lj.z0()
+        });
+        let velocity = Array2::from_shape_fn((n, n), |(j, i)| 1e-11 * ((i + 2 * j) % 5) as f64 - 2e-11);
+        let (mut apart, mut together) = (Point::new(gap.clone()), Point::new(gap));
+        let (mut far_apart, mut far_together) = (FarField::new((n, n)), FarField::new((n, n)));
+        let (mut pull_apart, mut pull_together) = (Array2::zeros((n, n)), Array2::zeros((n, n)));
+        problem.evaluate(&mut apart).unwrap();
+        let (w1, m1) = far_apart
+            .update(&mut problem, &apart, &velocity, &mut pull_apart)
+            .unwrap();
+        let (w2, m2) = far_together
+            .evaluate_and_update(&mut problem, &mut together, &velocity, &mut pull_together)
+            .unwrap();
+        assert!(far_apart.held.iter().any(|&h| h == 0) && far_apart.held.iter().any(|&h| h == 1));
+        assert_eq!(pull_apart, pull_together);
+        assert_eq!(far_apart.held, far_together.held);
+        assert_eq!(apart.gradient, together.gradient);
+        assert_eq!(
+            (far_apart.step, far_apart.mean),
+            (far_together.step, far_together.mean)
+        );
+        assert_eq!(
+            (w1, m1.power, m1.vv, m1.va, m1.aa),
+            (w2, m2.power, m2.vv, m2.va, m2.aa)
+        );
+        problem.store_law(&mut together).unwrap();
+        assert_eq!(
+            (&apart.law, &apart.curvature, &apart.coupling),
+            (&together.law, &together.curvature, &together.coupling)
+        );
+    }
+
     /// The coupled mass keeps the force weight `<r, M^-1 r>` positive where a cell just above
     /// the wall (the law 200 times as stiff as the cell, and as stiff by its +x neighbour's
     /// gap) sits beside a soft one: clamped to the cell's own diagonal alone, the coupling made
