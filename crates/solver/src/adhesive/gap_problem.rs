@@ -857,22 +857,27 @@ impl Problem<'_> {
     ) -> f64 {
         const ROW_COUPLING: f64 = 0.9;
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
+        // The weights and the couplings' bounds first, in passes that vectorise (their
+        // divisions and roots were most of a row's time), then the back substitution. A stiff
+        // cell beside a soft one made `<v, P^-1 v>` negative, the flow's force weight, which
+        // then stopped every step (docs/decisions.md): the bound is the smaller of the cell's
+        // diagonal and the geometric mean of its and its neighbour's (none beside a held one).
+        let weights: Vec<f64> = (0..mx).map(weight).collect();
+        let bounds: Vec<f64> = weights
+            .iter()
+            .zip(weights.iter().skip(1).chain([&0.0]))
+            .map(|(&w, &next)| (1.0 / w).min((w * next).sqrt().recip()))
+            .collect();
         let mut sum = 0.0;
-        // `z` and the weight of the +x neighbour, solved just before.
-        let (mut next, mut next_weight) = (0.0, 0.0);
+        // `z` of the +x neighbour, solved just before.
+        let mut next = 0.0;
         for i in (0..mx).rev() {
-            let w = weight(i);
+            let w = weights[i];
             let z = if w == 0.0 {
                 0.0
             } else {
                 let c = if j < ny && i + 1 < nx {
-                    // A stiff cell beside a soft one made `<v, P^-1 v>` negative, the flow's
-                    // force weight, which then stopped every step (docs/decisions.md).
-                    let bound = if next_weight > 0.0 {
-                        (1.0 / w).min((w * next_weight).sqrt().recip())
-                    } else {
-                        1.0 / w
-                    };
+                    let bound = bounds[i];
                     coupling[i].clamp(-ROW_COUPLING * bound, ROW_COUPLING * bound)
                 } else {
                     0.0
@@ -880,7 +885,7 @@ impl Problem<'_> {
                 (rhs(i) - c * next) * w
             };
             sink(i, z);
-            (next, next_weight) = (z, w);
+            next = z;
             sum += z;
         }
         sum
