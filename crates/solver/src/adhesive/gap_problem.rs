@@ -404,7 +404,7 @@ impl Problem<'_> {
         let cell_energies = flat(&self.probe.0);
         let (gs, bs) = (flat(&at.gap), flat(&self.base));
         let es = flat(&at.elastic);
-        let (block_gap, cs) = (at.gap.slice(s![..ny, ..nx]), flat(&at.coupling));
+        let (block_gap, coupling) = (at.gap.slice(s![..ny, ..nx]), &at.coupling);
         let shared = &*self;
         let rows: Vec<([f64; 7], S)> = flat_mut(&mut at.law)
             .par_chunks_mut(mx)
@@ -423,8 +423,7 @@ impl Problem<'_> {
                             }
                             (p, c, d)
                         }
-                        _ if j < ny && shared.couple => (lr, cr, &cs[j * nx..][..nx]),
-                        _ => (lr, cr, &[]),
+                        _ => (lr, cr, shared.coupling_row(coupling, j)),
                     };
                     // Elastic energy, interaction energy and the load's potential, free gradient
                     // and count, non-finite gaps, smallest gap, largest projected gradient.
@@ -520,18 +519,23 @@ impl Problem<'_> {
     /// Row `j` of `at`'s stored fields.
     pub(super) fn row<'r>(&self, at: &'r Point, j: usize) -> Row<'r> {
         debug_assert!(at.law_stored, "the law's fields are not stored");
-        let (mx, nx) = (self.mx, self.nx);
-        let coupling = if self.couple && j < self.ny {
-            &flat(&at.coupling)[j * nx..][..nx]
-        } else {
-            &[]
-        };
+        let mx = self.mx;
         Row {
             j,
             gap: &flat(&at.gap)[j * mx..][..mx],
             gradient: &flat(&at.gradient)[j * mx..][..mx],
             curvature: &flat(&at.curvature)[j * mx..][..mx],
-            coupling,
+            coupling: self.coupling_row(&at.coupling, j),
+        }
+    }
+
+    /// Row `j` of a stored coupling field where the problem couples rows and `j` is on the
+    /// block; else empty.
+    fn coupling_row<'r>(&self, coupling: &'r Array2<f64>, j: usize) -> &'r [f64] {
+        if self.couple && j < self.ny {
+            &flat(coupling)[j * self.nx..][..self.nx]
+        } else {
+            &[]
         }
     }
 
@@ -796,13 +800,7 @@ impl Problem<'_> {
                 .sum::<f64>()
         };
         let prescribed = self.mean_gap.is_some();
-        let coupling = |j: usize| {
-            if self.couple && j < self.ny {
-                &flat(&at.coupling)[j * self.nx..][..self.nx]
-            } else {
-                &[]
-            }
-        };
+        let coupling = |j: usize| self.coupling_row(&at.coupling, j);
         // `P^-1 v` into `out`, with each row's sum, that of `P^-1 1` (its values not kept) and
         // `<z, v>`.
         let rows: Vec<[f64; 3]> = flat_mut(out)
