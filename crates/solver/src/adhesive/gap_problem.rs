@@ -856,35 +856,47 @@ impl Problem<'_> {
         const ROW_COUPLING: f64 = 0.9;
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
         // The weights and the couplings' bounds first, in passes that vectorise (their
-        // divisions and roots were most of a row's time), then the back substitution. A stiff
-        // cell beside a soft one made `<v, P^-1 v>` negative, the flow's force weight, which
-        // then stopped every step (docs/decisions.md): the bound is the smaller of the cell's
-        // diagonal and the geometric mean of its and its neighbour's (none beside a held one).
-        let weights: Vec<f64> = (0..mx).map(weight).collect();
-        let bounds: Vec<f64> = weights
-            .iter()
-            .zip(weights.iter().skip(1).chain([&0.0]))
-            .map(|(&w, &next)| (1.0 / w).min((w * next).sqrt().recip()))
-            .collect();
+        // divisions and roots were most of a row's time), then the back substitution, a block
+        // of the row at a time from its end (no allocation). A stiff cell beside a soft one
+        // made `<v, P^-1 v>` negative, the flow's force weight, which then stopped every step
+        // (docs/decisions.md): the bound is the smaller of the cell's diagonal and the
+        // geometric mean of its and its neighbour's (none beside a held one).
+        const BLOCK: usize = 256;
+        let (mut weights, mut bounds) = ([0.0; BLOCK + 1], [0.0; BLOCK]);
         let mut sum = 0.0;
-        // `z` of the +x neighbour, solved just before.
-        let mut next = 0.0;
-        for i in (0..mx).rev() {
-            let w = weights[i];
-            let z = if w == 0.0 {
-                0.0
-            } else {
-                let c = if j < ny && i + 1 < nx {
-                    let bound = bounds[i];
-                    coupling[i].clamp(-ROW_COUPLING * bound, ROW_COUPLING * bound)
-                } else {
+        // `z` of the +x neighbour, solved just before, and the weight of the cell after the
+        // block (none after the row's last).
+        let (mut next, mut after) = (0.0, 0.0);
+        let mut end = mx;
+        while end > 0 {
+            let start = end.saturating_sub(BLOCK);
+            let n = end - start;
+            weights[..n]
+                .iter_mut()
+                .enumerate()
+                .for_each(|(k, w)| *w = weight(start + k));
+            weights[n] = after;
+            bounds[..n]
+                .iter_mut()
+                .zip(weights[..n].iter().zip(&weights[1..=n]))
+                .for_each(|(b, (&w, &next))| *b = (1.0 / w).min((w * next).sqrt().recip()));
+            for k in (0..n).rev() {
+                let (i, w) = (start + k, weights[k]);
+                let z = if w == 0.0 {
                     0.0
+                } else {
+                    let c = if j < ny && i + 1 < nx {
+                        coupling[i].clamp(-ROW_COUPLING * bounds[k], ROW_COUPLING * bounds[k])
+                    } else {
+                        0.0
+                    };
+                    (rhs(i) - c * next) * w
                 };
-                (rhs(i) - c * next) * w
-            };
-            sink(i, z);
-            next = z;
-            sum += z;
+                sink(i, z);
+                next = z;
+                sum += z;
+            }
+            (after, end) = (weights[0], start);
         }
         sum
     }
