@@ -931,59 +931,40 @@ mod tests {
         let heights = Array2::from_shape_fn((n, n), |(j, i)| {
             3e-9 * ((i as f64 * 0.7).sin() * (j as f64 * 0.9).cos() + (i as f64 * 0.3 + j as f64 * 0.5).cos())
         });
-        let problem = ContactProblem::builder()
-            .roughness(heights, length, length)
-            .periodic(true)
-            .modulus(25e6)
-            .law(SurfaceLaw(lj))
-            .build()
-            .unwrap();
-        let settings = Settings::with_method(Method::Flow);
-        let job = Job {
-            op: problem.operator.as_ref(),
-            law: problem.law.as_ref(),
-            g0: problem.initial_gap.view(),
-            control: Control::MeanPressure(2e4),
-            settings: &settings,
-            method: Method::Flow,
-            start: Start::Loading,
-        };
-        let Setup {
-            mut problem, mut x, ..
-        } = setup(&job, energy(&job).unwrap()).unwrap();
-        problem.couple_rows(&mut x).unwrap();
-        // Gaps from the wall to ten ranges, a few cells on it; some velocity.
-        let gap = Array2::from_shape_fn((n, n), |(j, i)| {
-            (((i * 7 + j * 13) % 23) as f64 / 2.2 - 0.5).max(0.0) * lj.z0()
+        on_coupled_problem(heights, length, 2e4, |mut problem, _| {
+            // Gaps from the wall to ten ranges, a few cells on it; some velocity.
+            let gap = Array2::from_shape_fn((n, n), |(j, i)| {
+                (((i * 7 + j * 13) % 23) as f64 / 2.2 - 0.5).max(0.0) * lj.z0()
+            });
+            let velocity = Array2::from_shape_fn((n, n), |(j, i)| 1e-11 * ((i + 2 * j) % 5) as f64 - 2e-11);
+            let (mut apart, mut together) = (Point::new(gap.clone()), Point::new(gap));
+            let (mut far_apart, mut far_together) = (FarField::new((n, n)), FarField::new((n, n)));
+            let (mut pull_apart, mut pull_together) = (Array2::zeros((n, n)), Array2::zeros((n, n)));
+            problem.evaluate(&mut apart).unwrap();
+            let (w1, m1) = far_apart
+                .update(&mut problem, &apart, &velocity, &mut pull_apart)
+                .unwrap();
+            let (w2, m2) = far_together
+                .evaluate_and_update(&mut problem, &mut together, &velocity, &mut pull_together)
+                .unwrap();
+            assert!(far_apart.held.iter().any(|&h| h == 0) && far_apart.held.iter().any(|&h| h == 1));
+            assert_eq!(pull_apart, pull_together);
+            assert_eq!(far_apart.held, far_together.held);
+            assert_eq!(apart.gradient, together.gradient);
+            assert_eq!(
+                (far_apart.step, far_apart.mean),
+                (far_together.step, far_together.mean)
+            );
+            assert_eq!(
+                (w1, m1.power, m1.vv, m1.va, m1.aa),
+                (w2, m2.power, m2.vv, m2.va, m2.aa)
+            );
+            problem.store_law(&mut together).unwrap();
+            assert_eq!(
+                (&apart.law, &apart.curvature, &apart.coupling),
+                (&together.law, &together.curvature, &together.coupling)
+            );
         });
-        let velocity = Array2::from_shape_fn((n, n), |(j, i)| 1e-11 * ((i + 2 * j) % 5) as f64 - 2e-11);
-        let (mut apart, mut together) = (Point::new(gap.clone()), Point::new(gap));
-        let (mut far_apart, mut far_together) = (FarField::new((n, n)), FarField::new((n, n)));
-        let (mut pull_apart, mut pull_together) = (Array2::zeros((n, n)), Array2::zeros((n, n)));
-        problem.evaluate(&mut apart).unwrap();
-        let (w1, m1) = far_apart
-            .update(&mut problem, &apart, &velocity, &mut pull_apart)
-            .unwrap();
-        let (w2, m2) = far_together
-            .evaluate_and_update(&mut problem, &mut together, &velocity, &mut pull_together)
-            .unwrap();
-        assert!(far_apart.held.iter().any(|&h| h == 0) && far_apart.held.iter().any(|&h| h == 1));
-        assert_eq!(pull_apart, pull_together);
-        assert_eq!(far_apart.held, far_together.held);
-        assert_eq!(apart.gradient, together.gradient);
-        assert_eq!(
-            (far_apart.step, far_apart.mean),
-            (far_together.step, far_together.mean)
-        );
-        assert_eq!(
-            (w1, m1.power, m1.vv, m1.va, m1.aa),
-            (w2, m2.power, m2.vv, m2.va, m2.aa)
-        );
-        problem.store_law(&mut together).unwrap();
-        assert_eq!(
-            (&apart.law, &apart.curvature, &apart.coupling),
-            (&together.law, &together.curvature, &together.coupling)
-        );
     }
 
     /// The coupled mass keeps the force weight `<r, M^-1 r>` positive where a cell just above
@@ -994,12 +975,37 @@ mod tests {
     #[test]
     fn the_coupled_mass_keeps_the_force_weight_positive() {
         let (n, length) = (16, 1e-6);
-        let lj = LennardJones::new(0.05, 2.071e-9).unwrap();
+        on_coupled_problem(Array2::zeros((n, n)), length, 1e3, |problem, mut x| {
+            assert!(problem.coupled());
+            let cell = problem.diagonal;
+            // Stiff cells at even columns, coupled to their soft +x neighbours; the residual is
+            // `P z` for the direction `z = (-0.45, 1)` of each pair, along which the symmetric part
+            // of the mass clamped to the own diagonal alone is negative.
+            let (stiff, coupling) = (200.0 * cell, 0.9 * 201.0 * cell);
+            x.curvature = Array2::from_shape_fn((n, n), |(_, i)| if i % 2 == 0 { stiff } else { 0.0 });
+            x.coupling = Array2::from_shape_fn((n, n), |(_, i)| if i % 2 == 0 { coupling } else { 0.0 });
+            x.gradient = Array2::from_shape_fn((n, n), |(_, i)| {
+                if i % 2 == 0 {
+                    (201.0 * -0.45 + 0.9 * 201.0) * cell
+                } else {
+                    cell
+                }
+            });
+            let mut pull = Array2::zeros((n, n));
+            let weight = problem.precondition_rows(&x, &mut pull);
+            assert!(weight > 0.0, "force weight {weight:e}");
+        });
+    }
+
+    /// Hands `test` the gap problem of the surface law (w0 = 50 mJ/m^2, z0 = 2.071 nm) on the
+    /// periodic `heights` of side `length` \[m\], E* = 25 MPa, under the mean pressure `load`
+    /// \[Pa\], coupled by rows, with its first point.
+    fn on_coupled_problem(heights: Array2<f64>, length: f64, load: f64, test: impl FnOnce(Problem, Point)) {
         let problem = ContactProblem::builder()
-            .roughness(Array2::zeros((n, n)), length, length)
+            .roughness(heights, length, length)
             .periodic(true)
             .modulus(25e6)
-            .law(SurfaceLaw(lj))
+            .law(SurfaceLaw(LennardJones::new(0.05, 2.071e-9).unwrap()))
             .build()
             .unwrap();
         let settings = Settings::with_method(Method::Flow);
@@ -1007,7 +1013,7 @@ mod tests {
             op: problem.operator.as_ref(),
             law: problem.law.as_ref(),
             g0: problem.initial_gap.view(),
-            control: Control::MeanPressure(1e3),
+            control: Control::MeanPressure(load),
             settings: &settings,
             method: Method::Flow,
             start: Start::Loading,
@@ -1016,23 +1022,6 @@ mod tests {
             mut problem, mut x, ..
         } = setup(&job, energy(&job).unwrap()).unwrap();
         problem.couple_rows(&mut x).unwrap();
-        assert!(problem.coupled());
-        let cell = problem.diagonal;
-        // Stiff cells at even columns, coupled to their soft +x neighbours; the residual is
-        // `P z` for the direction `z = (-0.45, 1)` of each pair, along which the symmetric part
-        // of the mass clamped to the own diagonal alone is negative.
-        let (stiff, coupling) = (200.0 * cell, 0.9 * 201.0 * cell);
-        x.curvature = Array2::from_shape_fn((n, n), |(_, i)| if i % 2 == 0 { stiff } else { 0.0 });
-        x.coupling = Array2::from_shape_fn((n, n), |(_, i)| if i % 2 == 0 { coupling } else { 0.0 });
-        x.gradient = Array2::from_shape_fn((n, n), |(_, i)| {
-            if i % 2 == 0 {
-                (201.0 * -0.45 + 0.9 * 201.0) * cell
-            } else {
-                cell
-            }
-        });
-        let mut pull = Array2::zeros((n, n));
-        let weight = problem.precondition_rows(&x, &mut pull);
-        assert!(weight > 0.0, "force weight {weight:e}");
+        test(problem, x);
     }
 }
