@@ -904,17 +904,18 @@ impl Problem<'_> {
     /// Cell `(j, i)`'s mass \[Pa/m\], `k` its flat index and `curvature` the law's stiffness
     /// field: `S_ii + max(V'', 0)` on the domain's block, `S_ii` in the padding.
     pub(super) fn mass(&self, curvature: &[f64], j: usize, i: usize, k: usize) -> f64 {
-        if j < self.ny && i < self.nx {
-            self.diagonal + curvature[k].max(0.0)
-        } else {
-            self.diagonal
-        }
+        self.cell_mass(j, i, || curvature[k])
     }
 
     /// [`Problem::mass`] of cell `i` of `row`.
     pub(super) fn row_mass(&self, row: &Row, i: usize) -> f64 {
-        if row.j < self.ny && i < self.nx {
-            self.diagonal + row.curvature[i].max(0.0)
+        self.cell_mass(row.j, i, || row.curvature[i])
+    }
+
+    /// [`Problem::mass`] of cell `(j, i)`, its law's stiffness read only on the block.
+    fn cell_mass(&self, j: usize, i: usize, curvature: impl FnOnce() -> f64) -> f64 {
+        if j < self.ny && i < self.nx {
+            self.diagonal + curvature().max(0.0)
         } else {
             self.diagonal
         }
