@@ -38,17 +38,18 @@
 //! slowest part of all: its shift as a whole and its long wavelengths, which the flow alone
 //! moves for thousands of steps after the contact set has settled. The cells far from the
 //! wall leave their shift to a step of its own and, every few dozen steps, their whole field
-//! to conjugate gradients with the other cells held ([`FarField`]): light loads take a tenth
-//! of the steps, the challenge at 1024^2 half; the loading areas agree with the plain flow's
-//! within 1 %, the unloading branch's as closely as it agrees with itself under smaller load
-//! steps (`docs/decisions.md`). Under approach control on a periodic grid the mean gap is
+//! to conjugate gradients with the other cells held, preconditioned by the compliance
+//! ([`FarField`]): light loads take a tenth of the steps, the challenge at 1024^2 less than
+//! half; the loading areas agree with the plain flow's within 1 %, the unloading branch's as
+//! closely as it agrees with itself under smaller load steps (`docs/decisions.md`). Under approach control on a periodic grid the mean gap is
 //! prescribed, so the far field is not shifted, but its field is relaxed keeping its mean:
 //! the challenge at 512^2 takes a quarter of the steps, in the same states.
 //!
 //! Cost: one application of the stiffness and one evaluation of the law a step (the line and
 //! surface laws with their stiffness by a cell's own gap and by its neighbour's in closed form;
-//! a law of the user's without it is probed, two more evaluations), and under load control up
-//! to [`RELAX_ITERATIONS`] applications every [`RELAX_EVERY`] steps.
+//! a law of the user's without it is probed, two more evaluations), and with the far field up
+//! to [`RELAX_ITERATIONS`] iterations of two transforms each (the stiffness and the
+//! compliance; about ten iterations) every [`RELAX_EVERY`] steps.
 
 use super::driver::Driver;
 use super::gap_problem::{Energy, Point, Problem, Row, Setup, check_control, finish, setup};
@@ -107,8 +108,9 @@ const HANDOVER_STEPS: usize = 300;
 const SHIFT_SHARE: f64 = 0.3;
 const SOFT_CLEARANCE: f64 = 5.0;
 /// Under load control, the steps between two solves of the soft cells' balance
-/// ([`FarField::relax`]), the conjugate-gradient iterations a solve takes at most, and the
-/// fall of its residual's norm (preconditioned) at which it stops (`docs/decisions.md`).
+/// ([`FarField::relax`]), the conjugate-gradient iterations a solve takes at most (it takes
+/// about ten), and the fall of its residual's norm (preconditioned) at which it stops
+/// (`docs/decisions.md`).
 const RELAX_EVERY: usize = 50;
 const RELAX_ITERATIONS: usize = 30;
 const RELAX_TOLERANCE: f64 = 1e-2;
@@ -401,7 +403,8 @@ fn hand_over(
 ///   field. One more application of the stiffness each time the soft set changes.
 /// - the relaxation of the far field, every [`RELAX_EVERY`] steps ([`FarField::relax`]): all
 ///   of the soft cells' wavelengths at once, by conjugate gradients with the other cells
-///   held, where the flow's strongly damped dynamics takes ~250 steps a decade at 1024^2.
+///   held and the compliance as preconditioner, where the flow's strongly damped dynamics
+///   takes ~250 steps a decade at 1024^2.
 struct FarField {
     /// 1 on the held cells, 0 on the soft cells (bytes: read twice a step under load
     /// control, a field of doubles costs a step's time on grids past the cache).
@@ -416,9 +419,27 @@ struct FarField {
     /// The pull's mean over the soft cells \[m per time unit squared\], which the shift moves
     /// them by instead of the flow.
     mean: f64,
-    /// The relaxation's move, residual, direction and the operator on it (made at its first
+    /// The relaxation's move, residual, direction, the operator on it and the preconditioned
+    /// residual (made at its first use).
+    work: Option<[Array2<f64>; 5]>,
+    /// Under a prescribed mean gap, the preconditioned soft cells' indicator (made at its first
     /// use).
-    work: Option<[Array2<f64>; 4]>,
+    projection: Option<Array2<f64>>,
+}
+
+/// The correction of the soft cells' uniform mode in [`FarField::precondition`].
+enum Correction<'a> {
+    /// The uniform mode's stiffness \[Pa/m, summed over cells\] (load control).
+    Uniform(f64),
+    /// The preconditioned indicator `w` and `u^T w` (a prescribed mean gap).
+    KeepSum(&'a Array2<f64>, f64),
+}
+
+/// The sum of a field over all cells, in a fixed order.
+fn total(problem: &Problem, f: &Array2<f64>) -> f64 {
+    let (mx, fs) = (problem.mx, crate::fields::flat(f));
+    let [sum] = crate::sum::ordered(problem.my, |j| [fs[j * mx..(j + 1) * mx].iter().sum::<f64>()]);
+    sum
 }
 
 impl FarField {
@@ -430,6 +451,7 @@ impl FarField {
             step: 0.0,
             mean: 0.0,
             work: None,
+            projection: None,
         }
     }
 
@@ -444,63 +466,56 @@ impl FarField {
     }
 
     /// Writes into `trial`'s gap (to be evaluated) the point `x` with its soft cells moved
-    /// towards their balance with the other cells held: conjugate gradients on `(S + max(K, 0)) d = -r` restricted to the
-    /// soft cells (positive definite: the held cells give even the uniform mode a stiffness),
-    /// preconditioned by its diagonal, for at most [`RELAX_ITERATIONS`]. The law's curvature
-    /// enters by its stable part only and is weak this far from the wall, so the move falls
-    /// short of the balance rather than past it. Under a prescribed mean gap the move keeps
-    /// the soft cells' sum (projected conjugate gradients: the preconditioned residual is
-    /// `(q - lambda) / m`, `lambda` the `1 / m`-weighted mean of the residual `q` over them).
+    /// towards their balance with the other cells held: conjugate gradients on
+    /// `(S + max(K, 0)) d = -r` restricted to the soft cells (positive definite: the held cells
+    /// give even the uniform mode a stiffness), for at most [`RELAX_ITERATIONS`]. The law's
+    /// curvature enters by its stable part only and is weak this far from the wall, so the
+    /// move falls short of the balance rather than past it. Preconditioned by the compliance
+    /// restricted to the soft cells, `P S^-1 P` ([`FarField::precondition`]): the soft cells
+    /// are most of the grid, so it is nearly the operator's inverse, and a solve takes about
+    /// ten iterations at any size where the diagonal took hundreds (`docs/decisions.md`).
+    /// Under a prescribed mean gap the move keeps the soft cells' sum (projected conjugate
+    /// gradients).
     fn relax(&mut self, problem: &mut Problem, x: &Point, trial: &mut Point) -> Result<()> {
-        use crate::fields::flat;
-        let (mx, cell) = (problem.mx, problem.diagonal);
-        let [delta, residual, direction, applied] = self
+        use crate::fields::{flat, flat_mut};
+        let mx = problem.mx;
+        let [delta, residual, direction, applied, z] = self
             .work
             .get_or_insert_with(|| std::array::from_fn(|_| Array2::zeros(x.gap.dim())));
         let held = &self.held;
-        // The preconditioner's diagonal `S_ii + max(K, 0)`, and the law's part of it.
         let law = |c: f64| c.max(0.0);
-        let mass = |c: f64| cell + law(c);
-        // `[sum q^2 / m, sum q / m]` over the soft cells (`q` is 0 on the others), and the
-        // multiplier `lambda` they give with `sum 1 / m`.
-        let (hs, cs) = (flat(held), flat(&x.curvature));
-        let sums = |q: &[f64]| {
-            crate::sum::ordered(problem.my, |j| {
-                let row = j * mx..(j + 1) * mx;
-                let (q, c) = (&q[row.clone()], &cs[row]);
-                let qq = q.iter().zip(c).map(|(&q, &c)| q * q / mass(c)).sum::<f64>();
-                [qq, q.iter().zip(c).map(|(&q, &c)| q / mass(c)).sum::<f64>()]
-            })
-        };
-        let compliance = match problem.mean_gap {
+        let correction = match problem.mean_gap {
             Some(_) => {
-                let [w] = crate::sum::ordered(problem.my, |j| {
+                // `w = P S^-1 P u` and `u^T w`, `u` the soft cells' indicator.
+                let w = self.projection.get_or_insert_with(|| Array2::zeros(x.gap.dim()));
+                Zip::from(&mut *z)
+                    .and(held)
+                    .par_for_each(|u, &h| *u = f64::from(u8::from(h == 0)));
+                FarField::compliance(problem, held, z, w)?;
+                let uw = total(problem, w);
+                Correction::KeepSum(w, uw)
+            }
+            None => {
+                let [law_sum] = crate::sum::ordered(problem.my, |j| {
                     let row = j * mx..(j + 1) * mx;
-                    [cs[row.clone()]
-                        .iter()
-                        .zip(&hs[row])
+                    let (cs, hs) = (&flat(&x.curvature)[row.clone()], &flat(held)[row]);
+                    [cs.iter()
+                        .zip(hs)
                         .filter(|(_, h)| **h == 0)
-                        .map(|(&c, _)| 1.0 / mass(c))
+                        .map(|(&c, _)| law(c))
                         .sum::<f64>()]
                 });
-                w
+                Correction::Uniform(self.elastic + law_sum)
             }
-            None => 0.0,
         };
-        let multiplier = |q1: f64| if compliance > 0.0 { q1 / compliance } else { 0.0 };
         delta.fill(0.0);
         Zip::from(&mut *residual)
             .and(held)
             .and(&x.gradient)
             .par_for_each(|q, &h, &r| *q = if h == 0 { -r } else { 0.0 });
-        let mut lambda = multiplier(sums(flat(residual))[1]);
-        // The preconditioned residual `z`, kept in `direction` first.
-        Zip::from(&mut *direction)
-            .and(&*residual)
-            .and(held)
-            .and(&x.curvature)
-            .par_for_each(|z, &q, &h, &c| *z = if h == 0 { (q - lambda) / mass(c) } else { 0.0 });
-        let mut qz = crate::sum::dot_chunks(flat(residual), flat(direction), mx);
+        FarField::precondition(problem, held, &correction, residual, z)?;
+        direction.assign(z);
+        let mut qz = crate::sum::dot_chunks(flat(residual), flat(z), mx);
         let first = qz;
         for _ in 0..RELAX_ITERATIONS {
             if qz <= RELAX_TOLERANCE * RELAX_TOLERANCE * first {
@@ -522,25 +537,65 @@ impl FarField {
             let alpha = qz / curvature;
             delta.scaled_add(alpha, direction);
             residual.scaled_add(-alpha, applied);
-            // `sum q z` of the new residual, then the direction `z + beta d` in place.
-            let [qq, q1] = sums(flat(residual));
-            lambda = multiplier(q1);
-            let qz_new = qq - lambda * q1;
+            FarField::precondition(problem, held, &correction, residual, z)?;
+            let qz_new = crate::sum::dot_chunks(flat(residual), flat(z), mx);
             let beta = qz_new / qz;
-            Zip::from(&mut *direction)
-                .and(&*residual)
-                .and(held)
-                .and(&x.curvature)
-                .par_for_each(|d, &q, &h, &c| {
-                    *d = if h == 0 {
-                        (q - lambda) / mass(c) + beta * *d
-                    } else {
-                        0.0
-                    }
-                });
+            Zip::from(flat_mut(direction))
+                .and(flat(z))
+                .par_for_each(|d, &z| *d = z + beta * *d);
             qz = qz_new;
         }
         problem.step_and_project(&x.gap, delta, 1.0, &mut trial.gap, None);
+        Ok(())
+    }
+
+    /// `z = P S^-1 P q` on the soft cells (0 on the held ones), with the correction
+    /// `correction` says: the periodic compliance takes no uniform field, so under load control
+    /// the soft cells' uniform mode gets its own stiffness back as a rank-one term, and under
+    /// a prescribed mean gap `z` is projected onto moves that keep their sum (`P S^-1 P` is
+    /// positive definite on those while any cell is held).
+    fn precondition(
+        problem: &mut Problem,
+        held: &Array2<u8>,
+        correction: &Correction,
+        q: &Array2<f64>,
+        z: &mut Array2<f64>,
+    ) -> Result<()> {
+        FarField::compliance(problem, held, q, z)?;
+        match *correction {
+            Correction::KeepSum(w, uw) if uw > 0.0 => {
+                let c = total(problem, z) / uw;
+                z.scaled_add(-c, w)
+            }
+            Correction::Uniform(stiffness) if stiffness > 0.0 => {
+                let c = total(problem, q) / stiffness;
+                Zip::from(z).and(held).par_for_each(|z, &h| {
+                    if h == 0 {
+                        *z += c
+                    }
+                });
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// `out = P S^-1 P q` for `q` zero on the held cells.
+    fn compliance(
+        problem: &mut Problem,
+        held: &Array2<u8>,
+        q: &Array2<f64>,
+        out: &mut Array2<f64>,
+    ) -> Result<()> {
+        problem
+            .stiffness
+            .invert(q.view(), out.view_mut(), &mut problem.ws)?;
+        problem.calls += 1;
+        Zip::from(out).and(held).par_for_each(|o, &h| {
+            if h != 0 {
+                *o = 0.0
+            }
+        });
         Ok(())
     }
 
@@ -995,6 +1050,140 @@ mod tests {
             let weight = problem.precondition_rows(&x, &mut pull);
             assert!(weight > 0.0, "force weight {weight:e}");
         });
+    }
+
+    /// The far field's relaxation, preconditioned by the compliance, solves its linear model of
+    /// the soft cells' balance in a few iterations: the challenge's surface at 256^2 (cells 190
+    /// process zones wide) at rest under the flow, its soft cells then displaced by a long wave
+    /// a tenth of a range high, under load control and under a prescribed mean gap (whose sum
+    /// it keeps).
+    #[test]
+    fn the_far_fields_relaxation_restores_the_soft_cells_balance() {
+        let (n, length, e_star) = (256, 2.5e-5, 25e6);
+        let grid = surfgen::Grid::square(n, length).unwrap();
+        let spec = surfgen::SurfaceSpec {
+            grid,
+            psd: surfgen::Psd::self_affine(0.8, length / 5.0, 4.0 * grid.dx()),
+            normalization: surfgen::Normalization::RmsGradient(1.0),
+            amplitudes: surfgen::Amplitudes::Exact,
+            seed: 1,
+        };
+        let lj = LennardJones::new(0.05, 2.071e-9).unwrap();
+        let contact = ContactProblem::builder()
+            .roughness(surfgen::generate(&spec).unwrap().heights, length, length)
+            .periodic(true)
+            .modulus(e_star)
+            .law(SurfaceLaw(lj))
+            .build()
+            .unwrap();
+        let settings = Settings {
+            max_iterations: 200_000,
+            ..Settings::with_method(Method::Flow)
+        };
+        let load = Control::MeanPressure(0.005 * e_star);
+        let job = |control| Job {
+            op: contact.operator.as_ref(),
+            law: contact.law.as_ref(),
+            g0: contact.initial_gap.view(),
+            control,
+            settings: &settings,
+            method: Method::Flow,
+            start: Start::Loading,
+        };
+        let (rest, report) = Flow.solve(&job(load), &mut |_, _| true).unwrap();
+        assert!(report.converged());
+        let wave = Array2::from_shape_fn((n, n), |(j, i)| {
+            let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
+            0.1 * lj.z0() * (std::f64::consts::TAU * x).sin() * (std::f64::consts::TAU * (x + y)).cos()
+        });
+        // Of zero sum over the cells it moves, which keeps the prescribed mean gap.
+        let soft = rest.contact.gap.mapv(|g| g > SOFT_CLEARANCE * 2.0 * lj.z0());
+        let mean = Zip::from(&wave)
+            .and(&soft)
+            .fold(0.0, |m, &w, &s| if s { m + w } else { m })
+            / soft.iter().filter(|&&s| s).count() as f64;
+        let wave = wave - mean;
+        for control in [load, Control::Approach(report.approach)] {
+            let j = job(control);
+            let Setup {
+                mut problem, mut x, ..
+            } = setup(&j, energy(&j).unwrap()).unwrap();
+            problem.couple_rows(&mut x).unwrap();
+            Zip::from(&mut x.gap)
+                .and(&rest.contact.gap)
+                .and(&wave)
+                .and(&soft)
+                .for_each(|g, &at, &w, &s| *g = if s { at + w } else { at });
+            problem.evaluate(&mut x).unwrap();
+            problem.project_gradient(&mut x);
+            let mut far = FarField::new((n, n));
+            match control {
+                Control::MeanPressure(_) => {
+                    let (velocity, mut pull) = (Array2::zeros((n, n)), Array2::zeros((n, n)));
+                    far.update(&mut problem, &x, &velocity, &mut pull).unwrap();
+                }
+                _ => far.mark(&problem, &x),
+            }
+            let calls = problem.calls;
+            let mut trial = Point::new(x.gap.clone());
+            far.relax(&mut problem, &x, &mut trial).unwrap();
+            let applications = problem.calls - calls;
+            // How far the soft cells end from their place at rest, and the sum of their move.
+            let (mut off, mut moved, mut count) = (0.0f64, 0.0, 0);
+            Zip::from(&trial.gap)
+                .and(&x.gap)
+                .and(&rest.contact.gap)
+                .and(&far.held)
+                .for_each(|&g, &g1, &at, &h| {
+                    if h == 0 {
+                        off = off.max((g - at).abs());
+                        moved += g - g1;
+                        count += 1;
+                    }
+                });
+            // The soft cells' force in the relaxation's linear model, `r + (S + max(K, 0)) d` for
+            // the move `d`, against the force before it, in the compliance's norm (the energy
+            // norm of the move's error).
+            let d = &trial.gap - &x.gap;
+            let mut force = Array2::zeros((n, n));
+            problem
+                .stiffness
+                .apply(d.view(), force.view_mut(), &mut problem.ws)
+                .unwrap();
+            Zip::from(&mut force)
+                .and(&x.gradient)
+                .and(&d)
+                .and(&x.curvature)
+                .and(&far.held)
+                .for_each(|f, &r, &d, &c, &h| *f = if h == 0 { *f + r + c.max(0.0) * d } else { 0.0 });
+            let before = x.gradient.clone() * far.held.mapv(|h| f64::from(u8::from(h == 0)));
+            let norm = |problem: &mut Problem, r: &Array2<f64>| {
+                let mut u = Array2::zeros((n, n));
+                problem
+                    .stiffness
+                    .invert(r.view(), u.view_mut(), &mut problem.ws)
+                    .unwrap();
+                (r * &u).sum().sqrt()
+            };
+            let left = norm(&mut problem, &force) / norm(&mut problem, &before);
+            println!(
+                "{control:?}: {count} soft cells, {applications} applications, force down to {left:.2e}, within {:.2e} z0 of rest, sum of the move {:.2e} z0",
+                off / lj.z0(),
+                moved / lj.z0()
+            );
+            assert!(count > n * n / 2, "{count} soft cells");
+            // Two applications an iteration and one first: ten iterations at most, where the
+            // diagonal took its thirty.
+            assert!(applications <= 21, "{applications} applications");
+            assert!(left < 0.02, "the force down to {left:.2e} only");
+            if let Control::Approach(_) = control {
+                assert!(
+                    moved.abs() < 1e-9 * count as f64 * lj.z0(),
+                    "{:e} z0",
+                    moved / lj.z0()
+                );
+            }
+        }
     }
 
     /// Hands `test` the gap problem of the surface law (w0 = 50 mJ/m^2, z0 = 2.071 nm) on the
