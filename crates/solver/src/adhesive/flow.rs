@@ -802,23 +802,8 @@ mod tests {
     /// approaches the loads reached.
     #[test]
     fn the_far_field_keeps_the_flows_states() {
-        let (n, length, e_star) = (64, 2.5e-5, 25e6);
-        let grid = surfgen::Grid::square(n, length).unwrap();
-        let spec = surfgen::SurfaceSpec {
-            grid,
-            psd: surfgen::Psd::self_affine(0.8, length / 5.0, 4.0 * grid.dx()),
-            normalization: surfgen::Normalization::RmsGradient(1.0),
-            amplitudes: surfgen::Amplitudes::Exact,
-            seed: 1,
-        };
-        let lj = LennardJones::new(0.05, 2.071e-9).unwrap();
-        let problem = ContactProblem::builder()
-            .roughness(surfgen::generate(&spec).unwrap().heights, length, length)
-            .periodic(true)
-            .modulus(e_star)
-            .law(SurfaceLaw(lj))
-            .build()
-            .unwrap();
+        let (n, e_star) = (64, 25e6);
+        let (problem, lj) = challenge(n);
         let settings = Settings {
             max_iterations: 200_000,
             ..Settings::with_method(Method::Flow)
@@ -1053,29 +1038,14 @@ mod tests {
     }
 
     /// The far field's relaxation, preconditioned by the compliance, solves its linear model of
-    /// the soft cells' balance in a few iterations: the challenge's surface at 256^2 (cells 190
+    /// the soft cells' balance in a few iterations: the challenge's surface at 256^2 (cells 48
     /// process zones wide) at rest under the flow, its soft cells then displaced by a long wave
     /// a tenth of a range high, under load control and under a prescribed mean gap (whose sum
     /// it keeps).
     #[test]
     fn the_far_fields_relaxation_restores_the_soft_cells_balance() {
-        let (n, length, e_star) = (256, 2.5e-5, 25e6);
-        let grid = surfgen::Grid::square(n, length).unwrap();
-        let spec = surfgen::SurfaceSpec {
-            grid,
-            psd: surfgen::Psd::self_affine(0.8, length / 5.0, 4.0 * grid.dx()),
-            normalization: surfgen::Normalization::RmsGradient(1.0),
-            amplitudes: surfgen::Amplitudes::Exact,
-            seed: 1,
-        };
-        let lj = LennardJones::new(0.05, 2.071e-9).unwrap();
-        let contact = ContactProblem::builder()
-            .roughness(surfgen::generate(&spec).unwrap().heights, length, length)
-            .periodic(true)
-            .modulus(e_star)
-            .law(SurfaceLaw(lj))
-            .build()
-            .unwrap();
+        let (n, e_star) = (256, 25e6);
+        let (contact, lj) = challenge(n);
         let settings = Settings {
             max_iterations: 200_000,
             ..Settings::with_method(Method::Flow)
@@ -1184,6 +1154,31 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The contact-mechanics challenge's surface family on `n^2` cells of a 25 um box (H = 0.8,
+    /// roll-off a fifth of the box, cut-off four cells, RMS gradient 1, seed 1), periodic,
+    /// E* = 25 MPa, with the surface law (w0 = 50 mJ/m^2, z0 = 2.071 nm): cells 190 process
+    /// zones wide at 64^2.
+    fn challenge(n: usize) -> (ContactProblem, LennardJones) {
+        let length = 2.5e-5;
+        let grid = surfgen::Grid::square(n, length).unwrap();
+        let spec = surfgen::SurfaceSpec {
+            grid,
+            psd: surfgen::Psd::self_affine(0.8, length / 5.0, 4.0 * grid.dx()),
+            normalization: surfgen::Normalization::RmsGradient(1.0),
+            amplitudes: surfgen::Amplitudes::Exact,
+            seed: 1,
+        };
+        let lj = LennardJones::new(0.05, 2.071e-9).unwrap();
+        let problem = ContactProblem::builder()
+            .roughness(surfgen::generate(&spec).unwrap().heights, length, length)
+            .periodic(true)
+            .modulus(25e6)
+            .law(SurfaceLaw(lj))
+            .build()
+            .unwrap();
+        (problem, lj)
     }
 
     /// Hands `test` the gap problem of the surface law (w0 = 50 mJ/m^2, z0 = 2.071 nm) on the
