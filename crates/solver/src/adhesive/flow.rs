@@ -41,9 +41,10 @@
 //! to conjugate gradients with the other cells held, preconditioned by the compliance
 //! ([`FarField`]): light loads take a tenth of the steps, the challenge at 1024^2 less than
 //! half; the loading areas agree with the plain flow's within 1 %, the unloading branch's as
-//! closely as it agrees with itself under smaller load steps (`docs/decisions.md`). Under approach control on a periodic grid the mean gap is
-//! prescribed, so the far field is not shifted, but its field is relaxed keeping its mean:
-//! the challenge at 512^2 takes a quarter of the steps, in the same states.
+//! closely as it agrees with itself under smaller load steps (`docs/decisions.md`). Under
+//! approach control on a periodic grid the mean gap is prescribed, so the far field is not
+//! shifted, but its field is relaxed keeping its mean: the challenge at 512^2 takes a quarter
+//! of the steps, in the same states.
 //!
 //! Cost: one application of the stiffness and one evaluation of the law a step (the line and
 //! surface laws with their stiffness by a cell's own gap and by its neighbour's in closed form;
@@ -1043,7 +1044,7 @@ mod tests {
     /// a tenth of a range high, under load control and under a prescribed mean gap (whose sum
     /// it keeps).
     #[test]
-    fn the_far_fields_relaxation_restores_the_soft_cells_balance() {
+    fn the_far_fields_relaxation_solves_its_linear_model_in_a_few_iterations() {
         let (n, e_star) = (256, 25e6);
         let (contact, lj) = challenge(n);
         let settings = Settings {
@@ -1098,15 +1099,13 @@ mod tests {
             let mut trial = Point::new(x.gap.clone());
             far.relax(&mut problem, &x, &mut trial).unwrap();
             let applications = problem.calls - calls;
-            // How far the soft cells end from their place at rest, and the sum of their move.
-            let (mut off, mut moved, mut count) = (0.0f64, 0.0, 0);
+            // The soft cells' number and the sum of their move.
+            let (mut moved, mut count) = (0.0, 0);
             Zip::from(&trial.gap)
                 .and(&x.gap)
-                .and(&rest.contact.gap)
                 .and(&far.held)
-                .for_each(|&g, &g1, &at, &h| {
+                .for_each(|&g, &g1, &h| {
                     if h == 0 {
-                        off = off.max((g - at).abs());
                         moved += g - g1;
                         count += 1;
                     }
@@ -1137,8 +1136,7 @@ mod tests {
             };
             let left = norm(&mut problem, &force) / norm(&mut problem, &before);
             println!(
-                "{control:?}: {count} soft cells, {applications} applications, force down to {left:.2e}, within {:.2e} z0 of rest, sum of the move {:.2e} z0",
-                off / lj.z0(),
+                "{control:?}: {count} soft cells, {applications} applications, force down to {left:.2e}, sum of the move {:.2e} z0",
                 moved / lj.z0()
             );
             assert!(count > n * n / 2, "{count} soft cells");
