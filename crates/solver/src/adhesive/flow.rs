@@ -115,6 +115,13 @@ const SOFT_CLEARANCE: f64 = 5.0;
 const RELAX_EVERY: usize = 50;
 const RELAX_ITERATIONS: usize = 30;
 const RELAX_TOLERANCE: f64 = 1e-2;
+/// Cells a step's changes of the held set may cost in lookups of the stiffness's kernel
+/// before [`FarField::settle`] transforms the held set again instead: one lookup a
+/// `LOOKUP_SHARE`-th of the grid's cells, about a transform pair's time at 4096^2
+/// (`docs/decisions.md`).
+const LOOKUP_SHARE: usize = 32;
+/// The changed cells a row records for that update, at most.
+const ROW_RECORD: usize = 64;
 
 /// The relaxation of the module docs.
 pub(super) struct Flow;
@@ -410,8 +417,14 @@ struct FarField {
     /// 1 on the held cells, 0 on the soft cells (bytes: read twice a step under load
     /// control, a field of doubles costs a step's time on grids past the cache).
     held: Array2<u8>,
-    /// `S held` \[Pa per m\], recomputed only when the held cells change.
+    /// `S held` \[Pa/m\] as the held set was when last transformed.
     response: Array2<f64>,
+    /// The cells whose flag changed since, by flat index, with the change (+1 held, -1 soft);
+    /// `None` before the first transform.
+    changes: Option<Vec<(usize, f64)>>,
+    /// The stiffness's kernel `S e_0` \[Pa/m\] at offsets `(0..=my/2, 0..=mx/2)` (it is even in
+    /// each axis), made at the first transform.
+    kernel: Option<Array2<f64>>,
     /// `held^T S held` \[Pa/m, summed over cells\]: the soft cells' elastic stiffness for a
     /// uniform move, `u^T S u` with `u = 1 - held` (a periodic `S` takes no uniform field).
     elastic: f64,
@@ -448,6 +461,8 @@ impl FarField {
         FarField {
             held: Array2::from_elem(shape, u8::MAX),
             response: Array2::zeros(shape),
+            changes: None,
+            kernel: None,
             elastic: 0.0,
             step: 0.0,
             mean: 0.0,
@@ -614,7 +629,7 @@ impl FarField {
         use crate::fields::{flat, flat_mut};
         use rayon::prelude::*;
         let (mx, shared) = (problem.mx, &*problem);
-        let rows: Vec<[f64; 13]> = flat_mut(&mut self.held)
+        let rows: Vec<([f64; 13], Vec<usize>)> = flat_mut(&mut self.held)
             .par_chunks_mut(mx)
             .zip(flat_mut(pull).par_chunks_mut(mx))
             .enumerate()
@@ -648,20 +663,29 @@ impl FarField {
     }
 
     /// Row `row.j` of [`FarField::update`]: writes the row's pull into `pr` and its held cells
-    /// into `hr`; returns whether any held cell changed, the law's stable stiffness, force,
-    /// pull, number, and `sum m v`, `sum m a`, `sum m` over the soft cells; the moments over
-    /// all cells; the force weight.
-    fn update_row(problem: &Problem, row: Row, vs: &[f64], hr: &mut [u8], pr: &mut [f64]) -> [f64; 13] {
+    /// into `hr`; returns the number of held cells that changed, the law's stable stiffness,
+    /// force, pull, number, and `sum m v`, `sum m a`, `sum m` over the soft cells; the moments
+    /// over all cells; the force weight; and the changed cells, the first [`ROW_RECORD`].
+    fn update_row(
+        problem: &Problem,
+        row: Row,
+        vs: &[f64],
+        hr: &mut [u8],
+        pr: &mut [f64],
+    ) -> ([f64; 13], Vec<usize>) {
         let (cell, clearance) = (problem.diagonal, SOFT_CLEARANCE * problem.law.range());
         let vs = &vs[row.j * problem.mx..][..problem.mx];
         let (gs, cs, rs) = (row.gap, row.curvature, row.gradient);
-        let mut sums = [0.0; 13];
+        let (mut sums, mut changed) = ([0.0; 13], Vec::new());
         sums[12] = problem.pull_row(&row, pr);
         for (i, (h, &a)) in hr.iter_mut().zip(&*pr).enumerate() {
             let held = soft_or_held(gs[i], cs[i], clearance, cell);
             if *h != held {
                 *h = held;
-                sums[0] = 1.0;
+                sums[0] += 1.0;
+                if changed.len() < ROW_RECORD {
+                    changed.push(row.j * problem.mx + i);
+                }
             }
             let (m, v) = (problem.row_mass(&row, i), vs[i]);
             if held == 0 {
@@ -675,14 +699,12 @@ impl FarField {
             }
             Moments::add(&mut sums[8..], rs[i], m, v, a);
         }
-        sums
+        (sums, changed)
     }
 
     /// The rest of [`FarField::update`] from its rows' sums.
-    fn settle(&mut self, problem: &mut Problem, rows: &[[f64; 13]]) -> Result<(f64, Moments)> {
-        use crate::fields::flat;
-        let mx = problem.mx;
-        let sums = rows.iter().fold([0.0; 13], |mut a, r| {
+    fn settle(&mut self, problem: &mut Problem, rows: &[([f64; 13], Vec<usize>)]) -> Result<(f64, Moments)> {
+        let sums = rows.iter().map(|r| &r.0).fold([0.0; 13], |mut a, r| {
             a.iter_mut().zip(r).for_each(|(a, r)| *a += r);
             a
         });
@@ -702,26 +724,7 @@ impl FarField {
             weight,
         ] = sums;
         if changed > 0.0 {
-            let hs = flat(&self.held);
-            problem.stiffness.apply_rows(
-                |y, row| {
-                    let at = &hs[y * mx..(y + 1) * mx];
-                    row.iter_mut().zip(at).for_each(|(u, &h)| *u = f64::from(h));
-                },
-                self.response.view_mut(),
-                &mut problem.ws,
-            )?;
-            problem.calls += 1;
-            let response = flat(&self.response);
-            let [elastic] = crate::sum::ordered(problem.my, |j| {
-                let row = j * mx..(j + 1) * mx;
-                [hs[row.clone()]
-                    .iter()
-                    .zip(&response[row])
-                    .map(|(&h, r)| f64::from(h) * r)
-                    .sum::<f64>()]
-            });
-            self.elastic = elastic;
+            self.follow_held(problem, changed as usize, rows.iter().flat_map(|r| &r.1))?;
         }
         let stiffness = self.elastic + law;
         (self.step, self.mean) = if soft == 0.0 || stiffness <= 0.0 {
@@ -738,6 +741,79 @@ impl FarField {
             aa: (aa - 2.0 * mean * ma + mean * mean * mass).max(0.0),
         };
         Ok((weight, moments))
+    }
+
+    /// Brings `elastic`, `held^T S held`, up to `changed` cells of `held` changing (those
+    /// `recorded`): from the transform's `S held` and the kernel between the changed cells,
+    /// `e + 2 d^T S h + d^T S d` for a change `d` of `h`, while that takes fewer lookups than
+    /// [`LOOKUP_SHARE`] allows; else by transforming `held` again. The same number to rounding:
+    /// a step's changes are a few cells while the contact set snaps.
+    fn follow_held<'a>(
+        &mut self,
+        problem: &mut Problem,
+        changed: usize,
+        recorded: impl Iterator<Item = &'a usize>,
+    ) -> Result<()> {
+        use crate::fields::flat;
+        let (mx, my) = (problem.mx, problem.my);
+        let hs = flat(&self.held);
+        let new: Vec<(usize, f64)> = recorded
+            .map(|&k| (k, if hs[k] == 1 { 1.0 } else { -1.0 }))
+            .collect();
+        if let (Some(changes), Some(kernel)) = (&mut self.changes, &self.kernel)
+            && new.len() == changed
+            && changed * (changes.len() + changed) <= mx * my / LOOKUP_SHARE
+        {
+            let fold = |a: usize, b: usize, n: usize| {
+                let d = a.abs_diff(b);
+                d.min(n - d)
+            };
+            let k = |a: usize, b: usize| kernel[(fold(a / mx, b / mx, my), fold(a % mx, b % mx, mx))];
+            let response = flat(&self.response);
+            let mut step = 0.0;
+            for &(i, d) in &new {
+                let s_h = response[i] + changes.iter().map(|&(j, e)| e * k(i, j)).sum::<f64>();
+                step += d * (2.0 * s_h + new.iter().map(|&(j, e)| e * k(i, j)).sum::<f64>());
+            }
+            self.elastic += step;
+            changes.extend(new);
+            return Ok(());
+        }
+        if self.kernel.is_none() {
+            problem.stiffness.apply_rows(
+                |y, row| {
+                    row.fill(0.0);
+                    if y == 0 {
+                        row[0] = 1.0;
+                    }
+                },
+                self.response.view_mut(),
+                &mut problem.ws,
+            )?;
+            problem.calls += 1;
+            self.kernel = Some(self.response.slice(ndarray::s![..=my / 2, ..=mx / 2]).to_owned());
+        }
+        problem.stiffness.apply_rows(
+            |y, row| {
+                let at = &hs[y * mx..(y + 1) * mx];
+                row.iter_mut().zip(at).for_each(|(u, &h)| *u = f64::from(h));
+            },
+            self.response.view_mut(),
+            &mut problem.ws,
+        )?;
+        problem.calls += 1;
+        let response = flat(&self.response);
+        let [elastic] = crate::sum::ordered(my, |j| {
+            let row = j * mx..(j + 1) * mx;
+            [hs[row.clone()]
+                .iter()
+                .zip(&response[row])
+                .map(|(&h, r)| f64::from(h) * r)
+                .sum::<f64>()]
+        });
+        self.elastic = elastic;
+        self.changes = Some(Vec::new());
+        Ok(())
     }
 }
 
@@ -1177,6 +1253,53 @@ mod tests {
             .build()
             .unwrap();
         (problem, lj)
+    }
+
+    /// The held set's `held^T S held` followed through a few cells changing, by the kernel
+    /// between them, is the one a transform of the new held set gives, to rounding.
+    #[test]
+    fn the_held_sets_stiffness_follows_its_changes() {
+        let (n, length, z0) = (48, 4.8e-7, 2.071e-9);
+        let heights = Array2::from_shape_fn((n, n), |(j, i)| {
+            3e-9 * ((i as f64 * 0.7).sin() * (j as f64 * 0.9).cos() + (i as f64 * 0.3 + j as f64 * 0.5).cos())
+        });
+        on_coupled_problem(heights, length, 2e4, |mut problem, _| {
+            let mut gap = Array2::from_shape_fn((n, n), |(j, i)| {
+                (((i * 7 + j * 13) % 23) as f64 / 2.2 - 0.5).max(0.0) * z0
+            });
+            let (velocity, mut pull) = (Array2::zeros((n, n)), Array2::zeros((n, n)));
+            let mut far = FarField::new((n, n));
+            let mut at = Point::new(gap.clone());
+            problem.evaluate(&mut at).unwrap();
+            far.update(&mut problem, &at, &velocity, &mut pull).unwrap();
+            for round in 0..3 {
+                // One soft cell onto the wall, one held cell far off it.
+                let pick = |flag: u8| {
+                    far.held
+                        .indexed_iter()
+                        .filter(|&(_, &h)| h == flag)
+                        .nth(7 * round + 3)
+                        .unwrap()
+                        .0
+                };
+                let (soft, held) = (pick(0), pick(1));
+                gap[soft] = 0.0;
+                gap[held] = 20.0 * z0;
+                let mut at = Point::new(gap.clone());
+                problem.evaluate(&mut at).unwrap();
+                let transforms = problem.calls;
+                far.update(&mut problem, &at, &velocity, &mut pull).unwrap();
+                assert_eq!((far.held[soft], far.held[held]), (1, 0));
+                // Followed, not transformed.
+                assert_eq!(problem.calls, transforms);
+                let mut fresh = FarField::new((n, n));
+                fresh.update(&mut problem, &at, &velocity, &mut pull).unwrap();
+                assert_eq!(far.held, fresh.held);
+                let error = (far.elastic - fresh.elastic).abs() / fresh.elastic.abs();
+                assert!(error < 1e-13, "round {round}: relative error {error:e}");
+            }
+            assert!(far.changes.as_ref().is_some_and(|c| c.len() >= 6));
+        });
     }
 
     /// Hands `test` the gap problem of the surface law (w0 = 50 mJ/m^2, z0 = 2.071 nm) on the

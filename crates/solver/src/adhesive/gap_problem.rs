@@ -860,7 +860,8 @@ impl Problem<'_> {
         // of the row at a time from its end (no allocation). A stiff cell beside a soft one
         // made `<v, P^-1 v>` negative, the flow's force weight, which then stopped every step
         // (docs/decisions.md): the bound is the smaller of the cell's diagonal and the
-        // geometric mean of its and its neighbour's (none beside a held one).
+        // geometric mean of its and its neighbour's (none beside a held one), `1 / max(w,
+        // sqrt(w w'))` in one division (the same bits: division rounds monotonically).
         const BLOCK: usize = 256;
         let (mut weights, mut bounds) = ([0.0; BLOCK + 1], [0.0; BLOCK]);
         let mut sum = 0.0;
@@ -879,7 +880,7 @@ impl Problem<'_> {
             bounds[..n]
                 .iter_mut()
                 .zip(weights[..n].iter().zip(&weights[1..=n]))
-                .for_each(|(b, (&w, &next))| *b = (1.0 / w).min((w * next).sqrt().recip()));
+                .for_each(|(b, (&w, &next))| *b = w.max((w * next).sqrt()).recip());
             for k in (0..n).rev() {
                 let (i, w) = (start + k, weights[k]);
                 let z = if w == 0.0 {
