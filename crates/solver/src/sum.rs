@@ -8,7 +8,16 @@ use rayon::prelude::*;
 /// `K` sums over `parts` parts, each computed by `part(k)` (in parallel) and added in the
 /// order `k = 0, 1, ...`.
 pub(crate) fn ordered<const K: usize>(parts: usize, part: impl Fn(usize) -> [f64; K] + Sync) -> [f64; K] {
-    let sums: Vec<[f64; K]> = (0..parts).into_par_iter().map(&part).collect();
+    ordered_over((0..parts).into_par_iter(), |_, k| part(k))
+}
+
+/// [`ordered`] over the items of `parts` (rows of fields to write, say), `part(k, item)`
+/// computing the sums of the `k`-th.
+pub(crate) fn ordered_over<T: Send, const K: usize>(
+    parts: impl IndexedParallelIterator<Item = T>,
+    part: impl Fn(usize, T) -> [f64; K] + Sync,
+) -> [f64; K] {
+    let sums: Vec<[f64; K]> = parts.enumerate().map(|(k, t)| part(k, t)).collect();
     sums.iter().fold([0.0; K], |mut acc, p| {
         acc.iter_mut().zip(p).for_each(|(a, b)| *a += b);
         acc

@@ -494,11 +494,13 @@ impl FarField {
     /// gradients).
     fn relax(&mut self, problem: &mut Problem, x: &Point, trial: &mut Point) -> Result<()> {
         use crate::fields::{flat, flat_mut};
+        use crate::sum::ordered_over;
+        use rayon::prelude::*;
         let mx = problem.mx;
         let [delta, residual, direction, applied, z] = self
             .work
             .get_or_insert_with(|| std::array::from_fn(|_| Array2::zeros(x.gap.dim())));
-        let held = &self.held;
+        let (held, hs) = (&self.held, flat(&self.held));
         let law = |c: f64| c.max(0.0);
         let correction = match problem.mean_gap {
             Some(_) => {
@@ -514,7 +516,7 @@ impl FarField {
             None => {
                 let [law_sum] = crate::sum::ordered(problem.my, |j| {
                     let row = j * mx..(j + 1) * mx;
-                    let (cs, hs) = (&flat(&x.curvature)[row.clone()], &flat(held)[row]);
+                    let (cs, hs) = (&flat(&x.curvature)[row.clone()], &hs[row]);
                     [cs.iter()
                         .zip(hs)
                         .filter(|(_, h)| **h == 0)
@@ -525,13 +527,20 @@ impl FarField {
             }
         };
         delta.fill(0.0);
-        Zip::from(&mut *residual)
-            .and(held)
-            .and(&x.gradient)
-            .par_for_each(|q, &h, &r| *q = if h == 0 { -r } else { 0.0 });
-        FarField::precondition(problem, held, &correction, residual, z)?;
+        // Each pass below also makes the sums the next step needs, row by row in order (as
+        // `crate::sum`), so that a field is read once where it is written.
+        let (rs, cs) = (flat(&x.gradient), flat(&x.curvature));
+        let [mut q_sum] = ordered_over(flat_mut(residual).par_chunks_mut(mx), |j, qr| {
+            let row = j * mx..(j + 1) * mx;
+            let mut sum = 0.0;
+            for ((q, &h), &r) in qr.iter_mut().zip(&hs[row.clone()]).zip(&rs[row]) {
+                *q = if h == 0 { -r } else { 0.0 };
+                sum += *q;
+            }
+            [sum]
+        });
+        let mut qz = FarField::precondition(problem, held, &correction, residual, q_sum, z)?;
         direction.assign(z);
-        let mut qz = crate::sum::dot_chunks(flat(residual), flat(z), mx);
         let first = qz;
         for _ in 0..RELAX_ITERATIONS {
             if qz <= RELAX_TOLERANCE * RELAX_TOLERANCE * first {
@@ -541,20 +550,43 @@ impl FarField {
                 .stiffness
                 .apply(direction.view(), applied.view_mut(), &mut problem.ws)?;
             problem.calls += 1;
-            Zip::from(&mut *applied)
-                .and(held)
-                .and(&*direction)
-                .and(&x.curvature)
-                .par_for_each(|a, &h, &d, &c| *a = if h == 0 { *a + law(c) * d } else { 0.0 });
-            let curvature = crate::sum::dot_chunks(flat(direction), flat(applied), mx);
+            let ds = flat(direction);
+            let [curvature] = ordered_over(flat_mut(applied).par_chunks_mut(mx), |j, ar| {
+                let row = j * mx..(j + 1) * mx;
+                let mut sum = 0.0;
+                for (((a, &h), &d), &c) in ar
+                    .iter_mut()
+                    .zip(&hs[row.clone()])
+                    .zip(&ds[row.clone()])
+                    .zip(&cs[row])
+                {
+                    *a = if h == 0 { *a + law(c) * d } else { 0.0 };
+                    sum += d * *a;
+                }
+                [sum]
+            });
             if curvature <= 0.0 {
                 break;
             }
             let alpha = qz / curvature;
-            delta.scaled_add(alpha, direction);
-            residual.scaled_add(-alpha, applied);
-            FarField::precondition(problem, held, &correction, residual, z)?;
-            let qz_new = crate::sum::dot_chunks(flat(residual), flat(z), mx);
+            let applieds = flat(applied);
+            [q_sum] = ordered_over(
+                flat_mut(delta)
+                    .par_chunks_mut(mx)
+                    .zip(flat_mut(residual).par_chunks_mut(mx)),
+                |j, (dr, qr)| {
+                    let row = j * mx..(j + 1) * mx;
+                    let mut sum = 0.0;
+                    for (((e, q), &d), &a) in dr.iter_mut().zip(qr).zip(&ds[row.clone()]).zip(&applieds[row])
+                    {
+                        *e += alpha * d;
+                        *q += -alpha * a;
+                        sum += *q;
+                    }
+                    [sum]
+                },
+            );
+            let qz_new = FarField::precondition(problem, held, &correction, residual, q_sum, z)?;
             let beta = qz_new / qz;
             Zip::from(flat_mut(direction))
                 .and(flat(z))
@@ -569,31 +601,47 @@ impl FarField {
     /// `correction` says: the periodic compliance takes no uniform field, so under load control
     /// the soft cells' uniform mode gets its own stiffness back as a rank-one term, and under
     /// a prescribed mean gap `z` is projected onto moves that keep their sum (`P S^-1 P` is
-    /// positive definite on those while any cell is held).
+    /// positive definite on those while any cell is held). `q_sum` is the sum of `q`; returns
+    /// `<q, z>`.
     fn precondition(
         problem: &mut Problem,
         held: &Array2<u8>,
         correction: &Correction,
         q: &Array2<f64>,
+        q_sum: f64,
         z: &mut Array2<f64>,
-    ) -> Result<()> {
-        FarField::compliance(problem, held, q, z)?;
-        match *correction {
+    ) -> Result<f64> {
+        use crate::fields::{flat, flat_mut};
+        use crate::sum::ordered_over;
+        use rayon::prelude::*;
+        problem
+            .stiffness
+            .invert(q.view(), z.view_mut(), &mut problem.ws)?;
+        problem.calls += 1;
+        let (mx, hs, qs) = (problem.mx, flat(held), flat(q));
+        // `z` on the soft cells plus `by`, 0 on the held ones, and `<q, z>`.
+        let finish = |z: &mut Array2<f64>, by: f64| {
+            let [qz] = ordered_over(flat_mut(z).par_chunks_mut(mx), |j, zr| {
+                let row = j * mx..(j + 1) * mx;
+                let mut sum = 0.0;
+                for ((z, &h), &q) in zr.iter_mut().zip(&hs[row.clone()]).zip(&qs[row]) {
+                    *z = if h == 0 { *z + by } else { 0.0 };
+                    sum += q * *z;
+                }
+                [sum]
+            });
+            qz
+        };
+        Ok(match *correction {
             Correction::KeepSum(w, uw) if uw > 0.0 => {
+                finish(z, 0.0);
                 let c = total(problem, z) / uw;
-                z.scaled_add(-c, w)
+                z.scaled_add(-c, w);
+                crate::sum::dot_chunks(qs, flat(z), mx)
             }
-            Correction::Uniform(stiffness) if stiffness > 0.0 => {
-                let c = total(problem, q) / stiffness;
-                Zip::from(z).and(held).par_for_each(|z, &h| {
-                    if h == 0 {
-                        *z += c
-                    }
-                });
-            }
-            _ => {}
-        }
-        Ok(())
+            Correction::Uniform(stiffness) if stiffness > 0.0 => finish(z, q_sum / stiffness),
+            _ => finish(z, 0.0),
+        })
     }
 
     /// `out = P S^-1 P q` for `q` zero on the held cells.
@@ -755,6 +803,7 @@ impl FarField {
         recorded: impl Iterator<Item = &'a usize>,
     ) -> Result<()> {
         use crate::fields::flat;
+        use rayon::prelude::*;
         let (mx, my) = (problem.mx, problem.my);
         let hs = flat(&self.held);
         let new: Vec<(usize, f64)> = recorded
@@ -770,12 +819,15 @@ impl FarField {
             };
             let k = |a: usize, b: usize| kernel[(fold(a / mx, b / mx, my), fold(a % mx, b % mx, mx))];
             let response = flat(&self.response);
-            let mut step = 0.0;
-            for &(i, d) in &new {
-                let s_h = response[i] + changes.iter().map(|&(j, e)| e * k(i, j)).sum::<f64>();
-                step += d * (2.0 * s_h + new.iter().map(|&(j, e)| e * k(i, j)).sum::<f64>());
-            }
-            self.elastic += step;
+            // Each changed cell's term in parallel (the lookups miss the cache), added in order.
+            let terms: Vec<f64> = new
+                .par_iter()
+                .map(|&(i, d)| {
+                    let s_h = response[i] + changes.iter().map(|&(j, e)| e * k(i, j)).sum::<f64>();
+                    d * (2.0 * s_h + new.iter().map(|&(j, e)| e * k(i, j)).sum::<f64>())
+                })
+                .collect();
+            self.elastic += terms.iter().fold(0.0, |step, t| step + t);
             changes.extend(new);
             return Ok(());
         }

@@ -48,7 +48,7 @@ pub(super) struct Point {
     /// [`Problem::evaluate`] then leaves projected.
     largest: f64,
     /// Elastic energy, and interaction energy plus the load's potential `p_mean mean(g)`, per
-    /// area [J/m^2].
+    /// area [J/m^2]; made only where the law has an energy (the descent's merit).
     pub(super) energy: (f64, f64),
     /// The gradient's sum over the cells off the wall, and their number.
     free: (f64, f64),
@@ -379,6 +379,7 @@ impl Problem<'_> {
         )?;
         self.calls += 1;
         let energy = self.energy;
+        let with_energy = !matches!(energy, Energy::None);
         // By rows on a periodic grid only: the unknown is the block, with no padding.
         let law_rows = by_rows
             .then(|| self.law.stiffness_rows())
@@ -431,7 +432,9 @@ impl Problem<'_> {
                     for i in 0..mx {
                         let k = j * mx + i;
                         let g = gs[k];
-                        sums[0] += (g - bs[k]) * es[k];
+                        if with_energy {
+                            sums[0] += (g - bs[k]) * es[k];
+                        }
                         if !g.is_finite() {
                             sums[4] += 1.0;
                         }
