@@ -140,6 +140,13 @@ impl ContactProblem {
                 let (ny, nx) = s.contact.gap.dim();
                 Some(Control::CentralGap(s.contact.gap[[ny / 2, nx / 2]]))
             }
+            (Some(s), Some(c @ (Control::Force(_) | Control::MeanPressure(_)))) => {
+                let sum = s.contact.pressure.sum() + s.adhesive_pressure.sum();
+                Some(match c {
+                    Control::Force(_) => Control::Force(sum * self.operator.domain().cell_area()),
+                    _ => Control::MeanPressure(sum / s.contact.pressure.len() as f64),
+                })
+            }
             _ => None,
         };
         count_substeps(&[previous.as_slice(), path].concat(), max_step)?;

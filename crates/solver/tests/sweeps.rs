@@ -122,7 +122,7 @@ fn a_resumed_sweep_knows_its_branch() {
     let (op, g0, law, _) = sphere_case(1.0, 16, 20.0);
     let options = Settings::with_method(Method::Accelerated);
     let mut last = None;
-    common::problem(&op, &law, g0.view())
+    let loaded = common::problem(&op, &law, g0.view())
         .sweep(
             &approaches([0.0, 1.0].into_iter()),
             None,
@@ -135,8 +135,24 @@ fn a_resumed_sweep_knows_its_branch() {
         )
         .unwrap();
     let points = common::problem(&op, &law, g0.view())
-        .sweep(&approaches([0.5, 0.8].into_iter()), None, &options, last, &mut ())
+        .sweep(
+            &approaches([0.5, 0.8].into_iter()),
+            None,
+            &options,
+            last.clone(),
+            &mut (),
+        )
         .unwrap();
+    assert_eq!(points[0].branch, Branch::Unloading);
+    assert_eq!(points[1].branch, Branch::Loading);
+    // Under load control too, the start's load read from its fields.
+    let load = loaded[1].report.load;
+    assert!(load > 0.0);
+    let path = [Control::Force(0.7 * load), Control::Force(0.9 * load)];
+    let points = common::problem(&op, &law, g0.view())
+        .sweep(&path, None, &options, last, &mut ())
+        .unwrap();
+    assert!(points.iter().all(|p| p.report.converged()));
     assert_eq!(points[0].branch, Branch::Unloading);
     assert_eq!(points[1].branch, Branch::Loading);
 }

@@ -15,7 +15,7 @@
 //! one-sided coupling, as stiff as a cell's own just above the wall, took twice the steps. Each
 //! step is projected onto `g >= 0` (and the prescribed mean gap); a cell that meets the wall stops
 //! there, and so does a cell that would move against the force on it. Where the residual stops
-//! falling ([`STALL`]), the longest step is cut under load control. Only a stable state is a
+//! falling ([`STALL`]), the velocity is zeroed. Only a stable state is a
 //! state of rest: perturbed, the dynamics carries it back; a saddle or an unstable branch
 //! repels it. This holds for laws without an energy too, which is why this is the method for
 //! the paper's surface law (Eq. 11) on cells coarser than the process zone: there every cell
@@ -67,10 +67,6 @@ const FIRST_STEP: f64 = 0.25;
 /// Brillouin zone against the mean of `E* |q| / 2`), with a margin for the law's stiffness
 /// rising within a step (`docs/decisions.md`).
 const MAX_STEP: f64 = 1.0;
-/// The largest time step after a stall under load control: a cell stopped every step moves by
-/// `dt^2` times its pull, which is stable while its stiffness is below `2 / dt^2` times its
-/// mass (8 here, 2 at [`MAX_STEP`]).
-const SAFE_STEP: f64 = 0.5;
 /// The smallest time step.
 const MIN_STEP: f64 = 0.005;
 /// The mixing of the velocity towards the force after a stop, and its decay a step while the
@@ -90,14 +86,10 @@ const SNAPPING_CUT: f64 = 0.9;
 /// restart is taken: between the rough sphere of `data/bench/rough-sphere-mu5.toml` (15,
 /// slower with it) and the challenge at 512^2 and 1024^2 (1635 and 817, faster).
 const SNAPPING: f64 = 100.0;
-/// The cut of the largest time step after a stall ([`STALL`]).
-const STALL_CUT: f64 = 0.5;
-/// Steps without a 10 % fall of the best residual after which the velocity is zeroed and,
-/// under load control, the largest time step is cut: a few cells whose law stiffens faster
-/// than their mass tells chatter about their state at a long step (the surface law at a Tabor
-/// parameter of 5, `docs/decisions.md`). Under approach control the cut made the rough
-/// spheres' crawls and peels twice as slow, and the second stall hands over to Newton instead
-/// ([`HANDOVER_STEPS`]).
+/// Steps without a 10 % fall of the best residual after which the velocity is zeroed; under
+/// approach control the second stall hands over to Newton ([`HANDOVER_STEPS`]). Cutting the
+/// largest time step there instead made crawls and peels two to four times as slow, the
+/// rough spheres' and the challenge's alike (`docs/decisions.md`).
 const STALL: usize = 500;
 /// Under approach control, the Newton steps the flow hands a crawl to at most: after a second
 /// stall, a patch passing the ghost of a vanished state near a fold (`docs/decisions.md`).
@@ -206,7 +198,6 @@ fn solve<'a>(
     } else {
         (DELAY, CUT)
     };
-    let mut max_step = MAX_STEP;
     let (mut steps, mut stalls, mut newton_steps) = (0, 0, None);
     // Under a prescribed mean gap (periodic approach control) the far field is relaxed but
     // not shifted: its mean is held.
@@ -264,11 +255,6 @@ fn solve<'a>(
             }
         }
         if stopped {
-            if load.is_some() {
-                // Cells chattering about a state the step is too long to settle in.
-                max_step = (max_step * STALL_CUT).max(SAFE_STEP);
-                dt = dt.min(max_step);
-            }
             driver.restart_stall_count(steps);
         }
         // The force's power on the velocity: stop when it turns against it.
@@ -276,7 +262,7 @@ fn solve<'a>(
         if power > 0.0 {
             working += 1;
             if working > delay {
-                dt = (dt * GROWTH).min(max_step);
+                dt = (dt * GROWTH).min(MAX_STEP);
                 mixing *= MIXING_DECAY;
             }
         } else if power < 0.0 {
