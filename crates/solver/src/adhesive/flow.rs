@@ -15,12 +15,12 @@
 //! one-sided coupling, as stiff as a cell's own just above the wall, took twice the steps. Each
 //! step is projected onto `g >= 0` (and the prescribed mean gap); a cell that meets the wall stops
 //! there, and so does a cell that would move against the force on it. Where the residual stops
-//! falling ([`STALL`]), the velocity is zeroed. Only a stable state is a
-//! state of rest: perturbed, the dynamics carries it back; a saddle or an unstable branch
-//! repels it. This holds for laws without an energy too, which is why this is the method for
-//! the paper's surface law (Eq. 11) on cells coarser than the process zone: there every cell
-//! holds on or lets go alone, Eq. 11's forces are not the gradient of any energy, and Newton
-//! and the loops circle between states (`docs/validation.md`), where the relaxation settles.
+//! falling ([`STALL`]), the velocity is zeroed. Only a stable state is a state of rest:
+//! perturbed, the dynamics carries it back; a saddle or an unstable branch repels it. This
+//! holds for laws without an energy too, which is why this is the method for the paper's
+//! surface law (Eq. 11) on cells coarser than the process zone: there every cell holds on or
+//! lets go alone, Eq. 11's forces are not the gradient of any energy, and Newton and the loops
+//! circle between states (`docs/validation.md`), where the relaxation settles.
 //!
 //! The damping is strong enough that the states reached are those of the overdamped flow
 //! `M dg/dt = -r` from the same start, on the cases measured (`docs/decisions.md`), in a
@@ -88,8 +88,8 @@ const SNAPPING_CUT: f64 = 0.9;
 const SNAPPING: f64 = 100.0;
 /// Steps without a 10 % fall of the best residual after which the velocity is zeroed; under
 /// approach control the second stall hands over to Newton ([`HANDOVER_STEPS`]). Cutting the
-/// largest time step there instead made crawls and peels two to four times as slow, the
-/// rough spheres' and the challenge's alike (`docs/decisions.md`).
+/// largest time step at a stall made crawls and peels about twice as slow on the rough
+/// spheres and over four times on the 4096^2 challenge's last load (`docs/decisions.md`).
 const STALL: usize = 500;
 /// Under approach control, the Newton steps the flow hands a crawl to at most: after a second
 /// stall, a patch passing the ghost of a vanished state near a fold (`docs/decisions.md`).
