@@ -50,7 +50,12 @@
 //! surface laws with their stiffness by a cell's own gap and by its neighbour's in closed form;
 //! a law of the user's without it is probed, two more evaluations), and with the far field up
 //! to [`RELAX_ITERATIONS`] iterations of two transforms each (the stiffness and the
-//! compliance; about ten iterations) every [`RELAX_EVERY`] steps.
+//! compliance; about ten iterations) every [`RELAX_EVERY`] steps. Under load control with the
+//! line or surface law on a periodic grid, while the residual is large, the stiffness's
+//! transforms are made only every [`SPLIT_EVERY`]-th step: in between, the elastic force is
+//! its near part from the stiffness's own 5 x 5 stencil plus its far part kept from the last
+//! transform (multiple time stepping; the states are those of the flow without it, within the
+//! spread of its own paths, `docs/decisions.md`).
 
 use super::driver::Driver;
 use super::gap_problem::{Energy, Point, Problem, Row, Setup, check_control, finish, setup};
@@ -107,6 +112,13 @@ const SOFT_CLEARANCE: f64 = 5.0;
 const RELAX_EVERY: usize = 50;
 const RELAX_ITERATIONS: usize = 30;
 const RELAX_TOLERANCE: f64 = 1e-2;
+/// Under load control on a periodic grid with the line or surface law, the elastic force's far
+/// part is transformed every `SPLIT_EVERY`-th step and kept in between, its near part made
+/// every step ([`Problem::split_elastic`]), while the residual is above `SPLIT_ABOVE` times
+/// the tolerance; below it every step transforms, and a state is at rest only by a
+/// transform's force (`docs/decisions.md`).
+const SPLIT_EVERY: usize = 6;
+const SPLIT_ABOVE: f64 = 100.0;
 /// Cells a step's changes of the held set may cost in lookups of the stiffness's kernel
 /// before [`FarField::settle`] transforms the held set again instead: one lookup a
 /// `LOOKUP_SHARE`-th of the grid's cells, about a transform pair's time at 4096^2
@@ -205,9 +217,24 @@ fn solve<'a>(
         .then(|| FarField::new(unknown))
         .filter(|_| far != Far::Plain);
     let shifted = far_field.is_some() && load.is_some();
+    if shifted && far == Far::ShiftAndRelax && problem.coupled() && problem.periodic_at_least(5) {
+        problem.split_elastic()?;
+    }
+    // Whether `x` was evaluated by the split's near part alone, and the residual below which
+    // every evaluation transforms.
+    let mut x_near = false;
+    let transform_below = SPLIT_ABOVE * settings.tolerance;
     // The far field's update at `x`, where made with its evaluation.
     let mut next = None;
     loop {
+        if x_near && sums.max * scale <= transform_below {
+            problem.near_only(false);
+            x_near = false;
+            if let Some(far_field) = far_field.as_mut() {
+                next = Some(far_field.evaluate_and_update(&mut problem, &mut x, &velocity, &mut pull)?);
+            }
+            sums = problem.project_gradient(&mut x);
+        }
         if driver.stop(steps, sums.max * scale, true) {
             break;
         }
@@ -306,6 +333,7 @@ fn solve<'a>(
             },
         );
         let relaxing = far == Far::ShiftAndRelax && steps % RELAX_EVERY == 0;
+        x_near = problem.near_only(steps % SPLIT_EVERY != 0 && sums.max * scale > transform_below);
         // The next step's far-field pass rides on this evaluation, unless a relaxation comes
         // between them.
         match far_field.as_mut().filter(|_| shifted && !relaxing) {
@@ -321,6 +349,7 @@ fn solve<'a>(
                 far_field.mark(&problem, &x);
             }
             far_field.relax(&mut problem, &x, &mut trial)?;
+            x_near = problem.near_only(false);
             // The soft cells arrive at rest.
             Zip::from(&mut velocity)
                 .and(&far_field.held)
@@ -337,6 +366,11 @@ fn solve<'a>(
             std::mem::swap(&mut x, &mut trial);
             sums = problem.project_gradient(&mut x);
         }
+    }
+    if x_near {
+        problem.near_only(false);
+        problem.evaluate(&mut x)?;
+        sums = problem.project_gradient(&mut x);
     }
     problem.store_law(&mut x)?;
     let newton = newton_steps.unwrap_or(0);
@@ -1119,6 +1153,56 @@ mod tests {
                 (&apart.law, &apart.curvature, &apart.coupling),
                 (&together.law, &together.curvature, &together.coupling)
             );
+        });
+    }
+
+    /// The elastic force's split into a near part and a kept far part
+    /// ([`Problem::split_elastic`]) gives the transform's force where the far part was made,
+    /// and away from there the transform's force for a uniform move (which costs none on a
+    /// periodic grid) and, for one cell's move, the transform's response on that cell and its
+    /// eight neighbours and none farther than two cells.
+    #[test]
+    fn the_split_elastic_force_is_the_transforms_where_it_should_be() {
+        let (n, length) = (24, 2.4e-7);
+        let heights = Array2::from_shape_fn((n, n), |(j, i)| {
+            3e-9 * ((i as f64 * 0.7).sin() * (j as f64 * 0.9).cos() + (i as f64 * 0.3 + j as f64 * 0.5).cos())
+        });
+        on_coupled_problem(heights, length, 2e4, |mut problem, x| {
+            let elastic = |problem: &mut Problem, gap: &Array2<f64>, near: bool| {
+                assert_eq!(problem.near_only(near), near);
+                let mut at = Point::new(gap.clone());
+                problem.evaluate(&mut at).unwrap();
+                at.elastic
+            };
+            problem.split_elastic().unwrap();
+            assert!(!problem.near_only(true), "no far part before a transform");
+            let gap = x.gap.mapv(|g| g + 1e-9);
+            let transformed = elastic(&mut problem, &gap, false);
+            let scale = transformed.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+            let off = |a: &Array2<f64>, b: &Array2<f64>| {
+                a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs())) / scale
+            };
+            assert!(off(&elastic(&mut problem, &gap, true), &transformed) < 1e-12);
+            let shifted = gap.mapv(|g| g + 2e-9);
+            assert!(off(&elastic(&mut problem, &shifted, true), &transformed) < 1e-12);
+            let (c, by) = (10, 1e-9);
+            let mut moved = gap.clone();
+            moved[(c, c)] += by;
+            let near = elastic(&mut problem, &moved, true) - &transformed;
+            let exact = elastic(&mut problem, &moved, false) - &transformed;
+            let own = exact[(c, c)];
+            assert!(own > 0.0);
+            for (((j, i), &a), &b) in near.indexed_iter().zip(&exact) {
+                let apart = j.abs_diff(c).max(i.abs_diff(c));
+                if apart <= 1 {
+                    assert!(
+                        (a - b).abs() <= 1e-9 * own + 1e-12 * scale,
+                        "({j}, {i}): {a:e} against {b:e}"
+                    );
+                } else if apart > 2 {
+                    assert!(a.abs() <= 1e-12 * scale, "({j}, {i}): {a:e}");
+                }
+            }
         });
     }
 

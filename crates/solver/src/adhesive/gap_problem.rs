@@ -203,9 +203,128 @@ pub(super) struct Problem<'a> {
     /// Whether the law's stiffness is taken by a cell's own gap and by its +x neighbour's
     /// apart ([`Problem::couple_rows`]).
     couple: bool,
+    /// The elastic force split into a near part made every evaluation and a far part kept
+    /// from the last transform ([`Problem::split_elastic`]); none unless asked for.
+    split: Option<Split>,
+}
+
+/// The stiffness's response `S u` split as `S_near u + F`: `S_near` the stiffness's own
+/// coefficients between cells at most two apart along each axis (its 5 x 5 stencil), with the
+/// sum of all 25 taken off evenly from the 16 of its outer ring so that a uniform move costs no
+/// force; `F = S u' - S_near u'` the far part at the last point `u'` transformed. Where only
+/// `near` is asked for, an evaluation takes `S_near u + F` and no transform: exact at `u'`, and
+/// off elsewhere by the far part's change, which is small for the moves of a few steps: a
+/// cell's own stiffness and its nearest neighbours' stay exact (`docs/decisions.md`).
+struct Split {
+    /// `S_near`'s quadrant: the coefficient \[Pa/m\] between cells `q` rows and `e` columns
+    /// apart at `[q][e]` (the stencil is even in both axes).
+    stencil: [[f64; 3]; 3],
+    /// `F` \[Pa\].
+    far: Array2<f64>,
+    /// Whether `far` has been made.
+    made: bool,
+    /// Whether the next evaluations take the near part and `far` rather than transforming.
+    near: bool,
+}
+
+/// Row `j` of `S_near (g - b)` ([`Split`], its quadrant `c`) on a periodic `(ny, nx)` grid
+/// into `out`, with `rows` a scratch of three padded rows.
+fn near_row(
+    c: &[[f64; 3]; 3],
+    gs: &[f64],
+    bs: &[f64],
+    (ny, nx): (usize, usize),
+    j: usize,
+    rows: &mut Vec<f64>,
+    out: &mut [f64],
+) {
+    let w = nx + 4;
+    rows.resize(3 * w, 0.0);
+    // Row q of the scratch: the rows `q` above and below summed (row `j` itself for q = 0),
+    // wrapped by two cells at each end.
+    for (q, row) in rows.chunks_mut(w).enumerate() {
+        let at = |y: usize| (&gs[y * nx..][..nx], &bs[y * nx..][..nx]);
+        let (ga, ba) = at((j + q) % ny);
+        let inner = &mut row[2..2 + nx];
+        if q == 0 {
+            inner
+                .iter_mut()
+                .zip(ga.iter().zip(ba))
+                .for_each(|(r, (g, b))| *r = g - b);
+        } else {
+            let (gb, bb) = at((j + ny - q) % ny);
+            inner
+                .iter_mut()
+                .zip(ga.iter().zip(ba))
+                .zip(gb.iter().zip(bb))
+                .for_each(|((r, (g, b)), (h, c))| *r = (g - b) + (h - c));
+        }
+        for k in 0..2 {
+            row[k] = row[nx + k];
+            row[2 + nx + k] = row[2 + k];
+        }
+    }
+    let at = |q: usize, e: usize| &rows[q * w + e..][..nx];
+    let [a, b, d] = [0, 1, 2].map(|q| [0, 1, 2, 3, 4].map(|e| at(q, e)));
+    for (i, o) in out[..nx].iter_mut().enumerate() {
+        *o = c[0][0] * a[2][i]
+            + c[0][1] * (a[1][i] + a[3][i])
+            + c[0][2] * (a[0][i] + a[4][i])
+            + c[1][0] * b[2][i]
+            + c[1][1] * (b[1][i] + b[3][i])
+            + c[1][2] * (b[0][i] + b[4][i])
+            + c[2][0] * d[2][i]
+            + c[2][1] * (d[1][i] + d[3][i])
+            + c[2][2] * (d[0][i] + d[4][i]);
+    }
 }
 
 impl Problem<'_> {
+    /// Whether the next evaluations take the split's near part alone ([`Split`]): asks for it
+    /// (`true`) or for a transform; returns whether it is taken (a split whose far part has
+    /// been made).
+    pub(super) fn near_only(&mut self, near: bool) -> bool {
+        self.split.as_mut().is_some_and(|s| {
+            s.near = near && s.made;
+            s.near
+        })
+    }
+
+    /// Splits the elastic force of a periodic grid of at least 5 x 5 cells into its near and
+    /// far parts ([`Split`]), from the stiffness's response to one cell's move (one
+    /// application); the next evaluation transforms.
+    pub(super) fn split_elastic(&mut self) -> Result<()> {
+        let (mx, my) = (self.mx, self.my);
+        debug_assert!((mx, my) == (self.nx, self.ny) && mx >= 5 && my >= 5);
+        let mut kernel = Array2::zeros((my, mx));
+        kernel[(0, 0)] = 1.0;
+        let impulse = kernel.clone();
+        self.stiffness
+            .apply(impulse.view(), kernel.view_mut(), &mut self.ws)?;
+        self.calls += 1;
+        let mut stencil: [[f64; 3]; 3] = std::array::from_fn(|q| std::array::from_fn(|e| kernel[(q, e)]));
+        // Each coefficient stands for 1, 2 or 4 cells of the 5 x 5.
+        let count = |q: usize, e: usize| (if q == 0 { 1.0 } else { 2.0 }) * (if e == 0 { 1.0 } else { 2.0 });
+        let total: f64 = (0..3)
+            .flat_map(|q| (0..3).map(move |e| (q, e)))
+            .map(|(q, e)| count(q, e) * stencil[q][e])
+            .sum();
+        for (q, row) in stencil.iter_mut().enumerate() {
+            for (e, c) in row.iter_mut().enumerate() {
+                if q == 2 || e == 2 {
+                    *c -= total / 16.0;
+                }
+            }
+        }
+        self.split = Some(Split {
+            stencil,
+            far: Array2::zeros((my, mx)),
+            made: false,
+            near: false,
+        });
+        Ok(())
+    }
+
     /// Writes `max(from + step d + c, 0)` into `gap` (on the domain's block; no bound in the
     /// padding), with the shift `c` that restores a prescribed mean gap (else 0), except on
     /// cells of `from` on the wall that `d` leaves there, which stay: the projection of the
@@ -366,18 +485,29 @@ impl Problem<'_> {
     ) -> Result<Vec<S>> {
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
         let (gs, bs) = (flat(&at.gap), flat(&self.base));
-        self.stiffness.apply_rows(
-            |y, row| {
-                let at = y * mx..(y + 1) * mx;
-                row.iter_mut()
-                    .zip(&gs[at.clone()])
-                    .zip(&bs[at])
-                    .for_each(|((u, g), b)| *u = g - b);
-            },
-            at.elastic.view_mut(),
-            &mut self.ws,
-        )?;
-        self.calls += 1;
+        // The split's far part is taken out for the pass over the rows, which writes it (after
+        // a transform) or reads it (near).
+        let mut split = self.split.take();
+        let near = split.as_ref().is_some_and(|s| s.near && s.made);
+        if !near {
+            self.stiffness.apply_rows(
+                |y, row| {
+                    let at = y * mx..(y + 1) * mx;
+                    row.iter_mut()
+                        .zip(&gs[at.clone()])
+                        .zip(&bs[at])
+                        .for_each(|((u, g), b)| *u = g - b);
+                },
+                at.elastic.view_mut(),
+                &mut self.ws,
+            )?;
+            self.calls += 1;
+        }
+        let stencil = split.as_ref().map(|s| s.stencil);
+        let far_rows: Vec<Option<&mut [f64]>> = match &mut split {
+            Some(s) => flat_mut(&mut s.far).chunks_mut(mx).map(Some).collect(),
+            None => (0..self.my).map(|_| None).collect(),
+        };
         let energy = self.energy;
         let with_energy = !matches!(energy, Energy::None);
         // By rows on a periodic grid only: the unknown is the block, with no padding.
@@ -404,7 +534,7 @@ impl Problem<'_> {
         let project = self.mean_gap.is_none();
         let cell_energies = flat(&self.probe.0);
         let (gs, bs) = (flat(&at.gap), flat(&self.base));
-        let es = flat(&at.elastic);
+        let elastic_rows: Vec<&mut [f64]> = flat_mut(&mut at.elastic).chunks_mut(mx).collect();
         let (block_gap, coupling) = (at.gap.slice(s![..ny, ..nx]), &at.coupling);
         let shared = &*self;
         let rows: Vec<([f64; 7], S)> = flat_mut(&mut at.law)
@@ -412,10 +542,31 @@ impl Problem<'_> {
             .zip(flat_mut(&mut at.curvature).par_chunks_mut(mx))
             .zip(flat_mut(&mut at.gradient).par_chunks_mut(mx))
             .zip(extra)
+            .zip(elastic_rows)
+            .zip(far_rows)
             .enumerate()
             .map_init(
-                || law_rows.map(|_| std::array::from_fn::<_, 4, _>(|_| vec![0.0; nx])),
-                |scratch, (j, (((lr, cr), rr), extra))| {
+                || {
+                    let law = law_rows.map(|_| std::array::from_fn::<_, 4, _>(|_| vec![0.0; nx]));
+                    (law, Vec::new(), vec![0.0; mx])
+                },
+                |(scratch, rows, near_row), (j, (((((lr, cr), rr), extra), es), far))| {
+                    // The split's near part: with the far part the elastic pressure (near), or
+                    // the far part from the transform's.
+                    if let (Some(c), Some(far)) = (&stencil, far) {
+                        self::near_row(c, gs, bs, (ny, nx), j, rows, near_row);
+                        if near {
+                            es.iter_mut()
+                                .zip(&*far)
+                                .zip(&*near_row)
+                                .for_each(|((e, f), n)| *e = f + n);
+                        } else {
+                            far.iter_mut()
+                                .zip(&*es)
+                                .zip(&*near_row)
+                                .for_each(|((f, e), n)| *f = e - n);
+                        }
+                    }
                     // The law's pressure, stiffness and coupling of this row: made here, or stored.
                     let (lr, cr, coupling): (&mut [f64], &mut [f64], &[f64]) = match (scratch, law_rows) {
                         (Some([t, p, c, d]), Some(rows)) => {
@@ -433,7 +584,7 @@ impl Problem<'_> {
                         let k = j * mx + i;
                         let g = gs[k];
                         if with_energy {
-                            sums[0] += (g - bs[k]) * es[k];
+                            sums[0] += (g - bs[k]) * es[i];
                         }
                         if !g.is_finite() {
                             sums[4] += 1.0;
@@ -444,8 +595,8 @@ impl Problem<'_> {
                             if lr[i] != 0.0 || cr[i] != 0.0 {
                                 (lr[i], cr[i]) = (0.0, 0.0);
                             }
-                            rr[i] = es[k];
-                            sums[6] = sums[6].max(es[k].abs());
+                            rr[i] = es[i];
+                            sums[6] = sums[6].max(es[i].abs());
                             continue;
                         }
                         // Only a local potential writes here: rewriting the law's fields unchanged
@@ -459,7 +610,7 @@ impl Problem<'_> {
                             Energy::Field(_) => (cell_energies[j * nx + i], lr[i]),
                             Energy::None => (0.0, lr[i]),
                         };
-                        rr[i] = es[k] - p + load;
+                        rr[i] = es[i] - p + load;
                         sums[1] += v + load * g;
                         sums[5] = sums[5].min(g);
                         if g > 0.0 {
@@ -505,6 +656,10 @@ impl Problem<'_> {
         at.min_gap = t[5];
         at.largest = t[6];
         at.law_stored = law_rows.is_none();
+        if let Some(s) = &mut split {
+            s.made = true;
+        }
+        self.split = split;
         Ok(results)
     }
 
@@ -729,6 +884,11 @@ impl Problem<'_> {
             self.evaluate(at)?;
         }
         Ok(())
+    }
+
+    /// Whether the grid is periodic with at least `n` cells along each axis.
+    pub(super) fn periodic_at_least(&self, n: usize) -> bool {
+        (self.mx, self.my) == (self.nx, self.ny) && self.nx >= n && self.ny >= n
     }
 
     /// Whether [`Problem::couple_rows`] took effect.
@@ -1042,6 +1202,7 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
             load,
             calls: 0,
             diagonal: 0.0,
+            split: None,
         };
         // A warm start keeps its attached cells (gap within the law's range) in place and
         // moves only the rest: a uniform shift would tear the attached rim off at once (or
@@ -1094,6 +1255,7 @@ pub(super) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Result<Setup<'a>> 
             load: None,
             calls: 0,
             diagonal: 0.0,
+            split: None,
         };
         (problem, first, None)
     };
