@@ -485,10 +485,7 @@ impl Problem<'_> {
     ) -> Result<Vec<S>> {
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
         let (gs, bs) = (flat(&at.gap), flat(&self.base));
-        // The split's far part is taken out for the pass over the rows, which writes it (after
-        // a transform) or reads it (near).
-        let mut split = self.split.take();
-        let near = split.as_ref().is_some_and(|s| s.near && s.made);
+        let near = self.split.as_ref().is_some_and(|s| s.near && s.made);
         if !near {
             self.stiffness.apply_rows(
                 |y, row| {
@@ -503,11 +500,6 @@ impl Problem<'_> {
             )?;
             self.calls += 1;
         }
-        let stencil = split.as_ref().map(|s| s.stencil);
-        let far_rows: Vec<Option<&mut [f64]>> = match &mut split {
-            Some(s) => flat_mut(&mut s.far).chunks_mut(mx).map(Some).collect(),
-            None => (0..self.my).map(|_| None).collect(),
-        };
         let energy = self.energy;
         let with_energy = !matches!(energy, Energy::None);
         // By rows on a periodic grid only: the unknown is the block, with no padding.
@@ -534,6 +526,14 @@ impl Problem<'_> {
         let project = self.mean_gap.is_none();
         let cell_energies = flat(&self.probe.0);
         let (gs, bs) = (flat(&at.gap), flat(&self.base));
+        // The split's far part is taken out for the pass over the rows, which writes it (after
+        // a transform) or reads it (near), and put back after it.
+        let mut split = self.split.take();
+        let stencil = split.as_ref().map(|s| s.stencil);
+        let far_rows: Vec<Option<&mut [f64]>> = match &mut split {
+            Some(s) => flat_mut(&mut s.far).chunks_mut(mx).map(Some).collect(),
+            None => (0..self.my).map(|_| None).collect(),
+        };
         let elastic_rows: Vec<&mut [f64]> = flat_mut(&mut at.elastic).chunks_mut(mx).collect();
         let (block_gap, coupling) = (at.gap.slice(s![..ny, ..nx]), &at.coupling);
         let shared = &*self;
@@ -632,6 +632,10 @@ impl Problem<'_> {
                 },
             )
             .collect();
+        if let Some(s) = &mut split {
+            s.made = true;
+        }
+        self.split = split;
         let (sums, results): (Vec<[f64; 7]>, Vec<S>) = rows.into_iter().unzip();
         let t = sums
             .iter()
@@ -656,10 +660,6 @@ impl Problem<'_> {
         at.min_gap = t[5];
         at.largest = t[6];
         at.law_stored = law_rows.is_none();
-        if let Some(s) = &mut split {
-            s.made = true;
-        }
-        self.split = split;
         Ok(results)
     }
 
