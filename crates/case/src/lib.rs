@@ -138,7 +138,7 @@ pub struct Case {
     pub channel: Option<String>,
     /// Fill the points the instrument marks as not measured by harmonic interpolation
     /// (default: refuse such a file, counting them).
-    #[cfg_attr(feature = "clap", arg(long, num_args = 0..=1, default_missing_value = "true"))]
+    #[cfg_attr(feature = "clap", arg(long, num_args = 0..=1, require_equals = true, default_missing_value = "true"))]
     pub fill_unmeasured: Option<bool>,
     /// Radius R of a rigid sphere [m], centred on the grid.
     #[cfg_attr(feature = "clap", arg(long))]
@@ -150,7 +150,7 @@ pub struct Case {
     #[cfg_attr(feature = "clap", arg(long, conflicts_with = "sphere_radius"))]
     pub wave_amplitude: Option<f64>,
     /// Use the exact spherical profile instead of the paraboloid r^2/(2R).
-    #[cfg_attr(feature = "clap", arg(long, num_args = 0..=1, default_missing_value = "true"))]
+    #[cfg_attr(feature = "clap", arg(long, num_args = 0..=1, require_equals = true, default_missing_value = "true"))]
     pub exact_sphere: Option<bool>,
     /// Grid points per side (default 256); must match a surface file.
     #[cfg_attr(feature = "clap", arg(long))]
@@ -446,6 +446,90 @@ impl Case {
         })
     }
 
+    /// Refuses every key given that the case would not use: a key of a surface file without
+    /// one, a generated surface's keys without a generated surface, a sphere's without a
+    /// sphere, adhesion's keys without adhesion or with a law that has no use for them. The one
+    /// place where keys that do not apply are refused, so that the record of a run is always
+    /// what was solved.
+    pub fn check_applicable(&self) -> Result<()> {
+        let file = self.surface.is_some();
+        let generated = self.rms_height.is_some() || self.rms_gradient.is_some();
+        let law = self.law.unwrap_or(if self.adhesive() {
+            LawKind::Surface
+        } else {
+            LawKind::None
+        });
+        let lennard_jones = matches!(
+            law,
+            LawKind::Surface | LawKind::SurfaceEnergy | LawKind::Line | LawKind::Point
+        );
+        let refused: [(&str, bool, &str); 11] = [
+            (
+                "unit",
+                self.unit.is_some() && !file,
+                "a surface file's unit: give --surface",
+            ),
+            (
+                "channel",
+                self.channel.is_some() && !file,
+                "a surface file's channel: give --surface",
+            ),
+            (
+                "fill_unmeasured",
+                self.fill_unmeasured.is_some() && !file,
+                "fills a surface file's unmeasured points: give --surface",
+            ),
+            (
+                "hurst",
+                self.hurst.is_some() && !generated,
+                "shapes a generated surface: give --rms-height or --rms-gradient",
+            ),
+            (
+                "rolloff_wavelength",
+                self.rolloff_wavelength.is_some() && !generated,
+                "shapes a generated surface: give --rms-height or --rms-gradient",
+            ),
+            (
+                "cutoff_wavelength",
+                self.cutoff_wavelength.is_some() && !generated,
+                "shapes a generated surface: give --rms-height or --rms-gradient",
+            ),
+            (
+                "seed",
+                self.seed.is_some() && !generated,
+                "seeds a generated surface: give --rms-height or --rms-gradient",
+            ),
+            (
+                "exact_sphere",
+                self.exact_sphere.is_some() && self.sphere_radius.is_none(),
+                "shapes a sphere: give --sphere-radius",
+            ),
+            (
+                "work_of_adhesion",
+                self.work_of_adhesion.is_some() && law == LawKind::None,
+                "needs an adhesive law, but --law none",
+            ),
+            (
+                "z0",
+                self.z0.is_some() && !(lennard_jones || law == LawKind::Dugdale),
+                "is the Lennard-Jones laws' (and Dugdale's LJ-equivalent) equilibrium separation; \
+                 this case has no such law",
+            ),
+            (
+                "solver",
+                self.solver.is_some() && law == LawKind::None,
+                "chooses the adhesive solver; without adhesion the conjugate gradients solve",
+            ),
+        ];
+        if let Some((key, _, why)) = refused.iter().find(|(_, given, _)| *given) {
+            bail!(
+                "--{} does not apply to this case: it {why}",
+                key.replace('_', "-")
+            );
+        }
+        Ok(())
+    }
+
     /// Builds the problem; call [`Case::fill_defaults`] first.
     pub fn build(&self) -> Result<Built> {
         self.build_on(None)
@@ -454,6 +538,7 @@ impl Case {
     /// Builds the problem on `roughness` (a surface in memory) instead of the `surface` file;
     /// call [`Case::fill_defaults`] first.
     pub fn build_on(&self, roughness: Option<Surface>) -> Result<Built> {
+        self.check_applicable()?;
         let e_star = self.modulus.context(
             "the composite modulus is required: --modulus E* [Pa] (or modulus = ... in the case file)",
         )?;

@@ -54,7 +54,7 @@ fn peak_rss() -> Option<u64> {
 }
 
 pub fn bench(a: BenchArgs) -> Result<()> {
-    println!(
+    crate::outln!(
         "Self-affine surface, H = 0.8, RMS gradient 1, short cut-off 8 cells, no roll-off; E* = 1, p = {} E*, tolerance {:e}, {} threads",
         a.pressure,
         a.tolerance,
@@ -65,7 +65,7 @@ pub fn bench(a: BenchArgs) -> Result<()> {
         BenchSolver::Preconditioned => &[true],
         BenchSolver::Both => &[false, true],
     };
-    println!(
+    crate::outln!(
         "{:>6} {:>15} {:>7} {:>10} {:>10} {:>12} {:>10}{}",
         "n",
         "solver",
@@ -159,7 +159,7 @@ fn time_one(
         row["contact_cells_differing"] = json!(differ);
         row["mean_gap_relative_difference"] = json!(gap_diff);
     }
-    println!(
+    crate::outln!(
         "{n:>6} {solver:>15} {:>7} {:>10} {time:>10.3} {:>12} {:>10.5}{extra}",
         rep.iterations,
         rep.operator_calls,

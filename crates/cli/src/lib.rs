@@ -28,14 +28,56 @@ pub fn quiet() -> bool {
     QUIET.load(Ordering::Relaxed)
 }
 
-/// `println!` unless [`quiet`].
-#[macro_export]
-macro_rules! say {
-    ($($t:tt)*) => { if !$crate::quiet() { println!($($t)*) } };
+/// Writes a line to standard output; a failed write (a full disk, a closed file) is an error
+/// that ends the command with status 1, never a panic.
+pub fn print_line(args: std::fmt::Arguments<'_>) -> anyhow::Result<()> {
+    use std::io::Write;
+    writeln!(std::io::stdout().lock(), "{args}")
+        .map_err(|e| anyhow::anyhow!("writing to standard output: {e}"))
 }
 
-/// `eprintln!` unless [`quiet`].
+/// Writes a line to standard error, as [`print_line`] does to standard output.
+pub fn eprint_line(args: std::fmt::Arguments<'_>) -> anyhow::Result<()> {
+    use std::io::Write;
+    writeln!(std::io::stderr().lock(), "{args}")
+        .map_err(|e| anyhow::anyhow!("writing to standard error: {e}"))
+}
+
+/// A line to standard output; a failed write returns its error from the enclosing function
+/// (which returns `anyhow::Result`).
+#[macro_export]
+macro_rules! outln {
+    ($($t:tt)*) => { $crate::print_line(format_args!($($t)*))? };
+}
+
+/// A line to standard error, as [`outln!`].
+#[macro_export]
+macro_rules! errln {
+    ($($t:tt)*) => { $crate::eprint_line(format_args!($($t)*))? };
+}
+
+/// A line to standard error where no error can be returned (a worker thread): a failed write
+/// is dropped, and the command's next write reports it.
+pub fn note_err(args: std::fmt::Arguments<'_>) {
+    let _ = eprint_line(args);
+}
+
+/// A line to standard output unless [`quiet`]; a failed write returns its error from the
+/// enclosing function (which returns `anyhow::Result`).
+#[macro_export]
+macro_rules! say {
+    ($($t:tt)*) => { if !$crate::quiet() { $crate::print_line(format_args!($($t)*))? } };
+}
+
+/// A line to standard error unless [`quiet`], as [`say!`].
 #[macro_export]
 macro_rules! note {
-    ($($t:tt)*) => { if !$crate::quiet() { eprintln!($($t)*) } };
+    ($($t:tt)*) => { if !$crate::quiet() { $crate::eprint_line(format_args!($($t)*))? } };
+}
+
+/// A line to standard error unless [`quiet`], where no error can be returned (an observer of
+/// the solver): a failed write is dropped, and the command's next write reports it.
+#[macro_export]
+macro_rules! note_unchecked {
+    ($($t:tt)*) => { if !$crate::quiet() { $crate::note_err(format_args!($($t)*)) } };
 }

@@ -58,11 +58,22 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    let cli = Cli::parse();
+    // Help, the version and clap's own errors are printed here, so that one that cannot be
+    // written ends the command with status 1 too.
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let status = if e.use_stderr() { 2 } else { 0 };
+            return match e.print() {
+                Ok(()) => ExitCode::from(status),
+                Err(_) => ExitCode::FAILURE,
+            };
+        }
+    };
     if let Some(n) = cli.threads
         && let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(n).build_global()
     {
-        eprintln!("error: cannot start {n} threads: {e}");
+        roughcontact::note_err(format_args!("error: cannot start {n} threads: {e}"));
         return ExitCode::FAILURE;
     }
     let result = match cli.command {
@@ -79,7 +90,8 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            // A standard error that cannot be written to still ends the command with status 1.
+            roughcontact::note_err(format_args!("error: {e:#}"));
             ExitCode::FAILURE
         }
     }

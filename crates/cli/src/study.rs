@@ -414,7 +414,7 @@ pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
     let runs_dir = root.join("runs");
     if a.dry_run {
         for r in &study.runs {
-            println!("{}", runs_dir.join(&r.name).display());
+            crate::outln!("{}", runs_dir.join(&r.name).display());
         }
         return Ok(());
     }
@@ -512,7 +512,7 @@ pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
         ),
         _ => String::new(),
     };
-    println!(
+    crate::outln!(
         "{} runs: {} finished, {failed} failed, {missing} not run{late}; wrote {}{}",
         study.runs.len(),
         study.runs.len() - failed - missing,
@@ -580,7 +580,7 @@ fn run_all(
                         let outcome = execute(study, run, &runs_dir.join(&run.name), threads);
                         under_way.lock().expect("not poisoned").retain(|n| *n != run.name);
                         if let Outcome::Failed(e) = outcome {
-                            bar.suspend(|| eprintln!("run {} failed: {e}", run.name));
+                            bar.suspend(|| crate::note_err(format_args!("run {} failed: {e}", run.name)));
                         }
                         bar.inc(1);
                     }
@@ -596,11 +596,11 @@ fn run_all(
                 let names = under_way.lock().expect("not poisoned").clone();
                 let status = standing(runs_dir, &names);
                 if bar.is_hidden() {
-                    eprintln!(
+                    crate::note_err(format_args!(
                         "{}/{} runs finished; under way: {status}",
                         bar.position(),
                         runs.len()
-                    );
+                    ));
                 } else {
                     bar.set_message(status);
                 }
@@ -947,7 +947,7 @@ mod ranks {
                     }
                     let run = runs[k as usize];
                     if let Outcome::Failed(e) = execute(study, run, &runs_dir.join(&run.name), threads) {
-                        eprintln!("run {} failed: {e}", run.name);
+                        crate::note_err(format_args!("run {} failed: {e}", run.name));
                     }
                 }
             }
@@ -966,7 +966,7 @@ mod ranks {
                     while let Ok(Some(k)) = take.recv() {
                         let run = runs[k];
                         if let Outcome::Failed(e) = execute(study, run, &runs_dir.join(&run.name), threads) {
-                            eprintln!("run {} failed: {e}", run.name);
+                            crate::note_err(format_args!("run {} failed: {e}", run.name));
                         }
                         if finished.send(()).is_err() {
                             break;

@@ -173,14 +173,16 @@ pub fn info(a: InfoArgs) -> Result<()> {
         reads_as,
     };
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&info)?);
+        crate::outln!("{}", serde_json::to_string_pretty(&info)?);
         return Ok(());
     }
-    println!("{}", path.display());
-    println!("  channel  name                         points        size [m]                 unit  heights");
+    crate::outln!("{}", path.display());
+    crate::outln!(
+        "  channel  name                         points        size [m]                 unit  heights"
+    );
     for (i, c) in info.channels.iter().enumerate() {
         let points = format!("{} x {}", c.nx, c.ny);
-        println!(
+        crate::outln!(
             "  {i:>7}  {:<28} {points:<13} {:<24} {:<5} {}",
             c.name,
             size_text(c.length_x, c.length_y),
@@ -190,7 +192,7 @@ pub fn info(a: InfoArgs) -> Result<()> {
     }
     match &info.reads_as {
         Ok(r) => {
-            println!(
+            crate::outln!(
                 "reads as channel {}: a {} of {} x {} points, {} m",
                 r.channel,
                 r.kind,
@@ -198,25 +200,28 @@ pub fn info(a: InfoArgs) -> Result<()> {
                 r.ny,
                 size_text(r.length_x_m, r.length_y_m)
             );
-            println!(
+            crate::outln!(
                 "  heights [m] of the measured points: mean {:.4e}, RMS {:.4e}, min {:.4e}, max {:.4e}",
-                r.mean_height_m, r.rms_height_m, r.min_height_m, r.max_height_m
+                r.mean_height_m,
+                r.rms_height_m,
+                r.min_height_m,
+                r.max_height_m
             );
             if r.ny == 1 {
-                println!("  a contact calculation needs a surface: this line scan is refused");
+                crate::outln!("  a contact calculation needs a surface: this line scan is refused");
             }
             if r.unmeasured_points > 0 {
-                println!(
+                crate::outln!(
                     "  {} of {} points not measured: a contact calculation refuses the file unless \
                      --fill-unmeasured fills them",
                     r.unmeasured_points,
                     r.nx * r.ny
                 );
             } else {
-                println!("  every point measured");
+                crate::outln!("  every point measured");
             }
         }
-        Err(e) => println!("does not read: {e}"),
+        Err(e) => crate::outln!("does not read: {e}"),
     }
     Ok(())
 }
@@ -341,7 +346,7 @@ pub fn generate(a: GenerateArgs) -> Result<()> {
     let (spec, generated) = a.surface.generate()?;
     let (grid, nx, ny) = (spec.grid, spec.grid.nx, spec.grid.ny);
     for w in &generated.warnings {
-        eprintln!("warning: {w}");
+        crate::errln!("warning: {w}");
     }
     let surface = Surface::new(generated.heights, grid, true)?;
     // The heights go to disk while the statistics and the picture are computed.
@@ -372,7 +377,7 @@ pub fn generate(a: GenerateArgs) -> Result<()> {
     io::write_metadata(&a.output, &metadata)?;
     print_report(&surface, &statistics, a.json)?;
     if !a.json {
-        eprintln!(
+        crate::errln!(
             "wrote {} (+ .json sidecar{})",
             a.output.display(),
             if a.no_png { "" } else { ", .png map" }
@@ -448,7 +453,7 @@ pub fn psd(a: PsdArgs) -> Result<()> {
         chart.save_png(&output.with_extension("png"))?;
     }
     match fit {
-        Some(f) => println!(
+        Some(f) => crate::outln!(
             "wrote {} ({} bins); fitted Hurst exponent {:.4} over q = {:.3e} .. {:.3e} rad/m",
             output.display(),
             r.q.len(),
@@ -456,7 +461,7 @@ pub fn psd(a: PsdArgs) -> Result<()> {
             f.q_min,
             f.q_max
         ),
-        None => println!("wrote {} ({} bins)", output.display(), r.q.len()),
+        None => crate::outln!("wrote {} ({} bins)", output.display(), r.q.len()),
     }
     Ok(())
 }

@@ -547,7 +547,7 @@ impl Observer for StepWriter<'_> {
     fn iteration(&mut self, _: usize, iteration: usize, residual: f64) {
         // Without a terminal, where the running solve stands once a minute.
         if self.bar.is_hidden() && self.quiet_since.elapsed().as_secs() >= 60 {
-            note!(
+            crate::note_unchecked!(
                 "step {}/{}: iteration {iteration}, residual {residual:.2e}",
                 self.done + 1,
                 self.steps
@@ -581,7 +581,7 @@ impl Observer for StepWriter<'_> {
                 .edge_warning(&state.contact.gap, &state.contact.pressure)
         {
             let w = format!("from step {k} on, {w}");
-            self.bar.suspend(|| note!("warning: {w}"));
+            self.bar.suspend(|| crate::note_unchecked!("warning: {w}"));
             self.edge = Some(w);
         }
         self.run.write_progress(None);
@@ -592,7 +592,7 @@ impl Observer for StepWriter<'_> {
         let message = format!("last: approach {:.4e} m, load {:.4e} N", r.approach, r.load);
         if self.bar.is_hidden() {
             // No terminal (a background run, a log file): a plain line a step instead.
-            note!(
+            crate::note_unchecked!(
                 "step {}/{}: approach {:.4e} m, load {:.4e} N, {}, {:.1} s",
                 k + 1,
                 self.steps,

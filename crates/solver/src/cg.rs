@@ -59,6 +59,14 @@ pub fn solve(
         warm.is_some(),
         &mut |i, r| crate::method::heard(observer, 0, i, r),
     )?;
+    crate::error::finite_result(
+        &[
+            ("pressure", &state.pressure),
+            ("gap", &state.gap),
+            ("displacement", &state.displacement),
+        ],
+        &[("load", report.load), ("approach", report.approach)],
+    )?;
     Ok((state, report))
 }
 

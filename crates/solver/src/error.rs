@@ -25,6 +25,13 @@ pub enum SolverError {
         col: usize,
         value: f64,
     },
+    /// A solve's result holds a NaN or an infinity: the problem's numbers overflow double
+    /// precision. A result that is not finite is never reported as a solution.
+    #[error(
+        "the solve's {what} is {value}, not a finite number: the problem's numbers overflow double \
+         precision (check the units of the heights, lengths, modulus and loads)"
+    )]
+    NonFiniteResult { what: String, value: f64 },
     /// The problem lacks a part.
     #[error("the problem needs {0}")]
     Incomplete(&'static str),
@@ -47,4 +54,23 @@ pub(crate) fn invalid(name: &'static str, value: f64, reason: impl Into<String>)
         value,
         reason: reason.into(),
     }
+}
+
+/// Refuses a result with a non-finite field or number, naming the first one found.
+pub(crate) fn finite_result(fields: &[(&str, &ndarray::Array2<f64>)], numbers: &[(&str, f64)]) -> Result<()> {
+    if let Some((name, value)) = numbers.iter().find(|(_, v)| !v.is_finite()) {
+        return Err(SolverError::NonFiniteResult {
+            what: name.to_string(),
+            value: *value,
+        });
+    }
+    for (name, field) in fields {
+        if let Some(((row, col), &value)) = field.indexed_iter().find(|(_, v)| !v.is_finite()) {
+            return Err(SolverError::NonFiniteResult {
+                what: format!("{name} at row {row}, column {col}"),
+                value,
+            });
+        }
+    }
+    Ok(())
 }

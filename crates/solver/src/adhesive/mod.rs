@@ -370,7 +370,17 @@ pub(crate) fn solve(
     };
     let imp = implementation(method);
     imp.check(&job)?;
-    imp.solve(&job, observer)
+    let (state, report) = imp.solve(&job, observer)?;
+    crate::error::finite_result(
+        &[
+            ("compressive pressure", &state.contact.pressure),
+            ("adhesive pressure", &state.adhesive_pressure),
+            ("gap", &state.contact.gap),
+            ("displacement", &state.contact.displacement),
+        ],
+        &[("load", report.load), ("approach", report.approach)],
+    )?;
+    Ok((state, report))
 }
 
 /// How a method's solve ended: its counts, residuals and termination.

@@ -161,7 +161,8 @@ pub(crate) fn pick(path: &Path, layers: Vec<Layer<'_>>, options: &ReadOptions) -
     if ny == 1 {
         return Ok(Topography::Profile(Profile {
             heights: heights.into_iter().collect(),
-            length: length_x.or(options.length_x).map(|l| l * options.unit),
+            // The file's length is in its units; a length given in the options is in metres.
+            length: length_x.map(|l| l * options.unit).or(options.length_x),
             channel: index,
         }));
     }
@@ -527,9 +528,53 @@ pub fn read_topography(path: &Path, options: &ReadOptions) -> Result<Topography>
         periodic: options.periodic && !instrument,
         ..*options
     };
-    if let Some(reader) = layer_reader(format) {
-        return pick(path, reader(&read_bytes(path)?, path)?, options);
+    let read = if let Some(reader) = layer_reader(format) {
+        pick(path, reader(&read_bytes(path)?, path)?, options)?
+    } else {
+        read_single(path, format, options)?
+    };
+    given_size_used(path, &read, options)?;
+    Ok(read)
+}
+
+/// Refuses a box size given in the options that the reading did not use: a file that carries
+/// its own size is read at that size, and a size given beside it would otherwise be dropped
+/// without a word (and recorded as if it had been used).
+fn given_size_used(path: &Path, read: &Topography, options: &ReadOptions) -> Result<()> {
+    let (lx, ly) = match read {
+        Topography::Surface(m) => (Some(m.grid.length_x), Some(m.grid.length_y)),
+        Topography::Profile(p) => (p.length, None),
+    };
+    let differs = |given: Option<f64>, used: Option<f64>| match (given, used) {
+        (Some(g), Some(u)) => (g - u).abs() > 1e-12 * u.abs(),
+        (Some(_), None) => true,
+        _ => false,
+    };
+    for (name, given, used) in [
+        ("length", options.length_x, lx),
+        ("length_y", options.length_y, ly),
+    ] {
+        if differs(given, used) {
+            return Err(SurfError::parse(
+                path,
+                None,
+                format!(
+                    "the file gives its own box ({}), so `{name}` = {:e} m does not apply: leave it out",
+                    match (lx, ly) {
+                        (Some(x), Some(y)) => format!("{x:e} x {y:e} m"),
+                        (Some(x), None) => format!("a line of {x:e} m"),
+                        _ => "no size".to_string(),
+                    },
+                    given.unwrap_or(f64::NAN)
+                ),
+            ));
+        }
     }
+    Ok(())
+}
+
+/// Reads a format of one surface.
+fn read_single(path: &Path, format: Format, options: &ReadOptions) -> Result<Topography> {
     if let Some(c) = options.channel.filter(|&c| c > 0) {
         return Err(SurfError::parse(
             path,
