@@ -287,13 +287,72 @@ where
             tb.insert(k, v);
         }
     }
-    let a = ta
-        .try_into()
-        .with_context(|| format!("{source}: a key has a value of the wrong type"))?;
-    let b = tb
-        .try_into()
-        .with_context(|| format!("{source}: a key has a value of the wrong type"))?;
+    let a = typed(&source, ta)?;
+    let b = typed(&source, tb)?;
     Ok((a, b))
+}
+
+/// `table` as the option struct `T`; a value of the wrong type is refused naming its key, the
+/// value given and what the key takes, in words rather than serde's.
+fn typed<T: DeserializeOwned>(source: &str, table: toml::Table) -> Result<T> {
+    match table.clone().try_into() {
+        Ok(t) => Ok(t),
+        Err(whole) => {
+            // The culprit: the first key that does not deserialise on its own.
+            for (key, value) in table {
+                let alone: toml::Table = [(key.clone(), value.clone())].into_iter().collect();
+                if let Err(e) = alone.try_into::<T>() {
+                    bail!(
+                        "{source}: `{key}` must be {}, got {}",
+                        expected(&e.to_string()),
+                        given(&value)
+                    );
+                }
+            }
+            bail!("{source}: {}", whole.to_string().trim())
+        }
+    }
+}
+
+/// What a key takes, from serde's "expected ..." in `message`.
+fn expected(message: &str) -> String {
+    let wanted = message
+        .split("expected ")
+        .nth(1)
+        .map(|w| w.lines().next().unwrap_or(w).trim())
+        .unwrap_or("");
+    let wanted = wanted.split(" in `").next().unwrap_or(wanted);
+    match wanted {
+        "usize" | "u64" | "u32" => "a whole number >= 0".into(),
+        "f64" | "f32" => "a number".into(),
+        "a boolean" | "bool" => "true or false".into(),
+        "path string" => "a path (a string)".into(),
+        "a string" => "a string".into(),
+        "a sequence" => "a list".into(),
+        w if w.starts_with("one of") => w.replace('`', "\""),
+        "" => "another type".into(),
+        w => w.to_string(),
+    }
+}
+
+/// A value as the user wrote it, with its type.
+fn given(value: &toml::Value) -> String {
+    let kind = match value {
+        toml::Value::String(_) => "a string",
+        toml::Value::Integer(_) => "an integer",
+        toml::Value::Float(_) => "a number with a fraction",
+        toml::Value::Boolean(_) => "a boolean",
+        toml::Value::Datetime(_) => "a date",
+        toml::Value::Array(_) => "a list",
+        toml::Value::Table(_) => "a table",
+    };
+    let text = value.to_string();
+    let text = if text.len() > 60 {
+        format!("{}...", &text[..text.floor_char_boundary(57)])
+    } else {
+        text
+    };
+    format!("{text} ({kind})")
 }
 
 /// A path a case file gave (`from_file`: not overridden by a flag) is relative to that file's

@@ -1,6 +1,6 @@
 //! `bench`: the same self-affine contact problem at increasing sizes.
 
-use anyhow::Result;
+use anyhow::{Result, bail};
 use clap::Args;
 use elastic::{Domain, Periodic};
 use serde_json::json;
@@ -54,6 +54,23 @@ fn peak_rss() -> Option<u64> {
 }
 
 pub fn bench(a: BenchArgs) -> Result<()> {
+    if a.sizes.iter().any(|&n| n < 8) {
+        bail!("--sizes are points per side, each at least 8 (the surface's cut-off is 8 cells)");
+    }
+    if !(a.pressure.is_finite() && a.pressure > 0.0) {
+        bail!(
+            "--pressure must be a finite mean pressure > 0 in units of E*, got {}",
+            a.pressure
+        );
+    }
+    // Every size is checked before the first is solved: one the machine cannot hold is refused
+    // with its estimate, not found out after the others have run.
+    for &n in &a.sizes {
+        case::memory::check(
+            &format!("a {n} x {n} bench"),
+            solver::memory_estimate(n, n, true, None) + surfgen::generate::memory_estimate(n, n),
+        )?;
+    }
     crate::outln!(
         "Self-affine surface, H = 0.8, RMS gradient 1, short cut-off 8 cells, no roll-off; E* = 1, p = {} E*, tolerance {:e}, {} threads",
         a.pressure,

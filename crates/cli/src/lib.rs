@@ -5,6 +5,7 @@
 #![allow(rustdoc::broken_intra_doc_links, rustdoc::invalid_html_tags)]
 
 pub mod bench;
+pub mod output;
 pub mod plot;
 pub mod run;
 pub mod solve;

@@ -203,11 +203,15 @@ pub fn save_panels(charts: &[Chart], dir: &Path, stem: &str) -> Result<()> {
     ensure_font();
     let size = (SIZE.0 * charts.len() as u32 * 5 / 6 + SIZE.0 / 6, SIZE.1);
     let png = dir.join(format!("{stem}.png"));
-    panels(charts, BitMapBackend::new(&png, size).into_drawing_area())
-        .with_context(|| format!("drawing {}", png.display()))?;
+    surfgen::io::atomically(&png, |p| {
+        panels(charts, BitMapBackend::new(p, size).into_drawing_area())
+            .with_context(|| format!("drawing {}", png.display()))
+    })?;
     let svg = dir.join(format!("{stem}.svg"));
-    panels(charts, SVGBackend::new(&svg, size).into_drawing_area())
-        .with_context(|| format!("drawing {}", svg.display()))
+    surfgen::io::atomically(&svg, |p| {
+        panels(charts, SVGBackend::new(p, size).into_drawing_area())
+            .with_context(|| format!("drawing {}", svg.display()))
+    })
 }
 
 fn panels<DB: DrawingBackend>(charts: &[Chart], root: DrawingArea<DB, Shift>) -> Result<()> {
@@ -244,11 +248,13 @@ impl Chart {
     /// Writes the PNG `path`.
     pub fn save_png(&self, path: &Path) -> Result<()> {
         ensure_font();
-        panels(
-            std::slice::from_ref(self),
-            BitMapBackend::new(path, SIZE).into_drawing_area(),
-        )
-        .with_context(|| format!("drawing {}", path.display()))
+        surfgen::io::atomically(path, |p| {
+            panels(
+                std::slice::from_ref(self),
+                BitMapBackend::new(p, SIZE).into_drawing_area(),
+            )
+            .with_context(|| format!("drawing {}", path.display()))
+        })
     }
 
     /// plotters draws no ticks on a log axis far from 1 (a PSD near 1e-30 m^4), so such an axis
@@ -552,9 +558,14 @@ pub fn field_map(
     (vf, vu): (f64, &str),
 ) -> Result<()> {
     ensure_font();
-    let root = BitMapBackend::new(path, map_size((lx, ly))).into_drawing_area();
-    draw_map(root, field, (x0, y0, lx, ly), title, value_label, (vf, vu))
-        .with_context(|| format!("drawing {}", path.display()))
+    if let Some(((row, col), v)) = field.indexed_iter().find(|(_, v)| !v.is_finite()) {
+        anyhow::bail!("{title}: the field holds {v} at row {row}, column {col}; a map of it is not drawn");
+    }
+    surfgen::io::atomically(path, |p| {
+        let root = BitMapBackend::new(p, map_size((lx, ly))).into_drawing_area();
+        draw_map(root, field, (x0, y0, lx, ly), title, value_label, (vf, vu))
+            .with_context(|| format!("drawing {}", path.display()))
+    })
 }
 
 /// The same as [`field_map`] as `dir/stem.png` and `dir/stem.svg`.
@@ -576,9 +587,11 @@ pub fn map(
         unit,
     )?;
     let svg = dir.join(format!("{stem}.svg"));
-    let root = SVGBackend::new(&svg, map_size((extent.2, extent.3))).into_drawing_area();
-    draw_map(root, field, extent, title, value_label, unit)
-        .with_context(|| format!("drawing {}", svg.display()))
+    surfgen::io::atomically(&svg, |p| {
+        let root = SVGBackend::new(p, map_size((extent.2, extent.3))).into_drawing_area();
+        draw_map(root, field, extent, title, value_label, unit)
+            .with_context(|| format!("drawing {}", svg.display()))
+    })
 }
 
 /// One rectangle per cell where cells are at least a pixel wide (so that an SVG stays exact);

@@ -57,6 +57,30 @@ const RUN_FILES: [&str; 15] = [
 /// Where a sweep's running step stands, for a study's progress line.
 const PROGRESS: &str = "progress.txt";
 
+/// A run directory locked by another running process.
+#[derive(Debug)]
+pub struct Busy(pub PathBuf);
+
+impl std::fmt::Display for Busy {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} is in use by another running solve or sweep; wait for it to end or give another --out",
+            self.0.display()
+        )
+    }
+}
+
+impl std::error::Error for Busy {}
+
+/// Whether another running process holds the lock of the run directory `path`.
+pub fn busy(path: &Path) -> bool {
+    OpenOptions::new()
+        .write(true)
+        .open(path.join(".lock"))
+        .is_ok_and(|f| matches!(f.try_lock(), Err(TryLockError::WouldBlock)))
+}
+
 /// How a run may use a directory that already holds another run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Reuse {
@@ -89,10 +113,7 @@ impl RunDir {
             .with_context(|| format!("opening {}", lock_path.display()))?;
         match lock.try_lock() {
             Ok(()) => {}
-            Err(TryLockError::WouldBlock) => bail!(
-                "{} is in use by another running solve or sweep; wait for it to end or give another --out",
-                path.display()
-            ),
+            Err(TryLockError::WouldBlock) => return Err(Busy(path.to_path_buf()).into()),
             Err(TryLockError::Error(e)) => {
                 return Err(e).with_context(|| format!("locking {}", lock_path.display()));
             }
@@ -100,6 +121,13 @@ impl RunDir {
         let found: Vec<&str> = RUN_FILES.into_iter().filter(|f| path.join(f).exists()).collect();
         match reuse {
             _ if found.is_empty() => {}
+            // Only a sweep's run is continued: a solve's would be overwritten under its name.
+            Reuse::Resume if !path.join("curve.csv").exists() => bail!(
+                "--resume: {} holds no sweep to continue ({}): give another --out, or --overwrite \
+                 to replace what it holds",
+                path.display(),
+                found.join(", ")
+            ),
             Reuse::Resume => {}
             Reuse::Refuse => bail!(
                 "{} already holds a run ({}); give --overwrite to replace it (or, for a sweep, --resume \
@@ -142,9 +170,10 @@ impl RunDir {
 
     /// Writes the resolved case (TOML) the run was made with.
     pub fn write_case(&self, resolved: &str) -> Result<()> {
-        let path = self.path.join("case.toml");
-        std::fs::write(&path, format!("{}\n", resolved.trim_end()))
-            .with_context(|| format!("writing {}", path.display()))
+        crate::output::text(
+            &self.path.join("case.toml"),
+            &format!("{}\n", resolved.trim_end()),
+        )
     }
 
     /// The resolved case a previous run left here, if any.
@@ -180,15 +209,15 @@ impl RunDir {
         if let (Value::Object(all), Value::Object(results)) = (&mut summary, results) {
             all.extend(results);
         }
-        let path = self.path.join("summary.json");
-        std::fs::write(&path, serde_json::to_string_pretty(&summary)? + "\n")
-            .with_context(|| format!("writing {}", path.display()))
+        crate::output::text(
+            &self.path.join("summary.json"),
+            &(serde_json::to_string_pretty(&summary)? + "\n"),
+        )
     }
 
     /// Starts an empty `curve.csv` (its header only).
     pub fn start_curve(&self) -> Result<()> {
-        let path = self.curve_path();
-        std::fs::write(&path, format!("{HEADER}\n")).with_context(|| format!("writing {}", path.display()))
+        crate::output::text(&self.curve_path(), &format!("{HEADER}\n"))
     }
 
     /// Keeps the first `rows` steps of `curve.csv`.
@@ -196,7 +225,7 @@ impl RunDir {
         let path = self.curve_path();
         let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
         let kept: String = text.split_inclusive('\n').take(rows + 1).collect();
-        std::fs::write(&path, kept).with_context(|| format!("writing {}", path.display()))
+        crate::output::text(&path, &kept)
     }
 
     /// Whether a previous sweep left a curve here.
@@ -323,10 +352,9 @@ fn parse_curve(text: &str) -> Result<Vec<CyclePoint>> {
     Ok(rows)
 }
 
-/// Writes `dir/name.npy`.
+/// Writes `dir/name.npy` (a finite field, whole or not at all).
 pub fn write_field(dir: &Path, name: &str, field: &Array2<f64>) -> Result<()> {
-    let path = dir.join(format!("{name}.npy"));
-    surfgen::io::write_npy(field, &path).with_context(|| format!("writing {}", path.display()))
+    crate::output::field(dir, name, field)
 }
 
 /// Writes a state into `dir` whole or not at all: into a sibling `<name>.new` first (its
@@ -352,9 +380,10 @@ fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
         fields.insert(name.to_string(), Value::String(fingerprint(field)));
     }
     let manifest = serde_json::json!({ "approach": state.contact.approach, "fields": fields });
-    let manifest_path = new.join(MANIFEST);
-    std::fs::write(&manifest_path, serde_json::to_string_pretty(&manifest)? + "\n")
-        .with_context(|| format!("writing {}", manifest_path.display()))?;
+    crate::output::text(
+        &new.join(MANIFEST),
+        &(serde_json::to_string_pretty(&manifest)? + "\n"),
+    )?;
     let rename = |from: &Path, to: &Path| {
         std::fs::rename(from, to).with_context(|| format!("renaming {} to {}", from.display(), to.display()))
     };

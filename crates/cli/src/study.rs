@@ -175,6 +175,7 @@ impl Study {
                 bail!("{name}: `out` cannot be an axis: each run has its own directory");
             }
         }
+        bound_runs(&axes, zip).with_context(|| format!("{name}: the axes"))?;
         let mut runs = expand(&axes, zip).with_context(|| format!("{name}: the axes"))?;
         if let Some(names) = names {
             if names.len() != runs.len() {
@@ -188,12 +189,48 @@ impl Study {
             }
             unique(&runs)?;
         }
-        Ok(Study {
+        let study = Study {
             command,
             case,
             axes,
             runs,
-        })
+        };
+        study.check_runs().with_context(|| format!("{name}"))?;
+        Ok(study)
+    }
+
+    /// Checks every run's case before the first runs: unknown keys, values of the wrong type
+    /// and keys that do not apply are refused naming the run and the key, so that a study
+    /// does not run each run into the same error.
+    fn check_runs(&self) -> Result<()> {
+        for run in &self.runs {
+            let mut t = self.case.clone();
+            for (k, v) in &run.values {
+                t.insert(k.clone(), v.clone());
+            }
+            let checked = if self.command == "sweep" {
+                case::from_table::<case::Case, case::SweepPath>("the case", t).map(|(c, _)| c)
+            } else {
+                case::from_table::<case::Case, case::SolveControl>("the case", t).map(|(c, _)| c)
+            }
+            .and_then(|mut c| {
+                c.fill_defaults("");
+                c.check_applicable()
+            });
+            if let Err(e) = checked {
+                let axis = |k: &str| self.axes.iter().any(|(a, _)| a == k);
+                let message = format!("{e:#}");
+                let culprit = run
+                    .values
+                    .iter()
+                    .find(|(k, _)| message.contains(&format!("`{k}`")));
+                let named = culprit
+                    .filter(|(k, _)| axis(k))
+                    .map_or(String::new(), |(k, v)| format!(" (axis `{k}` = {})", spelt(v)));
+                bail!("run {}{named}: {message}", run.name);
+            }
+        }
+        Ok(())
     }
 
     /// A run's case file: the base case, the run's values, its output directory.
@@ -283,6 +320,25 @@ fn expand(axes: &[(String, Vec<toml::Value>)], zip: bool) -> Result<Vec<Run>> {
     Ok(runs)
 }
 
+/// The bytes a run of a study takes before it runs, per axis (its values and name), and its
+/// row of the merged tables: for refusing an axis product the machine cannot list.
+const RUN_BYTES: f64 = 256.0;
+const RUN_BYTES_PER_AXIS: f64 = 160.0;
+
+/// Refuses axes whose runs cannot be listed, with the count and the memory it would take,
+/// before any run is made.
+fn bound_runs(axes: &[(String, Vec<toml::Value>)], zip: bool) -> Result<()> {
+    let count = if zip {
+        axes.first().map_or(1.0, |(_, v)| v.len() as f64)
+    } else {
+        axes.iter().map(|(_, v)| v.len() as f64).product()
+    };
+    case::memory::check(
+        &format!("a study of {count:.3e} runs"),
+        count * (RUN_BYTES + RUN_BYTES_PER_AXIS * axes.len() as f64),
+    )
+}
+
 /// Refuses runs that would share a directory.
 fn unique(runs: &[Run]) -> Result<()> {
     let mut names: Vec<&str> = runs.iter().map(|r| r.name.as_str()).collect();
@@ -311,6 +367,8 @@ fn parse_shard(s: &str) -> Result<(usize, usize)> {
 enum Outcome {
     Done,
     Failed(String),
+    /// Under way in another process.
+    Elsewhere,
 }
 
 /// Runs one run in `dir` on a pool of `threads` threads: resumes a half-finished sweep, skips a
@@ -329,6 +387,9 @@ fn execute(study: &Study, run: &Run, dir: &Path, threads: usize) -> Outcome {
     });
     match outcome {
         Ok(()) => Outcome::Done,
+        // Another process runs it (a second study on the same directory): its outcome is that
+        // process's, and nothing is written here.
+        Err(e) if e.downcast_ref::<crate::run::Busy>().is_some() => Outcome::Elsewhere,
         Err(e) => {
             let message = format!("{e:#}");
             let _ =
@@ -496,7 +557,14 @@ pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
             }
         }
     }
-    let (rows, failed, missing) = merge(&study, &runs_dir)?;
+    let (
+        rows,
+        Counts {
+            failed,
+            missing,
+            elsewhere,
+        },
+    ) = merge(&study, &runs_dir)?;
     let table = root.join("study.csv");
     std::fs::create_dir_all(&root).with_context(|| format!("creating {}", root.display()))?;
     std::fs::write(&table, &rows).with_context(|| format!("writing {}", table.display()))?;
@@ -513,9 +581,14 @@ pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
         _ => String::new(),
     };
     crate::outln!(
-        "{} runs: {} finished, {failed} failed, {missing} not run{late}; wrote {}{}",
+        "{} runs: {} finished, {failed} failed, {missing} not run{late}{}; wrote {}{}",
         study.runs.len(),
-        study.runs.len() - failed - missing,
+        study.runs.len() - failed - missing - elsewhere,
+        if elsewhere > 0 {
+            format!(", {elsewhere} under way in another process (merge again when it ends: --merge)")
+        } else {
+            String::new()
+        },
         table.display(),
         group_over.map_or(String::new(), |g| format!(" and study-groups.csv (over {g})"))
     );
@@ -579,8 +652,17 @@ fn run_all(
                         under_way.lock().expect("not poisoned").push(&run.name);
                         let outcome = execute(study, run, &runs_dir.join(&run.name), threads);
                         under_way.lock().expect("not poisoned").retain(|n| *n != run.name);
-                        if let Outcome::Failed(e) = outcome {
-                            bar.suspend(|| crate::note_err(format_args!("run {} failed: {e}", run.name)));
+                        match outcome {
+                            Outcome::Failed(e) => {
+                                bar.suspend(|| crate::note_err(format_args!("run {} failed: {e}", run.name)))
+                            }
+                            Outcome::Elsewhere => bar.suspend(|| {
+                                crate::note_err(format_args!(
+                                    "run {} is under way in another process: left to it",
+                                    run.name
+                                ))
+                            }),
+                            Outcome::Done => {}
                         }
                         bar.inc(1);
                     }
@@ -633,9 +715,9 @@ fn standing(runs_dir: &Path, names: &[&str]) -> String {
 /// its axis values, its status and error, and every number, flag and word of the top level of
 /// its summary.json except wall times, so that the table does not depend on how the runs were
 /// spread); with the counts of failed and missing runs.
-fn merge(study: &Study, runs_dir: &Path) -> Result<(String, usize, usize)> {
+fn merge(study: &Study, runs_dir: &Path) -> Result<(String, Counts)> {
     let mut rows: Vec<(String, Option<String>, BTreeMap<String, String>)> = Vec::new();
-    let (mut failed, mut missing) = (0, 0);
+    let (mut failed, mut missing, mut elsewhere) = (0, 0, 0);
     let mut columns = std::collections::BTreeSet::new();
     for run in &study.runs {
         let dir = runs_dir.join(&run.name);
@@ -660,6 +742,9 @@ fn merge(study: &Study, runs_dir: &Path) -> Result<(String, usize, usize)> {
                 }
             }
             ("finished".to_string(), None)
+        } else if crate::run::busy(&dir) {
+            elsewhere += 1;
+            ("under way elsewhere".to_string(), None)
         } else if let Ok(e) = std::fs::read_to_string(dir.join("error.txt")) {
             failed += 1;
             ("failed".to_string(), Some(e))
@@ -669,75 +754,80 @@ fn merge(study: &Study, runs_dir: &Path) -> Result<(String, usize, usize)> {
         };
         rows.push((status, error, fields));
     }
-    let mut csv = String::from("run");
-    for (k, _) in &study.axes {
-        csv += &format!(",{k}");
-    }
-    csv += ",status,error";
-    for c in &columns {
-        csv += &format!(",{c}");
-    }
-    csv.push('\n');
+    let mut header = vec!["run".to_string()];
+    header.extend(study.axes.iter().map(|(k, _)| k.clone()));
+    header.extend(["status".to_string(), "error".to_string()]);
+    header.extend(columns.iter().cloned());
+    let mut csv = csv::Writer::from_writer(Vec::new());
+    csv.write_record(&header)?;
     for (run, (status, error, fields)) in study.runs.iter().zip(rows) {
-        csv += &quote(&run.name);
-        for (_, v) in &run.values {
-            csv += &format!(",{}", quote(&spelt(v)));
-        }
-        csv += &format!(",{status},{}", quote(error.as_deref().unwrap_or("")));
-        for c in &columns {
-            csv += &format!(",{}", quote(fields.get(c).map_or("", String::as_str)));
-        }
-        csv.push('\n');
+        let mut record = vec![run.name.clone()];
+        record.extend(run.values.iter().map(|(_, v)| spelt(v)));
+        record.extend([status, error.unwrap_or_default()]);
+        record.extend(columns.iter().map(|c| fields.get(c).cloned().unwrap_or_default()));
+        csv.write_record(&record)?;
     }
-    Ok((csv, failed, missing))
+    let bytes = csv
+        .into_inner()
+        .map_err(|e| anyhow::anyhow!("writing the table: {e}"))?;
+    Ok((
+        String::from_utf8(bytes)?,
+        Counts {
+            failed,
+            missing,
+            elsewhere,
+        },
+    ))
 }
 
-/// A CSV cell, quoted when it holds a comma, a quote or a line break.
-fn quote(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
+/// How many runs of a merged table are not finished.
+struct Counts {
+    failed: usize,
+    missing: usize,
+    /// Under way in another process (its lock held).
+    elsewhere: usize,
 }
 
-/// A CSV line split into cells (the quoting of [`quote`]).
-fn cells(line: &str) -> Vec<String> {
-    let (mut out, mut cell, mut quoted, mut chars) =
-        (Vec::new(), String::new(), false, line.chars().peekable());
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', true) if chars.peek() == Some(&'"') => {
-                cell.push('"');
-                chars.next();
-            }
-            ('"', _) => quoted = !quoted,
-            (',', false) => out.push(std::mem::take(&mut cell)),
-            _ => cell.push(c),
-        }
-    }
-    out.push(cell);
-    out
+/// A CSV table's header and rows (RFC 4180 quoting: cells may hold commas, quotes and line
+/// breaks).
+fn read_table(table: &str) -> Result<(Vec<String>, Vec<Vec<String>>)> {
+    let mut reader = csv::ReaderBuilder::new().from_reader(table.as_bytes());
+    let header = reader.headers()?.iter().map(str::to_string).collect();
+    let rows = reader
+        .records()
+        .map(|r| Ok(r?.iter().map(str::to_string).collect()))
+        .collect::<Result<_>>()?;
+    Ok((header, rows))
+}
+
+/// One CSV line of `cells`, quoted where they need it.
+fn csv_line(cells: &[String]) -> Result<String> {
+    let mut csv = csv::WriterBuilder::new().from_writer(Vec::new());
+    csv.write_record(cells)?;
+    let bytes = csv
+        .into_inner()
+        .map_err(|e| anyhow::anyhow!("writing the table: {e}"))?;
+    Ok(String::from_utf8(bytes)?)
 }
 
 /// study-groups.csv: the finished runs grouped by every axis but `over`, and for every
 /// numeric column its mean, standard error (sample standard deviation over sqrt(count)) and
 /// count over the group.
 fn group(table: &str, study: &Study, over: &str) -> Result<String> {
-    let mut lines = table.lines();
-    let header = cells(lines.next().context("an empty table")?);
-    let rows: Vec<Vec<String>> = lines.map(cells).collect();
+    let (header, rows) = read_table(table)?;
+    let column = |name: &str| {
+        header
+            .iter()
+            .position(|h| h == name)
+            .with_context(|| format!("study.csv has no column `{name}`"))
+    };
     let keys: Vec<usize> = study
         .axes
         .iter()
         .filter(|(k, _)| k != over)
-        .map(|(k, _)| header.iter().position(|h| h == k).expect("an axis column"))
-        .collect();
-    let first_result = header
-        .iter()
-        .position(|h| h == "error")
-        .expect("the error column")
-        + 1;
+        .map(|(k, _)| column(k))
+        .collect::<Result<_>>()?;
+    let first_result = column("error")? + 1;
     let finished: Vec<&Vec<String>> = rows
         .iter()
         .filter(|r| r[first_result - 2] == "finished")
@@ -767,9 +857,9 @@ fn group(table: &str, study: &Study, over: &str) -> Result<String> {
             format!("{}_count", header[c]),
         ]);
     }
-    let mut out = csv.join(",") + "\n";
+    let mut out = csv_line(&csv)?;
     for (key, members) in groups {
-        let mut line: Vec<String> = key.iter().map(|k| quote(k)).collect();
+        let mut line: Vec<String> = key;
         line.push(members.len().to_string());
         for &c in &numeric {
             let xs: Vec<f64> = members.iter().filter_map(|r| r[c].parse::<f64>().ok()).collect();
@@ -782,7 +872,7 @@ fn group(table: &str, study: &Study, over: &str) -> Result<String> {
             };
             line.extend([format!("{mean:e}"), format!("{stderr:e}"), xs.len().to_string()]);
         }
-        out += &(line.join(",") + "\n");
+        out += &csv_line(&line)?;
     }
     Ok(out)
 }
@@ -889,7 +979,8 @@ mod tests {
         let stderr: f64 = one[3].parse().unwrap();
         assert!((stderr - (1.0f64 / 3.0).sqrt()).abs() < 1e-15, "{stderr}");
         assert_eq!(lines[2], "2,2,6e0,1e0,2");
-        assert_eq!(cells("a,\"b, \"\"c\"\"\",d"), ["a", "b, \"c\"", "d"]);
+        let (_, quoted) = read_table("a,b,c\na,\"b, \"\"c\"\"\nd\",e\n").unwrap();
+        assert_eq!(quoted, [["a", "b, \"c\"\nd", "e"]]);
     }
 }
 

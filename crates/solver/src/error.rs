@@ -4,7 +4,7 @@
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SolverError {
     /// A parameter is outside its range.
-    #[error("invalid {name} = {value}: {reason}")]
+    #[error("invalid {name} = {value:?}: {reason}")]
     InvalidParameter {
         name: &'static str,
         value: f64,

@@ -232,7 +232,8 @@ impl ContactProblem {
 /// grids), plus a fixed 16 MiB. For refusing a grid the machine cannot hold before anything is
 /// allocated; not a bound.
 pub fn memory_estimate(nx: usize, ny: usize, periodic: bool, method: Option<Method>) -> f64 {
-    let cells = nx * ny;
+    // Counted in f64: a grid too large to hold is to be refused, not to overflow the count.
+    let cells = nx as f64 * ny as f64;
     let (per_cell, basis) = match (method, periodic) {
         (None, _) => (128.0, 0.0),
         (Some(Method::EnergyDescent | Method::Flow), true) => (256.0, 0.0),
@@ -240,13 +241,13 @@ pub fn memory_estimate(nx: usize, ny: usize, periodic: bool, method: Option<Meth
         (Some(Method::DualLoop | Method::Accelerated), _) => (384.0, 0.0),
         (Some(Method::Newton | Method::Auto), _) => {
             // Newton's unknown lives on the padded 2nx x 2ny grid of a free domain.
-            let unknown = if periodic { cells } else { 4 * cells };
-            let fields = crate::adhesive::restart_for(unknown) + 1;
+            let unknown = if periodic { cells } else { 4.0 * cells };
+            let fields = crate::adhesive::restart_for(unknown.min(usize::MAX as f64) as usize) + 1;
             let rest = if periodic { 392.0 } else { 1056.0 };
-            (rest, 8.0 * (fields * unknown) as f64)
+            (rest, 8.0 * fields as f64 * unknown)
         }
     };
-    per_cell * cells as f64 + basis + 16.0 * 1024.0 * 1024.0
+    per_cell * cells + basis + 16.0 * 1024.0 * 1024.0
 }
 
 impl std::fmt::Debug for ContactProblem {

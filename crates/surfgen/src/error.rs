@@ -7,7 +7,7 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum SurfError {
     /// A parameter is outside its physical or numerical range.
-    #[error("invalid {name} = {value}: {reason}")]
+    #[error("invalid {name} = {value:?}: {reason}")]
     InvalidParameter {
         name: &'static str,
         value: f64,
@@ -19,8 +19,11 @@ pub enum SurfError {
         expected: (usize, usize),
         got: (usize, usize),
     },
-    /// A height is NaN or infinite.
-    #[error("non-finite height {value} at row {row}, column {col}")]
+    /// A height is NaN or infinite, or beyond [`crate::grid::MAX_LENGTH`] in magnitude.
+    #[error(
+        "height {value} m at row {row}, column {col}: heights must be finite and at most 1e100 m in \
+         magnitude (their squares overflow double precision beyond)"
+    )]
     NonFinite { row: usize, col: usize, value: f64 },
     /// A file could not be opened, read or written.
     #[error("{}: {source}", path.display())]

@@ -108,8 +108,18 @@ pub fn generate(spec: &SurfaceSpec) -> Result<Generated> {
         Normalization::PeakToValley(v) => ("peak_to_valley", v),
         Normalization::Prefactor(v) => ("prefactor", v),
     };
-    if !(target.1.is_finite() && target.1 > 0.0) {
-        return Err(SurfError::invalid(target.0, target.1, "must be finite and > 0"));
+    // A prefactor [m^4] is a height squared times an area: its bound is the square's.
+    let largest = if target.0 == "prefactor" {
+        crate::grid::MAX_LENGTH * crate::grid::MAX_LENGTH
+    } else {
+        crate::grid::MAX_LENGTH
+    };
+    if !(target.1 > 0.0 && target.1 <= largest) {
+        return Err(SurfError::invalid(
+            target.0,
+            target.1,
+            format!("must be > 0 and at most {largest:e} (SI units)"),
+        ));
     }
     let fft = Fft2::new(grid.nx, grid.ny);
     let mut spectrum = fill_spectrum(fft.spectrum_shape(), spec);

@@ -29,11 +29,11 @@ impl Grid {
             }
         }
         for (name, l) in [("length_x", length_x), ("length_y", length_y)] {
-            if !(l.is_finite() && l > 0.0) {
+            if !(l > 0.0 && l <= MAX_LENGTH) {
                 return Err(SurfError::invalid(
                     name,
                     l,
-                    "a lateral size must be finite and > 0 m",
+                    "a lateral size must be > 0 m and at most 1e100 m",
                 ));
             }
         }
@@ -99,9 +99,14 @@ impl Grid {
     }
 }
 
-/// Returns the first NaN or infinite height as an error.
+/// The largest height or lateral size \[m\] a surface may have: far beyond any surface, and
+/// small enough that the sums of squares and products made of it (statistics, spectra, a
+/// solver's energies) stay finite in double precision.
+pub const MAX_LENGTH: f64 = 1e100;
+
+/// Returns the first height that is NaN, infinite or beyond [`MAX_LENGTH`] as an error.
 pub fn check_finite(heights: ArrayView2<f64>) -> Result<()> {
-    match heights.indexed_iter().find(|(_, v)| !v.is_finite()) {
+    match heights.indexed_iter().find(|(_, v)| !(v.abs() <= MAX_LENGTH)) {
         Some(((row, col), &value)) => Err(SurfError::NonFinite { row, col, value }),
         None => Ok(()),
     }

@@ -329,26 +329,35 @@ impl HeightStats {
         let min = rows.iter().map(|r| r[1]).fold(f64::INFINITY, f64::min);
         let max = rows.iter().map(|r| r[2]).fold(f64::NEG_INFINITY, f64::max);
         let mean = sum / n;
+        // The moments of the heights over a power of two near their spread: exact scaling, and
+        // fourth powers that stay finite for any height a surface may have.
+        let spread = (max - mean).abs().max((min - mean).abs());
+        let scale = if spread > 0.0 && spread.is_finite() {
+            2f64.powi(spread.log2().ceil() as i32)
+        } else {
+            1.0
+        };
         let central: Vec<[f64; 3]> = heights
             .axis_iter(Axis(0))
             .into_par_iter()
             .map(|r| {
                 r.iter().fold([0.0; 3], |[a, b, c], &h| {
-                    let d = h - mean;
+                    let d = (h - mean) / scale;
                     let d2 = d * d;
                     [a + d2, b + d2 * d, c + d2 * d2]
                 })
             })
             .collect();
         let [m2, m3, m4] = ordered_sum(central).map(|v| v / n);
-        let rq = m2.sqrt();
+        let rq = m2.sqrt() * scale;
+        let rq_scaled = m2.sqrt();
         HeightStats {
             mean,
             rms_height: rq,
             min,
             max,
             peak_to_valley: max - min,
-            skewness: m3 / (rq * rq * rq),
+            skewness: m3 / (rq_scaled * rq_scaled * rq_scaled),
             kurtosis: m4 / (m2 * m2),
         }
     }

@@ -674,20 +674,45 @@ pub fn channels(path: &Path, options: &ReadOptions) -> Result<Vec<Channel>> {
 /// [`Metadata::of`] the surface) goes to the JSON sidecar; other formats keep grid and
 /// periodicity only. `.gsf` stores heights as f32.
 pub fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Result<()> {
-    match Format::of(path)? {
-        Format::Npy => npy::write(surface, path, metadata),
-        Format::Matrix => text::write_matrix(surface, path),
-        Format::Xyh => text::write_xyh(surface, path),
-        Format::Gsf => gsf::write(surface, path),
-        Format::X3p => x3p::write(surface, path),
-        Format::Sdf => sdf::write(surface, path),
-        Format::NetCdf => netcdf::write(surface, path),
+    let format = Format::of(path)?;
+    if format == Format::Npy {
+        npy::write_array(&surface.heights, path)?;
+        return write_metadata(path, metadata.unwrap_or(&Metadata::of(surface)));
+    }
+    atomically(path, |p| match format {
+        Format::Matrix => text::write_matrix(surface, p),
+        Format::Xyh => text::write_xyh(surface, p),
+        Format::Gsf => gsf::write(surface, p),
+        Format::X3p => x3p::write(surface, p),
+        Format::Sdf => sdf::write(surface, p),
+        Format::NetCdf => netcdf::write(surface, p),
         _ => Err(SurfError::parse(
             path,
             None,
             "instruments' own formats are read, not written: write .x3p, .sdf or .nc for other tools",
         )),
+    })
+}
+
+/// Writes `path` whole or not at all: `write` writes a hidden sibling of the same extension
+/// (writers choose the format by it), which is then renamed onto `path`; on failure the
+/// sibling is removed and `path` is left as it was. A run killed at any moment leaves the old
+/// file or the new one, never half of one.
+pub fn atomically<E: From<SurfError>>(
+    path: &Path,
+    write: impl FnOnce(&Path) -> std::result::Result<(), E>,
+) -> std::result::Result<(), E> {
+    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+    let ext = path
+        .extension()
+        .map_or(String::new(), |e| format!(".{}", e.to_string_lossy()));
+    let partial = path.with_file_name(format!(".{stem}.partial-{}{ext}", std::process::id()));
+    let written = write(&partial)
+        .and_then(|()| std::fs::rename(&partial, path).map_err(|e| SurfError::io(path, e).into()));
+    if written.is_err() {
+        let _ = std::fs::remove_file(&partial);
     }
+    written
 }
 
 /// Reads the JSON sidecar of a `.npy` file, if there is one.
@@ -700,5 +725,7 @@ pub fn read_metadata(npy_path: &Path) -> Result<Option<Metadata>> {
 pub fn write_metadata(path: &Path, metadata: &Metadata) -> Result<()> {
     let side = sidecar_path(path);
     let json = serde_json::to_string_pretty(metadata).expect("metadata serialises");
-    std::fs::write(&side, json + "\n").map_err(|e| SurfError::io(&side, e))
+    atomically(&side, |p| {
+        std::fs::write(p, json + "\n").map_err(|e| SurfError::io(&side, e))
+    })
 }

@@ -1,6 +1,6 @@
 //! `.npy` heights with a JSON sidecar.
 
-use super::{Measurement, Metadata, ReadOptions, Surface, sidecar_path};
+use super::{Measurement, Metadata, ReadOptions, sidecar_path};
 use crate::error::{Result, SurfError};
 use ndarray::Array2;
 use ndarray_npy::ReadNpyExt;
@@ -125,24 +125,15 @@ fn write_npy(heights: &Array2<f64>, w: &mut impl Write) -> std::io::Result<()> {
     Ok(())
 }
 
-/// Writes any 2-D f64 field to `path` as `.npy`, without sidecar.
+/// Writes any 2-D f64 field to `path` as `.npy`, without sidecar, whole or not at all.
 pub fn write_array(field: &Array2<f64>, path: &Path) -> Result<()> {
-    let file = File::create(path).map_err(|e| SurfError::io(path, e))?;
-    let mut w = BufWriter::with_capacity(1 << 20, file);
-    write_npy(field, &mut w)
-        .and_then(|_| w.flush())
-        .map_err(|e| SurfError::io(path, e))
+    super::atomically(path, |p| {
+        write_array_at(field, p).map_err(|e| SurfError::io(path, e))
+    })
 }
 
-pub(super) fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Result<()> {
-    write_array(&surface.heights, path)?;
-    let own;
-    let meta = match metadata {
-        Some(m) => m,
-        None => {
-            own = Metadata::of(surface);
-            &own
-        }
-    };
-    super::write_metadata(path, meta)
+fn write_array_at(field: &Array2<f64>, path: &Path) -> std::io::Result<()> {
+    let file = File::create(path)?;
+    let mut w = BufWriter::with_capacity(1 << 20, file);
+    write_npy(field, &mut w).and_then(|_| w.flush())
 }
