@@ -21,7 +21,7 @@ pub enum SurfError {
     },
     /// A height is NaN or infinite, or beyond [`crate::grid::MAX_LENGTH`] in magnitude.
     #[error(
-        "height {value} m at row {row}, column {col}: heights must be finite and at most 1e100 m in \
+        "height {value:?} m at row {row}, column {col}: heights must be finite and at most 1e100 m in \
          magnitude (their squares overflow double precision beyond)"
     )]
     NonFinite { row: usize, col: usize, value: f64 },

@@ -198,6 +198,13 @@ fn readers_never_panic_and_allocate_at_most_a_multiple_of_the_file() {
     let mut rng = ChaCha8Rng::seed_from_u64(31);
     for (ext, seed) in seeds(&dir) {
         let path = dir.join(format!("fuzz.{ext}"));
+        // The box is given only to a file that does not carry it (a bare .npy, the HDF5
+        // sample): a size given beside a file's own is refused.
+        let own = ReadOptions {
+            length_x: None,
+            ..options
+        };
+        let options = if read(&path, &seed, &own).0 { own } else { options };
         assert!(read(&path, &seed, &options).0, ".{ext}: the unmutated file reads");
         let (mut read_ok, mut worst) = (0, 0.0f64);
         for _ in 0..400 {

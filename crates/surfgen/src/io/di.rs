@@ -7,7 +7,7 @@
 //! where `soft` is the scanner's `@Sens. Q: V soft unit/V`; a channel is heights when that unit
 //! is a length.
 
-use super::{Channel, Layer, length_unit, rows_from_top};
+use super::{Channel, Layer, Must, header, length_unit, rows_from_top};
 use crate::error::{Result, SurfError};
 use std::collections::HashMap;
 use std::path::Path;
@@ -85,15 +85,37 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                     bytes.len()
                 ))
             })?;
+        // The image's own byte count, where the header gives it, must be its pixels'.
+        if let Some(length) = image.get("data length") {
+            let length: usize = length
+                .parse()
+                .map_err(|_| bad(format!("image {index}: cannot read \\Data length: {length}")))?;
+            if length != nx * ny * size {
+                return Err(bad(format!(
+                    "image {index} ({name}): \\Data length is {length} bytes, but \\Samps/line {nx} x \\Number \
+                     of lines {ny} x \\Bytes/pixel {size} is {} bytes",
+                    nx * ny * size
+                )));
+            }
+        }
         let scan = get("scan size")?;
         let (sx, sy, xy_unit) =
             scan_size(scan).ok_or_else(|| bad(format!("image {index}: cannot read \\Scan Size: {scan}")))?;
+        for (side, v) in [("x", sx), ("y", sy)] {
+            header(
+                path,
+                &format!("image {index}'s \\Scan Size along {side}"),
+                v,
+                Must::BePositive,
+            )?;
+        }
         // A channel whose scale cannot be read is listed, not read.
         let (scale, unit) =
             z_scale(get("@2:z scale").unwrap_or(""), &scanner).unwrap_or((f64::NAN, "unknown".into()));
         let metres = length_unit(&unit).filter(|_| !unit.is_empty());
         let scale = scale * metres.unwrap_or(1.0) / if size == 4 { 65536.0 } else { 1.0 };
         let raw = &bytes[offset..end];
+        let file = path.to_path_buf();
         layers.push(Layer {
             channel: Channel {
                 name,
@@ -105,6 +127,13 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                 height: metres.is_some(),
             },
             values: Box::new(move || {
+                // A channel whose scale cannot be read is listed; read, its scale is named.
+                header(
+                    &file,
+                    &format!("image {index}'s \\@2:Z scale (with its \\@Sens.)"),
+                    scale,
+                    Must::BeScale,
+                )?;
                 let values: Vec<f64> = raw
                     .chunks_exact(size)
                     .map(|c| {

@@ -4,7 +4,7 @@
 //! i32); 0x67 the box's sides [m]; 0x6c the metres a count; 0x0b the heights, x varying
 //! fastest, rows from the image's top. A count of 1 marks an unmeasured point.
 
-use super::{Measurement, ReadOptions, rows_from_top};
+use super::{Measurement, Must, ReadOptions, header, rows_from_top};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use std::collections::HashMap;
@@ -65,7 +65,20 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     let (nx, ny, bits) = (u32_of(grid, 0), u32_of(grid, 4), u32_of(grid, 8));
     let sizes = block(0x67, 16)?;
     let (lx, ly) = (f64_of(sizes, 0), f64_of(sizes, 8));
-    let scale = f64_of(block(0x6c, 12)?, 4);
+    let scale = header(
+        path,
+        "height scale (block 0x6c)",
+        f64_of(block(0x6c, 12)?, 4),
+        Must::BeScale,
+    )?;
+    for (side, l) in [("x", lx), ("y", ly)] {
+        header(
+            path,
+            &format!("size along {side} (block 0x67)"),
+            l,
+            Must::BePositive,
+        )?;
+    }
     let width = match bits {
         16 => 2,
         32 => 4,

@@ -6,7 +6,7 @@
 //! image's top. A value is `raw * bufferRange / 2^(bits - 1)` in `bufferUnit`. Channels in a
 //! length unit are heights.
 
-use super::{Channel, Layer, length_unit, rows_from_top};
+use super::{Channel, Layer, Must, length_unit, rows_from_top};
 use crate::error::{Result, SurfError};
 use std::path::Path;
 
@@ -77,7 +77,10 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         .checked_mul(ny)
         .filter(|&n| n >= 1)
         .ok_or_else(|| bad(format!("{nx} x {ny} pixels")))?;
-    let (lx, ly) = (number("xLength")?, number("yLength")?);
+    let (lx, ly) = (
+        super::header(path, "xLength", number("xLength")?, Must::BePositive)?,
+        super::header(path, "yLength", number("yLength")?, Must::BePositive)?,
+    );
     let count = channels.len();
     let mut layers = Vec::new();
     for (index, (label, range, unit)) in channels.into_iter().enumerate() {
@@ -96,6 +99,12 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         }
         let metres = unit.as_deref().filter(|u| !u.is_empty()).and_then(length_unit);
         let range = range.ok_or_else(|| bad(format!("channel {label} has no bufferRange")))?;
+        let range = super::header(
+            path,
+            &format!("channel {label}'s bufferRange"),
+            range,
+            Must::BeScale,
+        )?;
         let scale = range / 2f64.powi(bits as i32 - 1) * metres.unwrap_or(1.0);
         let raw = &bytes[start..end];
         layers.push(Layer {

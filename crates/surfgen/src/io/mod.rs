@@ -55,6 +55,7 @@ mod text;
 use crate::error::{Result, SurfError};
 use crate::generate::SurfaceSpec;
 use crate::grid::Grid;
+use crate::grid::MAX_LENGTH;
 use crate::stats::Statistics;
 use ndarray::Array2;
 use serde::{Deserialize, Serialize};
@@ -596,6 +597,50 @@ fn read_single(path: &Path, format: Format, options: &ReadOptions) -> Result<Top
         Format::Frt => frt::read(path, options)?,
         _ => unreachable!("formats of several channels are read above"),
     }))
+}
+
+/// What a number of a file's header must be.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Must {
+    /// Finite and at most [`MAX_LENGTH`] in magnitude (an offset).
+    BeFinite,
+    /// A height per stored count: not zero (its sign may flip the heights), and small enough
+    /// that any count times it stays within [`MAX_LENGTH`].
+    BeScale,
+    /// Finite, > 0 and at most [`MAX_LENGTH`] (a size, a spacing).
+    BePositive,
+}
+
+/// The largest height scale a header may give [m a count]: [`MAX_LENGTH`] over the largest
+/// 32-bit count.
+const MAX_SCALE: f64 = MAX_LENGTH / 4294967296.0;
+
+/// A number `value` of the header field `field` of `path`, checked where it is read, so that a
+/// bad header is named instead of turning into NaN heights, a flat surface or a broken grid.
+pub(crate) fn header(path: &Path, field: &str, value: f64, must: Must) -> Result<f64> {
+    let (ok, what) = match must {
+        Must::BeFinite => (
+            value.abs() <= MAX_LENGTH,
+            "a finite number of at most 1e100 in magnitude",
+        ),
+        Must::BeScale => (
+            value != 0.0 && value.abs() <= MAX_SCALE,
+            "a number other than 0, of at most 2.3e90 in magnitude",
+        ),
+        Must::BePositive => (
+            value > 0.0 && value <= MAX_LENGTH,
+            "a number > 0 and at most 1e100",
+        ),
+    };
+    if ok {
+        Ok(value)
+    } else {
+        Err(SurfError::parse(
+            path,
+            None,
+            format!("the header's {field} is {value:?}; it must be {what}"),
+        ))
+    }
 }
 
 /// The index of the channel `key` names in the file: an index, or a channel's name (exactly,

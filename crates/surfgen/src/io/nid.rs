@@ -6,7 +6,7 @@
 //! value is `Dim2Min + (raw - smallest raw) * Dim2Range / 2^bits`, rows stored from the
 //! image's top. Channels in a length unit are heights.
 
-use super::{Channel, Layer, length_unit, rows_from_top};
+use super::{Channel, Layer, Must, header, length_unit, rows_from_top};
 use crate::error::{Result, SurfError};
 use std::collections::HashMap;
 use std::path::Path;
@@ -91,6 +91,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         };
         let (min, range) = (number("Dim2Min"), number("Dim2Range"));
         let z = metres.unwrap_or(1.0);
+        let file = path.to_path_buf();
         layers.push(Layer {
             channel: Channel {
                 name: match (ch.get("Dim2Name"), ch.get("Frame")) {
@@ -107,6 +108,13 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
             },
             values: Box::new(move || {
                 let (min, range) = (min?, range?);
+                header(&file, &format!("[{name}] Dim2Min"), min, Must::BeFinite)?;
+                header(&file, &format!("[{name}] Dim2Range"), range, Must::BeScale)?;
+                for (key, l) in [("Dim0Range", length_x), ("Dim1Range", length_y)] {
+                    if let Some(l) = l {
+                        header(&file, &format!("[{name}] {key}"), l, Must::BePositive)?;
+                    }
+                }
                 let scale = range / 2f64.powi(bits as i32);
                 let values: Vec<f64> = raw
                     .chunks_exact(bits / 8)

@@ -3,7 +3,7 @@
 //! y), the box's sides and offsets (f32, millimetres), and `width * height` f32 heights
 //! [mm], x varying fastest.
 
-use super::{Measurement, ReadOptions};
+use super::{Measurement, Must, ReadOptions, header};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -33,8 +33,18 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
         u32::from_le_bytes(field(1)?) as usize,
     );
     let (lx, ly) = (
-        f32::from_le_bytes(field(2)?) as f64,
-        f32::from_le_bytes(field(3)?) as f64,
+        header(
+            path,
+            "x length",
+            f32::from_le_bytes(field(2)?) as f64,
+            Must::BePositive,
+        )?,
+        header(
+            path,
+            "y length",
+            f32::from_le_bytes(field(3)?) as f64,
+            Must::BePositive,
+        )?,
     );
     let data = &rest[24.min(rest.len())..];
     let n = nx

@@ -8,7 +8,7 @@
 //! Reading never allocates more than the archive's entries can hold: a declared size is
 //! checked against the entry's compressed size times deflate's largest ratio.
 
-use super::{Measurement, ReadOptions, Surface};
+use super::{Measurement, Must, ReadOptions, Surface, header};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use md5::{Digest, Md5};
@@ -116,7 +116,14 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
         number("Record1/Axes/CX/Increment")?.ok_or_else(|| bad("main.xml lacks the x increment".into()))?;
     let dy =
         number("Record1/Axes/CY/Increment")?.ok_or_else(|| bad("main.xml lacks the y increment".into()))?;
-    let z_scale = number("Record1/Axes/CZ/Increment")?.unwrap_or(1.0);
+    let dx = header(path, "Record1/Axes/CX/Increment", dx, Must::BePositive)?;
+    let dy = header(path, "Record1/Axes/CY/Increment", dy, Must::BePositive)?;
+    let z_scale = header(
+        path,
+        "Record1/Axes/CZ/Increment",
+        number("Record1/Axes/CZ/Increment")?.unwrap_or(1.0),
+        Must::BeScale,
+    )?;
     let z_offset = number("Record1/Axes/CZ/Offset")?.unwrap_or(0.0);
     let kind = get("Record1/Axes/CZ/DataType").unwrap_or("D");
     let size = match kind {
@@ -152,6 +159,17 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
             "{link} ends after {} of {expected} bytes",
             raw.len()
         )));
+    }
+    // The data's checksum, where main.xml records it, must be the data's: a file changed or
+    // damaged after it was written is refused, not read silently.
+    if let Some(recorded) = get("Record3/DataLink/MD5ChecksumPointData") {
+        let actual = hex(&Md5::digest(&raw));
+        if !recorded.trim().eq_ignore_ascii_case(&actual) {
+            return Err(bad(format!(
+                "{link} does not match main.xml's MD5ChecksumPointData (recorded {recorded}, the data's \
+                 {actual}): the file was changed or damaged after it was written"
+            )));
+        }
     }
     let values: Vec<f64> = raw
         .chunks_exact(size as usize)

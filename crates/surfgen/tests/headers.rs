@@ -1,0 +1,140 @@
+//! Every number a reader takes from a file's header, set to any value (NaN, infinities, zero,
+//! negative, huge, tiny): the file reads as a surface with finite heights that are not all one
+//! value on a finite box, or is refused with an error naming that header field. On top of the
+//! byte fuzzing of `fuzz.rs`, which rarely hits a header number exactly.
+
+mod common;
+
+use proptest::prelude::*;
+use std::path::{Path, PathBuf};
+use surfgen::ReadOptions;
+use surfgen::io;
+
+/// Any f64 a header could hold, the awkward ones often.
+fn number() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        Just(f64::NAN),
+        Just(f64::INFINITY),
+        Just(f64::NEG_INFINITY),
+        Just(0.0),
+        Just(-0.0),
+        Just(1e300),
+        Just(1e-300),
+        -1e3..1e3f64,
+        any::<f64>(),
+    ]
+}
+
+fn file(name: &str, bytes: &[u8]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("surfgen-headers-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+/// The outcome's rule: a surface that is a surface, or an error that names `field`.
+fn judged(path: &Path, field: &str, value: f64) -> Result<(), TestCaseError> {
+    match io::read(path, &ReadOptions::default()) {
+        Ok(s) => {
+            prop_assert!(
+                s.heights.iter().all(|h| h.is_finite()),
+                "{field} = {value:?}: non-finite heights read"
+            );
+            let first = s.heights[[0, 0]];
+            prop_assert!(
+                s.heights.iter().any(|&h| h != first),
+                "{field} = {value:?}: read as a flat surface without a word"
+            );
+            prop_assert!(s.grid.length_x.is_finite() && s.grid.length_x > 0.0);
+            prop_assert!(s.grid.length_y.is_finite() && s.grid.length_y > 0.0);
+        }
+        Err(e) => {
+            let message = e.to_string();
+            prop_assert!(
+                message.contains(field),
+                "{field} = {value:?}: the error does not name the field: {message}"
+            );
+        }
+    }
+    Ok(())
+}
+
+/// A Digital Surf surface by hand (3 x 2 points of 16 bits) with `f32` header numbers at
+/// `(offset, value)`.
+fn sur(numbers: &[(usize, f32)]) -> Vec<u8> {
+    let mut b = vec![0u8; 512];
+    b[..12].copy_from_slice(b"DIGITAL SURF");
+    for (o, v) in [(18, 2i16), (98, 16)] {
+        b[o..o + 2].copy_from_slice(&v.to_le_bytes());
+    }
+    for (o, v) in [(108, 3i32), (112, 2)] {
+        b[o..o + 4].copy_from_slice(&v.to_le_bytes());
+    }
+    for (o, v) in [(120, 0.5f32), (124, 0.5), (128, 0.01)].iter().chain(numbers) {
+        b[*o..o + 4].copy_from_slice(&v.to_le_bytes());
+    }
+    for o in [180, 196, 212] {
+        b[o..o + 2].copy_from_slice(b"um");
+    }
+    for v in [1i16, 2, 3, 4, 5, 6] {
+        b.extend(v.to_le_bytes());
+    }
+    b
+}
+
+/// A TrueMap file by hand: 3 x 2 heights on a box of `lx` x `ly` mm.
+fn tmd(lx: f32, ly: f32) -> Vec<u8> {
+    let mut b = b"Binary TrueMap Data File v2.0\r\n\0a comment\r\n\0".to_vec();
+    for v in [3u32, 2] {
+        b.extend(v.to_le_bytes());
+    }
+    for v in [lx, ly, 0.0, 0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6] {
+        b.extend(v.to_le_bytes());
+    }
+    b
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn digital_surf_header_numbers(field in 0..4usize, v in number()) {
+        let (offset, name) = [(120, "x spacing"), (124, "y spacing"), (128, "height step dz"), (474, "height offset")][field];
+        let path = file("h.sur", &sur(&[(offset, v as f32)]));
+        judged(&path, name, v)?;
+    }
+
+    #[test]
+    fn truemap_header_numbers(field in 0..2usize, v in number()) {
+        let (lx, ly) = if field == 0 { (v as f32, 1.0) } else { (1.5, v as f32) };
+        let path = file("h.tmd", &tmd(lx, ly));
+        judged(&path, ["x length", "y length"][field], v)?;
+    }
+
+    #[test]
+    fn nanoscope_header_numbers(field in 0..4usize, v in number(), length in 0..40usize) {
+        let seed = String::from_utf8_lossy(&common::tiny_di([1, 2, 3, 4, 5, 6])).into_owned();
+        // The height image is the second: its fields are the last of each name.
+        let replace_last = |text: &str, from: &str, to: &str| {
+            let i = text.rfind(from).expect("in the seed");
+            format!("{}{to}{}", &text[..i], &text[i + from.len()..])
+        };
+        let (text, name) = match field {
+            0 => (replace_last(&seed, "(0.0001 V/LSB) 6.5536 V", &format!("(0.0001 V/LSB) {v:?} V")), "Z scale"),
+            1 => (replace_last(&seed, "Scan Size: 3 2", &format!("Scan Size: {v:?} 2")), "Scan Size"),
+            2 => (replace_last(&seed, "Scan Size: 3 2", &format!("Scan Size: 3 {v:?}")), "Scan Size"),
+            _ => (replace_last(&seed, "Data length: 12", &format!("Data length: {length}")), "Data length"),
+        };
+        // The header keeps its length, so that the images' offsets stay where they were.
+        let mut bytes: Vec<u8> = text.chars().map(|c| c as u8).collect();
+        let end = bytes.windows(14).position(|w| w == b"File list end\r").unwrap() + 15;
+        let pad = seed.find("File list end\r").unwrap() + 15;
+        if end > pad {
+            return Ok(());
+        }
+        bytes.splice(end..end, std::iter::repeat_n(0u8, pad - end));
+        let path = file("h.di", &bytes);
+        judged(&path, name, v)?;
+    }
+}
