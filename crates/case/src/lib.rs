@@ -140,6 +140,10 @@ pub struct Case {
     /// (default: refuse such a file, counting them).
     #[cfg_attr(feature = "clap", arg(long, num_args = 0..=1, require_equals = true, default_missing_value = "true"))]
     pub fill_unmeasured: Option<bool>,
+    /// The largest fraction of the points --fill-unmeasured fills, in [0, 1] (default 0.25:
+    /// beyond it the filled surface is more interpolation than measurement; 1 fills any).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub max_unmeasured: Option<f64>,
     /// Radius R of a rigid sphere [m], centred on the grid.
     #[cfg_attr(feature = "clap", arg(long))]
     pub sphere_radius: Option<f64>,
@@ -522,7 +526,12 @@ impl Case {
             law,
             LawKind::Surface | LawKind::SurfaceEnergy | LawKind::Line | LawKind::Point
         );
-        let refused: [(&str, bool, &str); 11] = [
+        let refused: [(&str, bool, &str); 12] = [
+            (
+                "max_unmeasured",
+                self.max_unmeasured.is_some() && !file,
+                "bounds the filled points of a surface file: give --surface",
+            ),
             (
                 "unit",
                 self.unit.is_some() && !file,
@@ -630,6 +639,7 @@ impl Case {
             .shared_law(law.clone())
             .periodic(periodic);
         let mut heights = None;
+        let mut filled = None;
         let size;
         let roughness = match (roughness, &self.surface) {
             (Some(_), Some(path)) => bail!(
@@ -643,6 +653,7 @@ impl Case {
                     ("unit", self.unit.is_some()),
                     ("channel", self.channel.is_some()),
                     ("fill_unmeasured", self.fill_unmeasured.is_some()),
+                    ("max_unmeasured", self.max_unmeasured.is_some()),
                 ] {
                     if given {
                         bail!("`{key}` applies to a surface file; a surface in memory carries its own size");
@@ -657,12 +668,17 @@ impl Case {
                     unit: self.unit.unwrap_or(1.0),
                     periodic: true,
                     channel: None,
-                    unmeasured: io::Unmeasured::filled_if(self.fill_unmeasured == Some(true)),
+                    unmeasured: io::Unmeasured::filled_up_to(
+                        self.fill_unmeasured == Some(true),
+                        self.max_unmeasured,
+                    )?,
                 };
                 let read = options
                     .with_channel(path, self.channel.as_deref())
-                    .and_then(|options| io::read(path, &options));
-                Some(read.map_err(|e| naming("reading", path, e))?)
+                    .and_then(|options| io::read_noting(path, &options));
+                let (surface, note) = read.map_err(|e| naming("reading", path, e))?;
+                filled = note;
+                Some(surface)
             }
             (None, None) => None,
         };
@@ -742,8 +758,10 @@ impl Case {
             }
             (None, None) => builder,
         };
+        let mut problem = builder.build()?;
+        problem.warnings.extend(filled);
         Ok(Built {
-            problem: builder.build()?,
+            problem,
             surface_hash,
         })
     }

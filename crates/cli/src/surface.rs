@@ -52,6 +52,10 @@ pub struct SurfaceFile {
     /// (default: refuse such a file, counting them).
     #[arg(long)]
     fill_unmeasured: bool,
+    /// The largest fraction of the points --fill-unmeasured fills, in [0, 1] (default 0.25:
+    /// beyond it the filled surface is more interpolation than measurement; 1 fills any).
+    #[arg(long, value_name = "FRACTION")]
+    max_unmeasured: Option<f64>,
 }
 
 impl SurfaceFile {
@@ -63,15 +67,22 @@ impl SurfaceFile {
             unit: self.unit,
             periodic: !self.not_periodic,
             channel: None,
-            unmeasured: io::Unmeasured::filled_if(self.fill_unmeasured),
+            unmeasured: io::Unmeasured::filled_up_to(self.fill_unmeasured, self.max_unmeasured)
+                .map_err(|e| anyhow::anyhow!(e).context("--max-unmeasured"))?,
         };
         options
             .with_channel(&self.file, self.channel.as_deref())
             .map_err(|e| case::naming("reading", &self.file, e))
     }
 
+    /// The surface, and a warning on standard error when points were filled.
     fn read(&self) -> Result<Surface> {
-        io::read(&self.file, &self.options()?).map_err(|e| case::naming("reading", &self.file, e))
+        let (surface, filled) = io::read_noting(&self.file, &self.options()?)
+            .map_err(|e| case::naming("reading", &self.file, e))?;
+        if let Some(note) = filled {
+            crate::errln!("warning: {note}");
+        }
+        Ok(surface)
     }
 }
 

@@ -32,7 +32,9 @@ fn py_error(e: anyhow::Error) -> PyErr {
             message.push_str(&text);
         }
     }
-    let message = keywords(&message);
+    // One line of plain words: serde's and toml's messages end in a line break or span
+    // several with a source excerpt.
+    let message = keywords(message.trim());
     for cause in e.chain() {
         let io = cause.downcast_ref::<std::io::Error>().or_else(|| {
             match cause.downcast_ref::<surfgen::SurfError>() {
@@ -509,6 +511,7 @@ fn generate<'py>(
 }
 
 /// The reading options of the keywords, the channel resolved to its index.
+#[allow(clippy::too_many_arguments)]
 fn read_options(
     path: &Path,
     length: Option<f64>,
@@ -517,6 +520,7 @@ fn read_options(
     periodic: bool,
     channel: Option<String>,
     fill_unmeasured: bool,
+    max_unmeasured: Option<f64>,
 ) -> PyResult<ReadOptions> {
     let options = ReadOptions {
         length_x: length,
@@ -524,7 +528,7 @@ fn read_options(
         unit,
         periodic,
         channel: None,
-        unmeasured: io::Unmeasured::filled_if(fill_unmeasured),
+        unmeasured: io::Unmeasured::filled_up_to(fill_unmeasured, max_unmeasured).py()?,
     };
     options
         .with_channel(path, channel.as_deref())
@@ -532,9 +536,10 @@ fn read_options(
         .py()
 }
 
-/// Reads a surface file: heights [m] (ny, nx), sides [m], whether it is periodic.
+/// Reads a surface file: heights [m] (ny, nx), sides [m], whether it is periodic, and a note
+/// of the points filled, if any.
 #[pyfunction]
-#[pyo3(signature = (path, length, length_y, unit, periodic, channel, fill_unmeasured))]
+#[pyo3(signature = (path, length, length_y, unit, periodic, channel, fill_unmeasured, max_unmeasured))]
 #[allow(clippy::too_many_arguments)]
 fn read(
     py: Python<'_>,
@@ -545,19 +550,35 @@ fn read(
     periodic: bool,
     channel: Option<String>,
     fill_unmeasured: bool,
-) -> PyResult<(Bound<'_, PyArray2<f64>>, f64, f64, bool)> {
-    let options = read_options(&path, length, length_y, unit, periodic, channel, fill_unmeasured)?;
-    let s = py
-        .detach(|| io::read(&path, &options).map_err(|e| case::naming("reading", &path, e)))
+    max_unmeasured: Option<f64>,
+) -> PyResult<(Bound<'_, PyArray2<f64>>, f64, f64, bool, Option<String>)> {
+    let options = read_options(
+        &path,
+        length,
+        length_y,
+        unit,
+        periodic,
+        channel,
+        fill_unmeasured,
+        max_unmeasured,
+    )?;
+    let (s, note) = py
+        .detach(|| io::read_noting(&path, &options).map_err(|e| case::naming("reading", &path, e)))
         .py()?;
-    Ok((array(py, s.heights), s.grid.length_x, s.grid.length_y, s.periodic))
+    Ok((
+        array(py, s.heights),
+        s.grid.length_x,
+        s.grid.length_y,
+        s.periodic,
+        note,
+    ))
 }
 
 /// A file's channels as JSON: name, points, sizes [m], unit, whether they are heights.
 #[pyfunction]
 #[pyo3(signature = (path, length, length_y, unit))]
 fn channels(path: PathBuf, length: Option<f64>, length_y: Option<f64>, unit: f64) -> PyResult<String> {
-    let options = read_options(&path, length, length_y, unit, true, None, false)?;
+    let options = read_options(&path, length, length_y, unit, true, None, false, None)?;
     let channels = io::channels(&path, &options)
         .map_err(|e| case::naming("reading", &path, e))
         .py()?;

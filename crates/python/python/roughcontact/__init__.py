@@ -63,6 +63,20 @@ def _heights(heights: Any, name: str = "heights") -> np.ndarray:
     return a.astype(np.float64, copy=False)
 
 
+# Metres per unit, by the names SurfaceTopography gives its units.
+_LENGTH_UNITS = {
+    "m": 1.0,
+    "mm": 1e-3,
+    "um": 1e-6,
+    "µm": 1e-6,
+    "μm": 1e-6,
+    "nm": 1e-9,
+    "pm": 1e-12,
+    "A": 1e-10,
+    "Å": 1e-10,
+}
+
+
 class Topography:
     """A height map on a periodic box.
 
@@ -92,10 +106,24 @@ class Topography:
     @classmethod
     def from_surfacetopography(cls, topography: Any) -> "Topography":
         """From a SurfaceTopography topography: its ``heights()``, indexed ``[x, y]``, are
-        transposed to ``(ny, nx)``; its ``physical_sizes`` give the box [m] (the
-        topography's unit must be metres: scale it first, e.g. ``.to_unit('m')``)."""
+        transposed to ``(ny, nx)``, and its heights and ``physical_sizes`` converted from its
+        ``unit`` to metres. A topography without a unit, or in a unit that is not a length,
+        raises ValueError."""
+        unit = getattr(topography, "unit", None)
+        if unit is None:
+            raise ValueError(
+                "the topography has no unit, so its heights and sizes cannot be taken as metres: "
+                "give it one (SurfaceTopography's read_topography(..., unit='um') or .to_unit)"
+            )
+        if unit not in _LENGTH_UNITS:
+            raise ValueError(
+                f"the topography's unit {unit!r} is not a length unit this package knows "
+                f"(one of {', '.join(sorted(_LENGTH_UNITS))})"
+            )
+        metres = _LENGTH_UNITS[unit]
         sx, sy = topography.physical_sizes
-        return cls(np.asarray(topography.heights()).T, sx, sy, bool(getattr(topography, "is_periodic", True)))
+        heights = np.asarray(topography.heights()).T * metres
+        return cls(heights, sx * metres, sy * metres, bool(getattr(topography, "is_periodic", True)))
 
     @property
     def shape(self) -> Tuple[int, int]:
@@ -165,7 +193,8 @@ def generate(n: int = 1024, length: float = 1e-4, **keys: Any) -> Topography:
     ``rayleigh`` (False: exact amplitudes with random phases).
     """
     keys = {k: _plain(k, v) for k, v in keys.items() if v is not None}
-    keys.update(n=int(n), length=float(length))
+    # As the other functions' keys: a whole number where the key takes one (64.0 is refused).
+    keys.update(n=_plain("n", n), length=_plain("length", length))
     heights, lx, ly, info = _native.generate(keys)
     for w in json.loads(info)["warnings"]:
         warnings.warn(w, stacklevel=2)
@@ -181,6 +210,7 @@ def read(
     periodic: bool = True,
     channel: Union[str, int, None] = None,
     fill_unmeasured: bool = False,
+    max_unmeasured: Optional[float] = None,
 ) -> Topography:
     """Reads a surface file (``.npy`` with its sidecar, text matrix, ``.xyz``, ``.gsf``,
     ``.x3p``, ``.sdf``, ``.nc``, ``.tmd``, ``.mi``, ``.nid``, ``.sur``, ``.opd``, ``.di``/``.spm``,
@@ -189,8 +219,10 @@ def read(
     metres per file unit; ``periodic`` applies to files without metadata. ``channel`` picks a
     multi-channel file's channel of heights by name or index (default: the first;
     :func:`channels` lists them). Points the instrument did not measure raise ValueError
-    unless ``fill_unmeasured`` fills them by harmonic interpolation."""
-    heights, lx, ly, is_periodic = _native.read(
+    unless ``fill_unmeasured`` fills them by harmonic interpolation, up to the fraction
+    ``max_unmeasured`` of the points (default 0.25; 1 fills any), with a warning that says how
+    many were filled."""
+    heights, lx, ly, is_periodic, note = _native.read(
         os.fspath(path),
         length,
         length_y,
@@ -198,7 +230,10 @@ def read(
         bool(periodic),
         None if channel is None else str(channel),
         bool(fill_unmeasured),
+        max_unmeasured,
     )
+    if note is not None:
+        warnings.warn(note, stacklevel=2)
     return Topography(heights, lx, ly, is_periodic)
 
 
@@ -220,6 +255,15 @@ def from_toml(path: PathLike) -> Dict[str, Any]:
         if isinstance(keys.get(k), str) and not os.path.isabs(keys[k]):
             keys[k] = os.path.join(os.path.dirname(os.path.abspath(path)), keys[k])
     return keys
+
+
+def _threads(threads: Any) -> Optional[int]:
+    """``threads`` checked: None (all cores) or a whole number >= 1."""
+    if threads is None:
+        return None
+    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1:
+        raise ValueError(f"threads must be a whole number >= 1, or None for all cores; got {threads!r}")
+    return int(threads)
 
 
 def _run(function: Callable[..., Any], *args: Any) -> Any:
@@ -262,6 +306,12 @@ def _case(case: Union[None, PathLike, Mapping[str, Any]], keys: Dict[str, Any]):
     if isinstance(surface, Topography):
         del merged["surface"]
         roughness = (surface.heights, surface.length_x, surface.length_y)
+    elif isinstance(surface, np.ndarray) or (isinstance(surface, (list, tuple)) and surface):
+        raise ValueError(
+            "surface: an array of heights needs its box: pass "
+            "surface=roughcontact.Topography(heights, length=L) with L the side along x [m] "
+            "(heights [m], shape (ny, nx)), or a surface file's path"
+        )
     return {k: _plain(k, v) for k, v in merged.items() if v is not None}, roughness
 
 
@@ -384,7 +434,7 @@ def solve(
     does not converge warns (:class:`ConvergenceWarning`) and says so in ``converged``.
     """
     keys, roughness = _case(case, keys)
-    summary, fields = _run(_native.solve, keys, roughness, threads, progress)
+    summary, fields = _run(_native.solve, keys, roughness, _threads(threads), progress)
     solution = Solution(json.loads(summary), dict(fields))
     for w in solution.warnings:
         warnings.warn(w, stacklevel=2)
@@ -411,12 +461,12 @@ def sweep(
     is the case file's ``from``, a Python keyword), or ``approaches`` [m], ``mean_pressures`` [Pa] or
     ``central_gaps`` [m] as lists; ``max_step`` [m] splits longer steps. With ``pull_off_step``
     [m] and ``pull_off_floor`` [m] the path goes in only and the pull-off search follows it
-    (``pull_off_refinement``, ``pull_off_recovery``; ``cycle['pull_off_force']`` [N]). The other keys,
+    (``pull_off_refinement``, ``pull_off_recovery``; the result's ``pull_off_force`` [N]). The other keys,
     ``case``, ``progress`` (also called with ``{'step', 'done': True, 'approach', 'load',
     'converged'}`` after every step), ``threads``, Ctrl-C and errors as in :func:`solve`.
     """
     keys, roughness = _case(case, keys)
-    summary, fields = _run(_native.sweep, keys, roughness, threads, progress)
+    summary, fields = _run(_native.sweep, keys, roughness, _threads(threads), progress)
     result = Sweep(json.loads(summary), dict(fields))
     for w in result.warnings:
         warnings.warn(w, stacklevel=2)

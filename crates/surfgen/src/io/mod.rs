@@ -238,6 +238,22 @@ impl Measurement {
             return Err(SurfError::parse(path, None, "no point is measured"));
         }
         if unmeasured > 0 {
+            let fraction = unmeasured as f64 / n as f64;
+            if let Some(limit) = policy.fill_limit()
+                && fraction > limit
+            {
+                return Err(SurfError::parse(
+                    path,
+                    None,
+                    format!(
+                        "{unmeasured} of {n} points ({:.1} %) are not measured: filling more than {:.0} % \
+                         of a surface invents it rather than measures it; give max_unmeasured \
+                         (--max-unmeasured) up to 1 to fill them anyway",
+                        100.0 * fraction,
+                        100.0 * limit
+                    ),
+                ));
+            }
             match policy {
                 Unmeasured::Refuse => {
                     return Err(SurfError::parse(
@@ -250,7 +266,7 @@ impl Measurement {
                         ),
                     ));
                 }
-                Unmeasured::Fill => fill_harmonic(&mut self.heights, self.periodic),
+                Unmeasured::Fill | Unmeasured::FillUpTo(_) => fill_harmonic(&mut self.heights, self.periodic),
             }
         }
         Surface::new(self.heights, self.grid, self.periodic)
@@ -279,14 +295,21 @@ pub struct ReadOptions {
 
 /// Points an instrument marks as not measured (dropouts, out of range): a contact calculation
 /// needs a height at every point, so they are refused unless the user asks for them filled.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum Unmeasured {
     /// An error that counts them.
     #[default]
     Refuse,
-    /// Filled by harmonic interpolation from the measured points around them ([`fill_harmonic`]).
+    /// Filled by harmonic interpolation from the measured points around them ([`fill_harmonic`]),
+    /// up to [`MAX_FILLED_FRACTION`] of the points (more is refused).
     Fill,
+    /// Filled as [`Unmeasured::Fill`], up to this fraction of the points, in [0, 1].
+    FillUpTo(f64),
 }
+
+/// The largest fraction of a surface's points filled unless the user allows more: beyond a
+/// quarter, the filled surface is more interpolation than measurement.
+pub const MAX_FILLED_FRACTION: f64 = 0.25;
 
 impl Default for ReadOptions {
     fn default() -> Self {
@@ -308,6 +331,35 @@ impl Unmeasured {
             Unmeasured::Fill
         } else {
             Unmeasured::Refuse
+        }
+    }
+
+    /// Filled if `fill` up to `max_fraction` of the points ([`MAX_FILLED_FRACTION`] if `None`),
+    /// else refused; a fraction outside [0, 1] is refused, naming `max_unmeasured`.
+    pub fn filled_up_to(fill: bool, max_fraction: Option<f64>) -> Result<Self> {
+        match (fill, max_fraction) {
+            (_, Some(f)) if !(0.0..=1.0).contains(&f) => Err(SurfError::invalid(
+                "max_unmeasured",
+                f,
+                "a fraction of the points in [0, 1]",
+            )),
+            (false, Some(f)) => Err(SurfError::invalid(
+                "max_unmeasured",
+                f,
+                "applies with fill_unmeasured (--fill-unmeasured), which fills the points",
+            )),
+            (false, None) => Ok(Unmeasured::Refuse),
+            (true, None) => Ok(Unmeasured::Fill),
+            (true, Some(f)) => Ok(Unmeasured::FillUpTo(f)),
+        }
+    }
+
+    /// The largest fraction of unmeasured points filled; `None` when they are refused.
+    fn fill_limit(self) -> Option<f64> {
+        match self {
+            Unmeasured::Refuse => None,
+            Unmeasured::Fill => Some(MAX_FILLED_FRACTION),
+            Unmeasured::FillUpTo(f) => Some(f),
         }
     }
 }
@@ -477,7 +529,23 @@ pub fn sidecar_path(path: &Path) -> PathBuf {
 /// Reads a surface in any known format (see the module docs); unmeasured points are refused or
 /// filled as [`ReadOptions::unmeasured`] says.
 pub fn read(path: &Path, options: &ReadOptions) -> Result<Surface> {
-    read_measurement(path, options)?.into_surface(path, options.unmeasured)
+    Ok(read_noting(path, options)?.0)
+}
+
+/// [`read`], with a note of the points filled, if any, for the user to see.
+pub fn read_noting(path: &Path, options: &ReadOptions) -> Result<(Surface, Option<String>)> {
+    let measured = read_measurement(path, options)?;
+    let (unmeasured, n) = (measured.unmeasured(), measured.heights.len());
+    let surface = measured.into_surface(path, options.unmeasured)?;
+    let note = (unmeasured > 0).then(|| {
+        format!(
+            "{}: {unmeasured} of {n} points ({:.2} %) were not measured and are filled by harmonic \
+             interpolation; results depend on the fill there",
+            path.display(),
+            100.0 * unmeasured as f64 / n as f64
+        )
+    });
+    Ok((surface, note))
 }
 
 /// Reads a surface as the file holds it, NaN where the instrument did not measure; a line
