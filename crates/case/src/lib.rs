@@ -526,7 +526,17 @@ impl Case {
             law,
             LawKind::Surface | LawKind::SurfaceEnergy | LawKind::Line | LawKind::Point
         );
-        let refused: [(&str, bool, &str); 12] = [
+        let refused: [(&str, bool, &str); 14] = [
+            (
+                "rms_height",
+                self.rms_height.is_some() && (file || self.rms_gradient.is_some()),
+                "scales a generated surface; give it or --rms-gradient, and no --surface beside",
+            ),
+            (
+                "rms_gradient",
+                self.rms_gradient.is_some() && file,
+                "scales a generated surface; give no --surface beside",
+            ),
             (
                 "max_unmeasured",
                 self.max_unmeasured.is_some() && !file,

@@ -921,7 +921,7 @@ mod tests {
     #[test]
     fn axes_expand_into_named_runs() {
         let s = study(
-            "command = \"sweep\"\ncase = { modulus = 1e9, surface = \"a.npy\" }\n[axes]\nseed = [1, 2]\nlaw = [\"point\", \"surface\"]\n",
+            "command = \"sweep\"\ncase = { modulus = 1e9, rms_height = 1e-8, start_from = \"a\" }\n[axes]\nseed = [1, 2]\nlaw = [\"point\", \"surface\"]\n",
         )
         .unwrap();
         let names: Vec<&str> = s.runs.iter().map(|r| r.name.as_str()).collect();
@@ -933,9 +933,9 @@ mod tests {
             "law=surface_seed=2",
         ];
         assert_eq!(names, expected);
-        assert_eq!(s.case["surface"].as_str(), Some("/studies/a.npy"));
+        assert_eq!(s.case["start_from"].as_str(), Some("/studies/a"));
         let zipped =
-            study("command = \"solve\"\ncombine = \"zip\"\n[axes]\nseed = [1, 2]\nz0 = [1e-9, 2e-9]\n")
+            study("command = \"solve\"\ncombine = \"zip\"\ncase = { rms_height = 1e-8, law = \"point\" }\n[axes]\nseed = [1, 2]\nz0 = [1e-9, 2e-9]\n")
                 .unwrap();
         assert_eq!(zipped.runs.len(), 2);
         assert_eq!(zipped.runs[1].name, "seed=2_z0=2e-9");
@@ -967,13 +967,16 @@ mod tests {
 
     #[test]
     fn groups_have_means_and_standard_errors() {
-        let s = study("command = \"solve\"\n[axes]\nmu = [1, 2]\nseed = [1, 2, 3]\n").unwrap();
-        let table = "run,mu,seed,status,error,load,law\n\
+        let s = study(
+            "command = \"solve\"\ncase = { rms_height = 1e-8 }\n[axes]\nmodulus = [1, 2]\nseed = [1, 2, 3]\n",
+        )
+        .unwrap();
+        let table = "run,modulus,seed,status,error,load,law\n\
                      a,1,1,finished,,1.0,x\na,1,2,finished,,2.0,x\na,1,3,finished,,3.0,x\n\
                      b,2,1,finished,,5.0,x\nb,2,2,failed,\"bad, input\",,\nb,2,3,finished,,7.0,x\n";
         let g = group(table, &s, "seed").unwrap();
         let lines: Vec<&str> = g.lines().collect();
-        assert_eq!(lines[0], "mu,runs,load_mean,load_stderr,load_count");
+        assert_eq!(lines[0], "modulus,runs,load_mean,load_stderr,load_count");
         let one: Vec<&str> = lines[1].split(',').collect();
         assert_eq!([one[0], one[1], one[2], one[4]], ["1", "3", "2e0", "3"]);
         let stderr: f64 = one[3].parse().unwrap();

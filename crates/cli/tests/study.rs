@@ -75,7 +75,7 @@ fn serial_parallel_sharded_and_resumed_studies_give_the_same_tables() {
     assert!(
         failed
             .iter()
-            .all(|r| r.contains("work_of_adhesion = -1: must be finite and > 0"))
+            .all(|r| r.contains("work_of_adhesion = -1.0: must be finite and > 0"))
     );
     // One group per Tabor parameter, three seeds each.
     let g: Vec<&str> = groups.lines().collect();
