@@ -34,8 +34,9 @@ def test_errors_carry_the_library_messages(tmp_path):
         rc.read(tmp_path / "missing.npy", length=1.0)
     with pytest.raises(ValueError, match="give one scale"):
         rc.generate(n=16, rms_height=1e-6, rms_gradient=1.0)
-    with pytest.raises(ValueError, match="threads must be at least 1"):
-        rc.solve(**SPHERE, approach=1e-9, threads=0)
+    for threads in (0, -1, 1.5):
+        with pytest.raises(ValueError, match="threads must be a whole number >= 1, or None"):
+            rc.solve(**SPHERE, approach=1e-9, threads=threads)
 
 
 def test_generate_is_reproducible_and_scaled():

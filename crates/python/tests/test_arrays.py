@@ -79,6 +79,7 @@ def test_surfacetopography_layout():
     class Like:
         physical_sizes = (2.0, 1.0)
         is_periodic = True
+        unit = "m"
 
         def heights(self):
             return np.arange(8.0).reshape(4, 2)  # nx = 4, ny = 2
@@ -92,7 +93,7 @@ def test_a_surfacetopography_topography():
     """A real SurfaceTopography topography (CI installs it) round-trips with its layout."""
     st = pytest.importorskip("SurfaceTopography")
     ours = rc.generate(n=32, nx=32, ny=16, length_x=2e-5, length_y=1e-5, rolloff=5e-6, rms_height=1e-7, seed=1)
-    theirs = st.Topography(ours.heights.T, physical_sizes=ours.physical_sizes, periodic=True)
+    theirs = st.Topography(ours.heights.T, physical_sizes=ours.physical_sizes, periodic=True, unit="m")
     assert theirs.nb_grid_pts == (32, 16)
     back = rc.Topography.from_surfacetopography(theirs)
     assert np.array_equal(back.heights, ours.heights) and back.physical_sizes == ours.physical_sizes
