@@ -536,6 +536,10 @@ fn read_options(
         .py()
 }
 
+/// A surface read for Python: heights [m] (ny, nx), sides [m], whether it is periodic, and a
+/// note of the points filled, if any.
+type ReadSurface<'py> = (Bound<'py, PyArray2<f64>>, f64, f64, bool, Option<String>);
+
 /// Reads a surface file: heights [m] (ny, nx), sides [m], whether it is periodic, and a note
 /// of the points filled, if any.
 #[pyfunction]
@@ -551,7 +555,7 @@ fn read(
     channel: Option<String>,
     fill_unmeasured: bool,
     max_unmeasured: Option<f64>,
-) -> PyResult<(Bound<'_, PyArray2<f64>>, f64, f64, bool, Option<String>)> {
+) -> PyResult<ReadSurface<'_>> {
     let options = read_options(
         &path,
         length,

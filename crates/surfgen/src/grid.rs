@@ -106,7 +106,10 @@ pub const MAX_LENGTH: f64 = 1e100;
 
 /// Returns the first height that is NaN, infinite or beyond [`MAX_LENGTH`] as an error.
 pub fn check_finite(heights: ArrayView2<f64>) -> Result<()> {
-    match heights.indexed_iter().find(|(_, v)| !(v.abs() <= MAX_LENGTH)) {
+    match heights
+        .indexed_iter()
+        .find(|(_, v)| !v.is_finite() || v.abs() > MAX_LENGTH)
+    {
         Some(((row, col), &value)) => Err(SurfError::NonFinite { row, col, value }),
         None => Ok(()),
     }

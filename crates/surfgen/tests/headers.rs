@@ -3,6 +3,8 @@
 //! value on a finite box, or is refused with an error naming that header field. On top of the
 //! byte fuzzing of `fuzz.rs`, which rarely hits a header number exactly.
 
+// The builders of the other formats serve the other test files.
+#[allow(dead_code)]
 mod common;
 
 use proptest::prelude::*;

@@ -7,7 +7,7 @@
 //! where `soft` is the scanner's `@Sens. Q: V soft unit/V`; a channel is heights when that unit
 //! is a length.
 
-use super::{Channel, Layer, Must, header, length_unit, rows_from_top};
+use super::{Channel, Layer, Number, header, length_unit, rows_from_top};
 use crate::error::{Result, SurfError};
 use std::collections::HashMap;
 use std::path::Path;
@@ -106,7 +106,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                 path,
                 &format!("image {index}'s \\Scan Size along {side}"),
                 v,
-                Must::BePositive,
+                Number::Size,
             )?;
         }
         // A channel whose scale cannot be read is listed, not read.
@@ -132,7 +132,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                     &file,
                     &format!("image {index}'s \\@2:Z scale (with its \\@Sens.)"),
                     scale,
-                    Must::BeScale,
+                    Number::Scale,
                 )?;
                 let values: Vec<f64> = raw
                     .chunks_exact(size)

@@ -4,7 +4,7 @@
 //! i32); 0x67 the box's sides [m]; 0x6c the metres a count; 0x0b the heights, x varying
 //! fastest, rows from the image's top. A count of 1 marks an unmeasured point.
 
-use super::{Measurement, Must, ReadOptions, header, rows_from_top};
+use super::{Measurement, Number, ReadOptions, header, rows_from_top};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use std::collections::HashMap;
@@ -69,15 +69,10 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
         path,
         "height scale (block 0x6c)",
         f64_of(block(0x6c, 12)?, 4),
-        Must::BeScale,
+        Number::Scale,
     )?;
     for (side, l) in [("x", lx), ("y", ly)] {
-        header(
-            path,
-            &format!("size along {side} (block 0x67)"),
-            l,
-            Must::BePositive,
-        )?;
+        header(path, &format!("size along {side} (block 0x67)"), l, Number::Size)?;
     }
     let width = match bits {
         16 => 2,

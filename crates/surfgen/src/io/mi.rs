@@ -6,7 +6,7 @@
 //! image's top. A value is `raw * bufferRange / 2^(bits - 1)` in `bufferUnit`. Channels in a
 //! length unit are heights.
 
-use super::{Channel, Layer, Must, length_unit, rows_from_top};
+use super::{Channel, Layer, Number, length_unit, rows_from_top};
 use crate::error::{Result, SurfError};
 use std::path::Path;
 
@@ -78,8 +78,8 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         .filter(|&n| n >= 1)
         .ok_or_else(|| bad(format!("{nx} x {ny} pixels")))?;
     let (lx, ly) = (
-        super::header(path, "xLength", number("xLength")?, Must::BePositive)?,
-        super::header(path, "yLength", number("yLength")?, Must::BePositive)?,
+        super::header(path, "xLength", number("xLength")?, Number::Size)?,
+        super::header(path, "yLength", number("yLength")?, Number::Size)?,
     );
     let count = channels.len();
     let mut layers = Vec::new();
@@ -103,7 +103,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
             path,
             &format!("channel {label}'s bufferRange"),
             range,
-            Must::BeScale,
+            Number::Scale,
         )?;
         let scale = range / 2f64.powi(bits as i32 - 1) * metres.unwrap_or(1.0);
         let raw = &bytes[start..end];

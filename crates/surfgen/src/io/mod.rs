@@ -667,16 +667,16 @@ fn read_single(path: &Path, format: Format, options: &ReadOptions) -> Result<Top
     }))
 }
 
-/// What a number of a file's header must be.
+/// What a number of a file's header is, and so what it must be.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Must {
-    /// Finite and at most [`MAX_LENGTH`] in magnitude (an offset).
-    BeFinite,
+pub(crate) enum Number {
+    /// An offset: finite and at most [`MAX_LENGTH`] in magnitude.
+    Offset,
     /// A height per stored count: not zero (its sign may flip the heights), and small enough
     /// that any count times it stays within [`MAX_LENGTH`].
-    BeScale,
-    /// Finite, > 0 and at most [`MAX_LENGTH`] (a size, a spacing).
-    BePositive,
+    Scale,
+    /// A size or a spacing: > 0 and at most [`MAX_LENGTH`].
+    Size,
 }
 
 /// The largest height scale a header may give [m a count]: [`MAX_LENGTH`] over the largest
@@ -685,17 +685,17 @@ const MAX_SCALE: f64 = MAX_LENGTH / 4294967296.0;
 
 /// A number `value` of the header field `field` of `path`, checked where it is read, so that a
 /// bad header is named instead of turning into NaN heights, a flat surface or a broken grid.
-pub(crate) fn header(path: &Path, field: &str, value: f64, must: Must) -> Result<f64> {
-    let (ok, what) = match must {
-        Must::BeFinite => (
+pub(crate) fn header(path: &Path, field: &str, value: f64, number: Number) -> Result<f64> {
+    let (ok, what) = match number {
+        Number::Offset => (
             value.abs() <= MAX_LENGTH,
             "a finite number of at most 1e100 in magnitude",
         ),
-        Must::BeScale => (
+        Number::Scale => (
             value != 0.0 && value.abs() <= MAX_SCALE,
             "a number other than 0, of at most 2.3e90 in magnitude",
         ),
-        Must::BePositive => (
+        Number::Size => (
             value > 0.0 && value <= MAX_LENGTH,
             "a number > 0 and at most 1e100",
         ),

@@ -6,7 +6,7 @@
 //! value is `Dim2Min + (raw - smallest raw) * Dim2Range / 2^bits`, rows stored from the
 //! image's top. Channels in a length unit are heights.
 
-use super::{Channel, Layer, Must, header, length_unit, rows_from_top};
+use super::{Channel, Layer, Number, header, length_unit, rows_from_top};
 use crate::error::{Result, SurfError};
 use std::collections::HashMap;
 use std::path::Path;
@@ -108,11 +108,11 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
             },
             values: Box::new(move || {
                 let (min, range) = (min?, range?);
-                header(&file, &format!("[{name}] Dim2Min"), min, Must::BeFinite)?;
-                header(&file, &format!("[{name}] Dim2Range"), range, Must::BeScale)?;
+                header(&file, &format!("[{name}] Dim2Min"), min, Number::Offset)?;
+                header(&file, &format!("[{name}] Dim2Range"), range, Number::Scale)?;
                 for (key, l) in [("Dim0Range", length_x), ("Dim1Range", length_y)] {
                     if let Some(l) = l {
-                        header(&file, &format!("[{name}] {key}"), l, Must::BePositive)?;
+                        header(&file, &format!("[{name}] {key}"), l, Number::Size)?;
                     }
                 }
                 let scale = range / 2f64.powi(bits as i32);

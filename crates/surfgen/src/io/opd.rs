@@ -6,7 +6,7 @@
 //! `Pixel_size` [mm] and `Aspect` give the spacings. NaN and values of 1e10 and above mark
 //! unmeasured points.
 
-use super::{Measurement, Must, ReadOptions};
+use super::{Measurement, Number, ReadOptions};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -97,9 +97,9 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     };
     let pixel = float("Pixel_size")?.ok_or_else(|| bad("no Pixel_size block".into()))?;
     let aspect = float("Aspect")?.unwrap_or(1.0);
-    super::header(path, "Wavelength", wavelength, Must::BePositive)?;
-    super::header(path, "Pixel_size", pixel, Must::BePositive)?;
-    super::header(path, "Aspect", aspect, Must::BePositive)?;
+    super::header(path, "Wavelength", wavelength, Number::Size)?;
+    super::header(path, "Pixel_size", pixel, Number::Size)?;
+    super::header(path, "Aspect", aspect, Number::Size)?;
     let scale = wavelength * 1e-9 / mult * options.unit;
     // Stored column by column (x slowest), each from the top: ours is (y, x) from y = 0.
     // Unmeasured points hold NaN or a huge value.

@@ -6,7 +6,7 @@
 //! `raw * dz + z offset`; points below the smallest value are unmeasured where the file says it
 //! marks them.
 
-use super::{Measurement, Must, ReadOptions, header, length_unit};
+use super::{Measurement, Number, ReadOptions, header, length_unit};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -49,9 +49,9 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     };
     let (zmin, nx, ny) = (i32_at(100), i32_at(108), i32_at(112));
     let (dx, dy, dz) = (
-        header(path, "x spacing", f32_at(120).abs(), Must::BePositive)?,
-        header(path, "y spacing", f32_at(124).abs(), Must::BePositive)?,
-        header(path, "height step dz", f32_at(128), Must::BeScale)?,
+        header(path, "x spacing", f32_at(120).abs(), Number::Size)?,
+        header(path, "y spacing", f32_at(124).abs(), Number::Size)?,
+        header(path, "height step dz", f32_at(128), Number::Scale)?,
     );
     let unit = |o: usize| -> Result<f64> {
         let name = text_at(o);
@@ -59,7 +59,7 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     };
     let (ux, uy, uz) = (unit(180)?, unit(196)?, unit(212)?);
     let skip = i16_at(334).max(0) as usize + i16_at(336).max(0) as usize;
-    let z_offset = header(path, "height offset", f32_at(474), Must::BeFinite)?;
+    let z_offset = header(path, "height offset", f32_at(474), Number::Offset)?;
     let (nx, ny) = (usize::try_from(nx).unwrap_or(0), usize::try_from(ny).unwrap_or(0));
     let start = HEADER + skip;
     let n = nx

@@ -3,7 +3,7 @@
 //! y), the box's sides and offsets (f32, millimetres), and `width * height` f32 heights
 //! [mm], x varying fastest.
 
-use super::{Measurement, Must, ReadOptions, header};
+use super::{Measurement, Number, ReadOptions, header};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -37,13 +37,13 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
             path,
             "x length",
             f32::from_le_bytes(field(2)?) as f64,
-            Must::BePositive,
+            Number::Size,
         )?,
         header(
             path,
             "y length",
             f32::from_le_bytes(field(3)?) as f64,
-            Must::BePositive,
+            Number::Size,
         )?,
     );
     let data = &rest[24.min(rest.len())..];

@@ -8,7 +8,7 @@
 //! Reading never allocates more than the archive's entries can hold: a declared size is
 //! checked against the entry's compressed size times deflate's largest ratio.
 
-use super::{Measurement, Must, ReadOptions, Surface, header};
+use super::{Measurement, Number, ReadOptions, Surface, header};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use md5::{Digest, Md5};
@@ -116,13 +116,13 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
         number("Record1/Axes/CX/Increment")?.ok_or_else(|| bad("main.xml lacks the x increment".into()))?;
     let dy =
         number("Record1/Axes/CY/Increment")?.ok_or_else(|| bad("main.xml lacks the y increment".into()))?;
-    let dx = header(path, "Record1/Axes/CX/Increment", dx, Must::BePositive)?;
-    let dy = header(path, "Record1/Axes/CY/Increment", dy, Must::BePositive)?;
+    let dx = header(path, "Record1/Axes/CX/Increment", dx, Number::Size)?;
+    let dy = header(path, "Record1/Axes/CY/Increment", dy, Number::Size)?;
     let z_scale = header(
         path,
         "Record1/Axes/CZ/Increment",
         number("Record1/Axes/CZ/Increment")?.unwrap_or(1.0),
-        Must::BeScale,
+        Number::Scale,
     )?;
     let z_offset = number("Record1/Axes/CZ/Offset")?.unwrap_or(0.0);
     let kind = get("Record1/Axes/CZ/DataType").unwrap_or("D");
