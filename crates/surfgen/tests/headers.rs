@@ -140,3 +140,66 @@ proptest! {
         judged(&path, name, v)?;
     }
 }
+
+/// The header faults met on real files, each refused naming its field.
+#[test]
+fn bad_headers_are_refused_naming_the_field() {
+    let seed = String::from_utf8_lossy(&common::tiny_di([1, 2, 3, 4, 5, 6])).into_owned();
+    // `from` replaced in the last image (the heights) or the first (phase, before them).
+    let di_in = |last: bool, from: &str, to: &str| -> Vec<u8> {
+        let i = if last { seed.rfind(from) } else { seed.find(from) }.expect("in the seed");
+        let text = format!("{}{to}{}", &seed[..i], &seed[i + from.len()..]);
+        let mut bytes: Vec<u8> = text.chars().map(|c| c as u8).collect();
+        // Keep the header's length, so that the images stay where their offsets say.
+        let end = bytes.windows(14).position(|w| w == b"File list end\r").unwrap() + 15;
+        let pad = seed.find("File list end\r").unwrap() + 15;
+        bytes.splice(end..end, std::iter::repeat_n(0u8, pad.saturating_sub(end)));
+        bytes
+    };
+    let di = |from: &str, to: &str| di_in(true, from, to);
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        ("nan-z.di", di("6.5536 V", "NaN V"), "image 1's \\@2:Z scale (with its \\@Sens.) is NaN"),
+        ("zero-z.di", di("6.5536 V", "0 V"), "image 1's \\@2:Z scale (with its \\@Sens.) is 0.0"),
+        // The phase image, 4 pixels a line, would run into the heights after it.
+        (
+            "long.di",
+            di_in(false, "Samps/line: 3", "Samps/line: 4"),
+            "image 0 (Phase): \\Data length is 12 bytes, but \\Samps/line 4",
+        ),
+        ("nan-dz.sur", sur(&[(128, f32::NAN)]), "the header's height step dz is NaN"),
+        ("zero-dz.sur", sur(&[(128, 0.0)]), "the header's height step dz is 0.0"),
+        ("zero-dx.sur", sur(&[(120, 0.0)]), "the header's x spacing is 0.0"),
+        ("nan.tmd", tmd(f32::NAN, 1.0), "the header's x length is NaN"),
+    ];
+    for (name, bytes, fragment) in cases {
+        let e = io::read(&file(name, &bytes), &ReadOptions::default()).unwrap_err().to_string();
+        assert!(e.contains(fragment), "{name}: `{fragment}` not in: {e}");
+    }
+    // An X3P whose data no longer matches the checksum main.xml records.
+    let grid = surfgen::Grid::new(4, 3, 4e-6, 3e-6).unwrap();
+    let heights = ndarray::Array2::from_shape_fn((3, 4), |(j, i)| 1e-7 * (i + 2 * j) as f64);
+    let path = file("good.x3p", b"");
+    io::write(&surfgen::Surface::new(heights, grid, false).unwrap(), &path, None).unwrap();
+    let mut archive = zip::ZipArchive::new(std::fs::File::open(&path).unwrap()).unwrap();
+    let mut entries = Vec::new();
+    for k in 0..archive.len() {
+        let mut entry = archive.by_index(k).unwrap();
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(&mut entry, &mut bytes).unwrap();
+        let name = entry.name().unwrap().to_string();
+        if name == "bindata/data.bin" {
+            bytes[3] ^= 0x40;
+        }
+        entries.push((name, bytes));
+    }
+    let damaged = file("damaged.x3p", b"");
+    let mut zip = zip::ZipWriter::new(std::fs::File::create(&damaged).unwrap());
+    for (name, bytes) in &entries {
+        zip.start_file(name.as_str(), zip::write::SimpleFileOptions::default()).unwrap();
+        std::io::Write::write_all(&mut zip, bytes).unwrap();
+    }
+    zip.finish().unwrap();
+    assert!(io::read(&path, &ReadOptions::default()).is_ok());
+    let e = io::read(&damaged, &ReadOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("does not match main.xml's MD5ChecksumPointData"), "{e}");
+}
