@@ -158,21 +158,39 @@ fn bad_headers_are_refused_naming_the_field() {
     };
     let di = |from: &str, to: &str| di_in(true, from, to);
     let cases: Vec<(&str, Vec<u8>, &str)> = vec![
-        ("nan-z.di", di("6.5536 V", "NaN V"), "image 1's \\@2:Z scale (with its \\@Sens.) is NaN"),
-        ("zero-z.di", di("6.5536 V", "0 V"), "image 1's \\@2:Z scale (with its \\@Sens.) is 0.0"),
+        (
+            "nan-z.di",
+            di("6.5536 V", "NaN V"),
+            "image 1's \\@2:Z scale (with its \\@Sens.) is NaN",
+        ),
+        (
+            "zero-z.di",
+            di("6.5536 V", "0 V"),
+            "image 1's \\@2:Z scale (with its \\@Sens.) is 0.0",
+        ),
         // The phase image, 4 pixels a line, would run into the heights after it.
         (
             "long.di",
             di_in(false, "Samps/line: 3", "Samps/line: 4"),
             "image 0 (Phase): \\Data length is 12 bytes, but \\Samps/line 4",
         ),
-        ("nan-dz.sur", sur(&[(128, f32::NAN)]), "the header's height step dz is NaN"),
-        ("zero-dz.sur", sur(&[(128, 0.0)]), "the header's height step dz is 0.0"),
+        (
+            "nan-dz.sur",
+            sur(&[(128, f32::NAN)]),
+            "the header's height step dz is NaN",
+        ),
+        (
+            "zero-dz.sur",
+            sur(&[(128, 0.0)]),
+            "the header's height step dz is 0.0",
+        ),
         ("zero-dx.sur", sur(&[(120, 0.0)]), "the header's x spacing is 0.0"),
         ("nan.tmd", tmd(f32::NAN, 1.0), "the header's x length is NaN"),
     ];
     for (name, bytes, fragment) in cases {
-        let e = io::read(&file(name, &bytes), &ReadOptions::default()).unwrap_err().to_string();
+        let e = io::read(&file(name, &bytes), &ReadOptions::default())
+            .unwrap_err()
+            .to_string();
         assert!(e.contains(fragment), "{name}: `{fragment}` not in: {e}");
     }
     // An X3P whose data no longer matches the checksum main.xml records.
@@ -195,11 +213,17 @@ fn bad_headers_are_refused_naming_the_field() {
     let damaged = file("damaged.x3p", b"");
     let mut zip = zip::ZipWriter::new(std::fs::File::create(&damaged).unwrap());
     for (name, bytes) in &entries {
-        zip.start_file(name.as_str(), zip::write::SimpleFileOptions::default()).unwrap();
+        zip.start_file(name.as_str(), zip::write::SimpleFileOptions::default())
+            .unwrap();
         std::io::Write::write_all(&mut zip, bytes).unwrap();
     }
     zip.finish().unwrap();
     assert!(io::read(&path, &ReadOptions::default()).is_ok());
-    let e = io::read(&damaged, &ReadOptions::default()).unwrap_err().to_string();
-    assert!(e.contains("does not match main.xml's MD5ChecksumPointData"), "{e}");
+    let e = io::read(&damaged, &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("does not match main.xml's MD5ChecksumPointData"),
+        "{e}"
+    );
 }

@@ -2,7 +2,7 @@
 //! `Gwyddion Simple Field 1.0`, NUL-padded to a multiple of 4 bytes (1 to 4 NULs), then
 //! `XRes * YRes` little-endian f32 heights, row by row.
 
-use super::{Measurement, ReadOptions, Surface, length_unit};
+use super::{Measurement, Number, ReadOptions, Surface, length_unit};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -70,8 +70,8 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
         .chunks_exact(4)
         .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64 * z_unit * options.unit)
         .collect();
-    let lx = xreal.unwrap_or(nx as f64) * xy_unit * options.unit;
-    let ly = yreal.unwrap_or(ny as f64) * xy_unit * options.unit;
+    let lx = super::header(path, "XReal", xreal.unwrap_or(nx as f64), Number::Size)? * xy_unit * options.unit;
+    let ly = super::header(path, "YReal", yreal.unwrap_or(ny as f64), Number::Size)? * xy_unit * options.unit;
     let grid = Grid::new(nx, ny, lx, ly).map_err(|e| SurfError::parse(path, None, e.to_string()))?;
     Measurement::new(
         Array2::from_shape_vec((ny, nx), heights).expect("counted"),

@@ -176,6 +176,11 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         let lateral = length_unit(&field.unit("si_unit_xy").unwrap_or_default()).unwrap_or(1.0);
         let length = |key: &str| field.float(key).map(|l| l * lateral);
         let scale = metres.unwrap_or(1.0);
+        for key in ["xreal", "yreal"] {
+            if let Some(l) = length(key) {
+                super::header(path, &format!("image {number}'s {key}"), l, super::Number::Size)?;
+            }
+        }
         layers.push(Layer {
             channel: Channel {
                 name: title,

@@ -127,10 +127,26 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         let unit = &dim_unit[d];
         length_unit(unit).ok_or_else(|| bad(format!("dimension {d} is in '{unit}', not a length")))
     };
-    let length_x = nx as f64 * f64_at(w + 84).abs() * lateral(0)?;
+    let length_x = nx as f64
+        * super::header(
+            path,
+            "x spacing (sfA[0])",
+            f64_at(w + 84).abs(),
+            super::Number::Size,
+        )?
+        * lateral(0)?;
     // A line scan (one row) has no extent along y.
     let length_y = if ny > 1 {
-        Some(ny as f64 * f64_at(w + 92).abs() * lateral(1)?)
+        Some(
+            ny as f64
+                * super::header(
+                    path,
+                    "y spacing (sfA[1])",
+                    f64_at(w + 92).abs(),
+                    super::Number::Size,
+                )?
+                * lateral(1)?,
+        )
     } else {
         None
     };

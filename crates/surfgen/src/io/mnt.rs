@@ -10,7 +10,7 @@
 //! of one pixel in which 9 marks a measured point. Heights are `count * step + origin`, stored
 //! row by row, x fastest; every measured surface of the document is a channel.
 
-use super::{Channel, Layer, length_unit};
+use super::{Channel, Layer, Number, header, length_unit};
 use crate::error::{Result, SurfError};
 use ndarray::Array2;
 use std::io::Read;
@@ -187,6 +187,14 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         let sz = at(measurement, &[2, 0xFFFF])
             .and_then(scale)
             .ok_or_else(|| bad("a surface without its height axis"))?;
+        for (field, v, number) in [
+            ("x axis step", sx.step, Number::Size),
+            ("y axis step", sy.step, Number::Size),
+            ("height axis step", sz.step, Number::Scale),
+            ("height axis origin", sz.origin, Number::Offset),
+        ] {
+            header(path, field, v, number)?;
+        }
         let n = nx
             .checked_mul(ny)
             .filter(|&n| n >= 1)

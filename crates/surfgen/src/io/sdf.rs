@@ -5,7 +5,7 @@
 //! trailer. Heights are the stored numbers times `Zscale` [m]; `Xscale` and `Yscale` are the
 //! spacings [m], so the box is `NumPoints * Xscale` by `NumProfiles * Yscale`.
 
-use super::{Measurement, ReadOptions, Surface};
+use super::{Measurement, Number, ReadOptions, Surface};
 use crate::error::{Result, SurfError};
 use crate::grid::Grid;
 use ndarray::Array2;
@@ -75,7 +75,11 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
         }
     };
     let (nx, ny) = (count("NumPoints")?, count("NumProfiles")?);
-    let (sx, sy, sz) = (number("Xscale")?, number("Yscale")?, number("Zscale")?);
+    let (sx, sy, sz) = (
+        super::header(path, "Xscale", number("Xscale")?, Number::Size)?,
+        super::header(path, "Yscale", number("Yscale")?, Number::Size)?,
+        super::header(path, "Zscale", number("Zscale")?, Number::Scale)?,
+    );
     if get("Compression").is_some_and(|(_, _, v)| v != "0") {
         return Err(bad(
             None,
