@@ -341,12 +341,22 @@ fn bound_runs(axes: &[(String, Vec<toml::Value>)], zip: bool) -> Result<()> {
 
 /// Refuses runs that would share a directory.
 fn unique(runs: &[Run]) -> Result<()> {
-    let mut names: Vec<&str> = runs.iter().map(|r| r.name.as_str()).collect();
-    names.sort();
-    if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
+    let mut sorted: Vec<&Run> = runs.iter().collect();
+    sorted.sort_by(|a, b| a.name.cmp(&b.name));
+    if let Some(w) = sorted.windows(2).find(|w| w[0].name == w[1].name) {
+        let values = |r: &Run| {
+            r.values
+                .iter()
+                .map(|(k, v)| format!("`{k}` = {v}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
         bail!(
-            "two runs would share the directory {}: an axis or a name repeats",
-            w[0]
+            "two runs would share the directory {} ({} and {}): an axis repeats a value, or two values \
+             spell one name; give each run a name (`names`)",
+            w[0].name,
+            values(w[0]),
+            values(w[1])
         );
     }
     Ok(())
@@ -963,6 +973,82 @@ mod tests {
         }
         assert!(parse_shard("0/2").is_err() && parse_shard("3/2").is_err() && parse_shard("x").is_err());
         assert_eq!(parse_shard("2/3").unwrap(), (2, 3));
+    }
+
+    /// Any value an axis could list, the plausible and the awkward.
+    fn axis_value() -> impl proptest::strategy::Strategy<Value = toml::Value> {
+        use proptest::prelude::*;
+        prop_oneof![
+            prop_oneof![
+                Just(f64::NAN),
+                Just(-1.0),
+                Just(0.0),
+                Just(1e-9),
+                Just(0.5),
+                Just(48.5),
+                any::<f64>()
+            ]
+            .prop_map(toml::Value::Float),
+            prop_oneof![Just(-3i64), Just(0), Just(1), Just(32), Just(i64::MAX)]
+                .prop_map(toml::Value::Integer),
+            prop_oneof![Just("two"), Just("point"), Just("free"), Just("")]
+                .prop_map(|s| toml::Value::String(s.into())),
+            any::<bool>().prop_map(toml::Value::Boolean),
+            Just(toml::Value::Array(vec![toml::Value::Integer(1)])),
+        ]
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig { cases: 200, failure_persistence: None, ..Default::default() })]
+
+        /// Any axes over a generated surface's case: the study is refused naming an axis or a
+        /// key, or every run's case reads, types and applies (so no run fails on them).
+        #[test]
+        fn any_axes_are_checked_before_a_run(
+            axes in proptest::collection::vec(
+                (proptest::sample::select(vec!["seed", "n", "hurst", "law", "z0", "modulus", "exact_sphere", "surface", "bogus", "mean_pressure", "tolerance", "domain"]),
+                 proptest::collection::vec(axis_value(), 1..3)),
+                1..3,
+            ),
+            command in proptest::sample::select(vec!["solve", "sweep"]),
+        ) {
+            let mut text = format!("command = \"{command}\"\n[case]\nlength = 1e-6\nrms_height = 1e-8\nmodulus = 1e9\n[axes]\n");
+            let mut seen = Vec::new();
+            for (k, values) in &axes {
+                if seen.contains(k) {
+                    continue;
+                }
+                seen.push(*k);
+                text += &format!("{k} = {}\n", toml::Value::Array(values.clone()));
+            }
+            let parsed = std::panic::catch_unwind(|| study(&text));
+            proptest::prop_assert!(parsed.is_ok(), "panicked on {text}");
+            match parsed.unwrap() {
+                Ok(s) => {
+                    for run in &s.runs {
+                        let mut t = s.case.clone();
+                        t.extend(run.values.iter().cloned());
+                        let read = if command == "sweep" {
+                            case::from_table::<case::Case, case::SweepPath>("run", t).map(|(c, _)| c)
+                        } else {
+                            case::from_table::<case::Case, case::SolveControl>("run", t).map(|(c, _)| c)
+                        };
+                        let applies = read.and_then(|mut c| {
+                            c.fill_defaults("");
+                            c.check_applicable()
+                        });
+                        proptest::prop_assert!(applies.is_ok(), "{text}: run {} passed the check: {:?}", run.name, applies.err());
+                    }
+                }
+                Err(e) => {
+                    let message = format!("{e:#}");
+                    proptest::prop_assert!(
+                        seen.iter().any(|k| message.contains(&format!("`{k}`")) || message.contains(&format!("--{}", k.replace('_', "-")))),
+                        "{text}: the error names no axis: {message}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

@@ -114,10 +114,11 @@ struct Reading {
     length_x_m: Option<f64>,
     length_y_m: Option<f64>,
     unmeasured_points: usize,
-    mean_height_m: f64,
-    rms_height_m: f64,
-    min_height_m: f64,
-    max_height_m: f64,
+    /// The measured points' statistics; `None` (null) where no point is measured.
+    mean_height_m: Option<f64>,
+    rms_height_m: Option<f64>,
+    min_height_m: Option<f64>,
+    max_height_m: Option<f64>,
 }
 
 impl Reading {
@@ -143,6 +144,7 @@ impl Reading {
             ),
         };
         let measured: Vec<f64> = heights.iter().copied().filter(|h| !h.is_nan()).collect();
+        let some = !measured.is_empty();
         let n = measured.len().max(1) as f64;
         let mean = measured.iter().sum::<f64>() / n;
         Reading {
@@ -153,10 +155,10 @@ impl Reading {
             length_x_m: lx,
             length_y_m: ly,
             unmeasured_points: heights.len() - measured.len(),
-            mean_height_m: mean,
-            rms_height_m: (measured.iter().map(|h| (h - mean).powi(2)).sum::<f64>() / n).sqrt(),
-            min_height_m: measured.iter().copied().fold(f64::INFINITY, f64::min),
-            max_height_m: measured.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            mean_height_m: some.then_some(mean),
+            rms_height_m: some.then(|| (measured.iter().map(|h| (h - mean).powi(2)).sum::<f64>() / n).sqrt()),
+            min_height_m: some.then(|| measured.iter().copied().fold(f64::INFINITY, f64::min)),
+            max_height_m: some.then(|| measured.iter().copied().fold(f64::NEG_INFINITY, f64::max)),
         }
     }
 }
@@ -183,9 +185,11 @@ pub fn info(a: InfoArgs) -> Result<()> {
         channels,
         reads_as,
     };
+    // A file whose channel does not read is listed, then refused (status 1), naming why.
+    let refused = |e: &String| anyhow::anyhow!("{}: the channel does not read: {e}", path.display());
     if a.json {
         crate::outln!("{}", serde_json::to_string_pretty(&info)?);
-        return Ok(());
+        return info.reads_as.as_ref().map(|_| ()).map_err(refused);
     }
     crate::outln!("{}", path.display());
     crate::outln!(
@@ -211,13 +215,12 @@ pub fn info(a: InfoArgs) -> Result<()> {
                 r.ny,
                 size_text(r.length_x_m, r.length_y_m)
             );
-            crate::outln!(
-                "  heights [m] of the measured points: mean {:.4e}, RMS {:.4e}, min {:.4e}, max {:.4e}",
-                r.mean_height_m,
-                r.rms_height_m,
-                r.min_height_m,
-                r.max_height_m
-            );
+            match (r.mean_height_m, r.rms_height_m, r.min_height_m, r.max_height_m) {
+                (Some(mean), Some(rms), Some(min), Some(max)) => crate::outln!(
+                    "  heights [m] of the measured points: mean {mean:.4e}, RMS {rms:.4e}, min {min:.4e}, max {max:.4e}"
+                ),
+                _ => crate::outln!("  no point is measured"),
+            }
             if r.ny == 1 {
                 crate::outln!("  a contact calculation needs a surface: this line scan is refused");
             }
@@ -232,7 +235,7 @@ pub fn info(a: InfoArgs) -> Result<()> {
                 crate::outln!("  every point measured");
             }
         }
-        Err(e) => crate::outln!("does not read: {e}"),
+        Err(e) => return Err(refused(e)),
     }
     Ok(())
 }

@@ -445,3 +445,37 @@ fn a_mostly_unmeasured_file_is_not_filled_without_being_asked() {
         Must::Refuse("applies with fill_unmeasured"),
     );
 }
+
+/// A Nanoscope file of one 3 x 2 height image whose Z scale is `z` volts.
+fn nanoscope(z: &str) -> Vec<u8> {
+    let header = format!(
+        "\\*File list\r\n\\*Scanner list\r\n\\@Sens. Zsens: V 10.00 nm/V\r\n\\*Ciao image list\r\n\
+         \\Data offset: 1024\r\n\\Data length: 12\r\n\\Bytes/pixel: 2\r\n\\Samps/line: 3\r\n\
+         \\Number of lines: 2\r\n\\Scan Size: 3 2 ~m\r\n\\@2:Image Data: S [Height] \"Height\"\r\n\
+         \\@2:Z scale: V [Sens. Zsens] (0.0001 V/LSB) {z} V\r\n\\*File list end\r\n"
+    );
+    let mut b = header.into_bytes();
+    b.resize(1024, 0);
+    b.extend([1i16, 2, 3, 4, 5, 6].iter().flat_map(|v| v.to_le_bytes()));
+    b
+}
+
+#[test]
+fn a_bad_header_number_is_named_by_info_and_stats() {
+    let d = fresh("header");
+    std::fs::write(d.join("good.di"), nanoscope("6.5536")).unwrap();
+    check(&d, &["info", "good.di"], Must::Succeed);
+    for (name, z) in [("nan.di", "NaN"), ("zero.di", "0")] {
+        std::fs::write(d.join(name), nanoscope(z)).unwrap();
+        for cmd in ["info", "stats"] {
+            check(
+                &d,
+                &[cmd, name],
+                Must::Refuse("\\@2:Z scale (with its \\@Sens.) is"),
+            );
+        }
+        let o = roughcontact_in(&d, &["info", name]);
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert!(!out.contains("inf") && !out.contains("RMS"), "{out}");
+    }
+}
