@@ -955,6 +955,18 @@ impl SweepPath {
         }) {
             bail!("the sweep path has a non-finite value");
         }
+        // Without a pull-off search (whose steps are numbered on after the path's) a kept step
+        // beyond the path would keep nothing.
+        if let (None, Some(k)) = (
+            search,
+            self.keep_steps.iter().flatten().find(|&&k| k >= controls.len()),
+        ) {
+            bail!(
+                "--keep-steps {k}: the path has {} steps, numbered 0 to {}",
+                controls.len(),
+                controls.len() - 1
+            );
+        }
         if let (Some(s), Some(Control::Approach(last))) = (search, controls.last())
             && s.floor >= *last
         {

@@ -36,3 +36,20 @@ pub fn check(what: &str, bytes: f64) -> Result<()> {
     }
     Ok(())
 }
+
+/// The most worker threads a process starts per core: beyond, threads only cost memory and
+/// start-up time (and enough of them make the system refuse to start more).
+pub const THREADS_PER_CORE: usize = 64;
+
+/// Refuses a count of threads `name` below 1 or beyond [`THREADS_PER_CORE`] per core of this
+/// machine.
+pub fn check_threads(name: &str, threads: usize) -> Result<()> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if threads == 0 || threads > THREADS_PER_CORE * cores {
+        bail!(
+            "{name} must be between 1 and {} ({THREADS_PER_CORE} per core; this machine has {cores}), got {threads}",
+            THREADS_PER_CORE * cores
+        );
+    }
+    Ok(())
+}

@@ -71,9 +71,10 @@ fn main() -> ExitCode {
         }
     };
     if let Some(n) = cli.threads
-        && let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(n).build_global()
+        && let Err(e) = case::memory::check_threads("--threads", n)
+            .and_then(|()| Ok(rayon::ThreadPoolBuilder::new().num_threads(n).build_global()?))
     {
-        roughcontact::note_err(format_args!("error: cannot start {n} threads: {e}"));
+        roughcontact::note_err(format_args!("error: {e:#}"));
         return ExitCode::FAILURE;
     }
     let result = match cli.command {

@@ -489,9 +489,8 @@ pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
         }
         return Ok(());
     }
-    if a.jobs == 0 {
-        bail!("--jobs must be at least 1");
-    }
+    // Each job is a thread with a pool of its own.
+    case::memory::check_threads("--jobs", a.jobs)?;
     if a.merge && a.start_within.is_some() {
         bail!("--merge runs nothing: --start-within has nothing to limit");
     }

@@ -428,6 +428,10 @@ impl TheoryArgs {
     }
 }
 
+/// The bytes a point of a curve takes at most: its numbers, its line of CSV and its point on a
+/// plot.
+const POINT_BYTES: f64 = 256.0;
+
 pub fn theory(a: TheoryArgs) -> Result<()> {
     // Refuse the shared flags a model does not use, rather than ignore them.
     let curve = !matches!(a.model, Model::Sticky { .. });
@@ -456,6 +460,11 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
     if a.points() < 2 {
         bail!("--points must be at least 2");
     }
+    // A curve is held (and plotted) whole: its points are bounded by memory before any is made.
+    case::memory::check(
+        &format!("a curve of {} points", a.points()),
+        a.points() as f64 * POINT_BYTES,
+    )?;
     if let Model::Greenwood {
         tabor,
         max_approach,

@@ -248,6 +248,19 @@ fn values_that_would_be_dropped_are_refused() {
             "{extra:?}: a refused run made its directory"
         );
     }
+    check(
+        &d,
+        &[
+            "sweep",
+            "--example",
+            "hertz",
+            "--keep-steps",
+            "7,1000",
+            "--out",
+            "kept",
+        ],
+        Must::Refuse("--keep-steps 1000: the path has 21 steps, numbered 0 to 20"),
+    );
     // An optional-value flag takes its value only after `=`: the next flag stays a flag.
     check(
         &d,
@@ -422,6 +435,27 @@ fn machines_limits_are_estimated_before_allocating() {
         Must::Refuse("a 10000000 x 10000000 bench needs about"),
     );
     check(&d, &["bench", "--sizes", "4"], Must::Refuse("at least 8"));
+    check(
+        &d,
+        &["theory", "maugis", "--tabor", "1", "--points", "100000000000"],
+        Must::Refuse("a curve of 100000000000 points needs about"),
+    );
+    check(
+        &d,
+        &[
+            "--threads",
+            "100000",
+            "theory",
+            "hertz",
+            "--radius",
+            "1e-6",
+            "--modulus",
+            "1e9",
+            "--max-approach",
+            "1e-9",
+        ],
+        Must::Refuse("--threads must be between 1 and"),
+    );
 }
 
 #[test]

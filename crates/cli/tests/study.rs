@@ -200,7 +200,7 @@ fn bad_study_arguments_are_refused() {
     let file = dir.join("study.toml");
     let f = file.to_str().unwrap();
     for (args, message) in [
-        (vec!["study", f, "--jobs", "0"], "--jobs must be at least 1"),
+        (vec!["study", f, "--jobs", "0"], "--jobs must be between 1 and"),
         (vec!["study", f, "--shard", "3/2"], "--shard is I/N"),
         (
             vec!["study", f, "--start-within", "2d"],

@@ -255,8 +255,10 @@ impl Observer for Progress {
 /// threads as the command line does).
 fn on_pool<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Send) -> anyhow::Result<R> {
     Ok(match threads {
-        Some(0) => anyhow::bail!("threads must be at least 1 (or None for all cores)"),
-        Some(n) => rayon::ThreadPoolBuilder::new().num_threads(n).build()?.install(f),
+        Some(n) => {
+            case::memory::check_threads("threads", n)?;
+            rayon::ThreadPoolBuilder::new().num_threads(n).build()?.install(f)
+        }
         None => rayon::scope(|_| f()),
     })
 }
