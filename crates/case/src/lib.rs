@@ -1034,18 +1034,18 @@ impl SweepPath {
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 #[serde(default, deny_unknown_fields)]
 pub struct Generation {
-    /// Grid points per side (square grid); overridden by --nx/--ny.
-    #[cfg_attr(feature = "clap", arg(long, default_value_t = 1024))]
-    pub n: usize,
+    /// Grid points per side of a square grid [default: 1024]; or --nx and --ny.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub n: Option<usize>,
     /// Grid points along x.
     #[cfg_attr(feature = "clap", arg(long))]
     pub nx: Option<usize>,
     /// Grid points along y.
     #[cfg_attr(feature = "clap", arg(long))]
     pub ny: Option<usize>,
-    /// Side of the square periodic box [m]; overridden by --length-x/--length-y.
-    #[cfg_attr(feature = "clap", arg(long, default_value_t = 1e-4))]
-    pub length: f64,
+    /// Side of the square periodic box [m] [default: 1e-4]; or --length-x and --length-y.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub length: Option<f64>,
     /// Box size along x [m].
     #[cfg_attr(feature = "clap", arg(long))]
     pub length_x: Option<f64>,
@@ -1095,10 +1095,10 @@ impl Default for Generation {
     /// The command line's defaults.
     fn default() -> Self {
         Generation {
-            n: 1024,
+            n: None,
             nx: None,
             ny: None,
-            length: 1e-4,
+            length: None,
             length_x: None,
             length_y: None,
             hurst: 0.8,
@@ -1118,14 +1118,28 @@ impl Default for Generation {
 }
 
 impl Generation {
+    /// Grid points per side when neither `n` nor `nx`/`ny` is given.
+    pub const DEFAULT_N: usize = 1024;
+    /// The box's side [m] when neither `length` nor `length_x`/`length_y` is given.
+    pub const DEFAULT_LENGTH: f64 = 1e-4;
+
     /// The generator's specification: at most one scale (RMS gradient 1 when none is given).
     pub fn spec(&self) -> Result<SurfaceSpec> {
-        let (nx, ny) = (self.nx.unwrap_or(self.n), self.ny.unwrap_or(self.n));
+        // A side given twice (`n` and `nx`) would drop one of them without a word.
+        if self.n.is_some() && (self.nx.is_some() || self.ny.is_some()) {
+            bail!("give --n (a square grid) or --nx and --ny, not both");
+        }
+        if self.length.is_some() && (self.length_x.is_some() || self.length_y.is_some()) {
+            bail!("give --length (a square box) or --length-x and --length-y, not both");
+        }
+        let n = self.n.unwrap_or(Self::DEFAULT_N);
+        let length = self.length.unwrap_or(Self::DEFAULT_LENGTH);
+        let (nx, ny) = (self.nx.unwrap_or(n), self.ny.unwrap_or(n));
         let grid = Grid::new(
             nx,
             ny,
-            self.length_x.unwrap_or(self.length),
-            self.length_y.unwrap_or(self.length),
+            self.length_x.unwrap_or(length),
+            self.length_y.unwrap_or(length),
         )?;
         let scales = [
             self.rms_height,

@@ -261,6 +261,19 @@ fn values_that_would_be_dropped_are_refused() {
         ],
         Must::Refuse("--keep-steps 1000: the path has 21 steps, numbered 0 to 20"),
     );
+    for (args, fragment) in [
+        (
+            &["--n", "32", "--nx", "64"][..],
+            "give --n (a square grid) or --nx and --ny, not both",
+        ),
+        (
+            &["--n", "32", "--length", "1e-6", "--length-x", "2e-6"],
+            "give --length (a square box) or --length-x and --length-y, not both",
+        ),
+    ] {
+        let args = [&["generate", "-o", "two.npy", "--no-png"][..], args].concat();
+        check(&d, &args, Must::Refuse(fragment));
+    }
     // An optional-value flag takes its value only after `=`: the next flag stays a flag.
     check(
         &d,

@@ -55,7 +55,7 @@ def test_generate_is_reproducible_and_scaled():
 
 @pytest.mark.parametrize("suffix", [".npy", ".txt", ".xyz", ".gsf"])
 def test_write_then_read(tmp_path, suffix):
-    a = rc.generate(n=32, nx=32, ny=16, length_x=2e-5, length_y=1e-5, rolloff=5e-6, rms_height=1e-7, seed=1)
+    a = rc.generate(nx=32, ny=16, length_x=2e-5, length_y=1e-5, rolloff=5e-6, rms_height=1e-7, seed=1)
     path = tmp_path / f"surface{suffix}"
     a.write(path)
     b = rc.read(path, length=2e-5) if suffix == ".txt" else rc.read(path)

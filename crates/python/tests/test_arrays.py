@@ -92,7 +92,7 @@ def test_surfacetopography_layout():
 def test_a_surfacetopography_topography():
     """A real SurfaceTopography topography (CI installs it) round-trips with its layout."""
     st = pytest.importorskip("SurfaceTopography")
-    ours = rc.generate(n=32, nx=32, ny=16, length_x=2e-5, length_y=1e-5, rolloff=5e-6, rms_height=1e-7, seed=1)
+    ours = rc.generate(nx=32, ny=16, length_x=2e-5, length_y=1e-5, rolloff=5e-6, rms_height=1e-7, seed=1)
     theirs = st.Topography(ours.heights.T, physical_sizes=ours.physical_sizes, periodic=True, unit="m")
     assert theirs.nb_grid_pts == (32, 16)
     back = rc.Topography.from_surfacetopography(theirs)
@@ -105,7 +105,7 @@ def test_surfacetopography_reads_our_files_with_their_size(tmp_path, suffix):
     """Files for contact.engineering: SurfaceTopography (CI installs it) reads our X3P and
     NetCDF with the right grid, size and heights."""
     st = pytest.importorskip("SurfaceTopography")
-    ours = rc.generate(n=32, nx=32, ny=16, length_x=2e-5, length_y=1e-5, rolloff=5e-6, rms_height=1e-7, seed=1)
+    ours = rc.generate(nx=32, ny=16, length_x=2e-5, length_y=1e-5, rolloff=5e-6, rms_height=1e-7, seed=1)
     path = tmp_path / f"surface{suffix}"
     ours.write(path)
     theirs = st.read_topography(str(path))

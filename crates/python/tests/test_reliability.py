@@ -51,6 +51,8 @@ def test_whole_numbers_are_as_strict_everywhere():
 
 
 def test_sizes_that_would_be_dropped_are_refused(tmp_path):
+    with pytest.raises(ValueError, match=r"give n \(a square grid\) or nx and ny, not both"):
+        rc.generate(n=32, nx=64)
     surface = rc.generate(n=32, length=1e-6, rolloff=2e-7)
     path = tmp_path / "s.npy"
     surface.write(path)

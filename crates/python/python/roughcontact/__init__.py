@@ -182,19 +182,17 @@ def _plain(key: str, value: Any) -> Any:
     return value
 
 
-def generate(n: int = 1024, length: float = 1e-4, **keys: Any) -> Topography:
+def generate(n: Optional[int] = None, length: Optional[float] = None, **keys: Any) -> Topography:
     """A periodic self-affine surface from its power spectrum (``roughcontact generate``).
 
-    Keys (all optional, SI units): ``n`` points per side or ``nx``/``ny``; ``length`` [m]
-    or ``length_x``/``length_y``; ``hurst`` (0.8), ``rolloff`` [m] (2e-5), ``cutoff`` [m]
+    Keys (all optional, SI units): ``n`` points per side (1024) or ``nx`` and ``ny``;
+    ``length`` [m] (1e-4) or ``length_x`` and ``length_y``; ``hurst`` (0.8), ``rolloff`` [m] (2e-5), ``cutoff`` [m]
     (4 cells), ``long_cutoff`` [m]; one scale of ``rms_height`` [m], ``rms_gradient`` [-]
     (1 when none is given), ``peak_to_valley`` [m] or ``prefactor`` [m^4]; ``seed`` (0: a
     seed fixes the surface bit for bit); ``anisotropy`` (1) and ``angle`` [degrees];
     ``rayleigh`` (False: exact amplitudes with random phases).
     """
-    keys = {k: _plain(k, v) for k, v in keys.items() if v is not None}
-    # As the other functions' keys: a whole number where the key takes one (64.0 is refused).
-    keys.update(n=_plain("n", n), length=_plain("length", length))
+    keys = {k: _plain(k, v) for k, v in dict(keys, n=n, length=length).items() if v is not None}
     heights, lx, ly, info = _native.generate(keys)
     for w in json.loads(info)["warnings"]:
         warnings.warn(w, stacklevel=2)
