@@ -545,12 +545,12 @@ impl Case {
             (
                 "unit",
                 self.unit.is_some() && !file,
-                "a surface file's unit: give --surface",
+                "is a surface file's unit: give --surface",
             ),
             (
                 "channel",
                 self.channel.is_some() && !file,
-                "a surface file's channel: give --surface",
+                "is a surface file's channel: give --surface",
             ),
             (
                 "fill_unmeasured",

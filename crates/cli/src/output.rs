@@ -1,16 +1,16 @@
-//! The one way the command line writes a file: whole or not at all (written beside its place,
-//! then renamed into it, so that a killed run leaves the old file or the new one, never half of
-//! one), and never a field or a plotted value that is not finite (refused, naming it).
+//! The one way the command line writes a run's files: whole or not at all
+//! ([`surfgen::io::atomically`]: written beside their place, then renamed into it, so that a
+//! killed run leaves the old file or the new one, never half of one), and never a field that is
+//! not finite (refused, naming it). Plots are written the same way by `plot`, which also
+//! refuses to map a field that is not finite.
 
 use anyhow::{Context, Result, bail};
 use ndarray::Array2;
 use std::path::Path;
 
-pub use surfgen::io::atomically;
-
 /// Writes `text` to `path`, whole or not at all.
 pub fn text(path: &Path, text: &str) -> Result<()> {
-    atomically(path, |p| {
+    surfgen::io::atomically(path, |p| {
         std::fs::write(p, text).with_context(|| format!("writing {}", path.display()))
     })
 }

@@ -183,7 +183,7 @@ impl RunDir {
 
     /// Writes `name.npy`.
     pub fn write_field(&self, name: &str, field: &Array2<f64>) -> Result<()> {
-        write_field(&self.path, name, field)
+        crate::output::field(&self.path, name, field)
     }
 
     /// Writes the fields of an adhesive solution: the total, compressive and adhesive
@@ -352,11 +352,6 @@ fn parse_curve(text: &str) -> Result<Vec<CyclePoint>> {
     Ok(rows)
 }
 
-/// Writes `dir/name.npy` (a finite field, whole or not at all).
-pub fn write_field(dir: &Path, name: &str, field: &Array2<f64>) -> Result<()> {
-    crate::output::field(dir, name, field)
-}
-
 /// Writes a state into `dir` whole or not at all: into a sibling `<name>.new` first (its
 /// manifest last), then swapped in by renames, so that a run killed at any moment leaves
 /// either the old state or the new one (or, between the two renames, only `<name>.new`, which
@@ -376,7 +371,7 @@ fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
     std::fs::create_dir_all(&new).with_context(|| format!("creating {}", new.display()))?;
     let mut fields = serde_json::Map::new();
     for (name, field) in state_fields(state) {
-        write_field(&new, name, field)?;
+        crate::output::field(&new, name, field)?;
         fields.insert(name.to_string(), Value::String(fingerprint(field)));
     }
     let manifest = serde_json::json!({ "approach": state.contact.approach, "fields": fields });
