@@ -163,8 +163,8 @@ impl RunDir {
     pub fn write_progress(&self, text: Option<&str>) {
         let path = self.path.join(PROGRESS);
         let _ = match text {
-            Some(text) => std::fs::write(path, text),
-            None => std::fs::remove_file(path),
+            Some(text) => crate::output::text(&path, text),
+            None => std::fs::remove_file(path).map_err(Into::into),
         };
     }
 
