@@ -165,6 +165,11 @@ fn values_that_would_be_dropped_are_refused() {
         Must::Succeed,
     );
     let solve = ["solve", "--modulus", "1e9", "--mean-pressure", "1e6", "--no-png"];
+    check(
+        &d,
+        &["stats", "g.npy", "--not-periodic"],
+        Must::Refuse("--not-periodic, periodic=False) does not apply"),
+    );
     for (extra, fragment) in [
         (
             &["--surface", "g.npy", "--length", "1"][..],

@@ -602,14 +602,26 @@ pub fn read_topography(path: &Path, options: &ReadOptions) -> Result<Topography>
     } else {
         read_single(path, format, options)?
     };
-    given_size_used(path, &read, options)?;
+    given_options_used(path, &read, options)?;
     Ok(read)
 }
 
-/// Refuses a box size given in the options that the reading did not use: a file that carries
-/// its own size is read at that size, and a size given beside it would otherwise be dropped
-/// without a word (and recorded as if it had been used).
-fn given_size_used(path: &Path, read: &Topography, options: &ReadOptions) -> Result<()> {
+/// Refuses a box size or a non-periodic reading asked for in the options that the reading did
+/// not use: a file that carries its own size (or says it repeats) is read as it says, and an
+/// option given beside it would otherwise be dropped without a word (and recorded as if it had
+/// been used).
+fn given_options_used(path: &Path, read: &Topography, options: &ReadOptions) -> Result<()> {
+    if let Topography::Surface(m) = read
+        && m.periodic
+        && !options.periodic
+    {
+        return Err(SurfError::parse(
+            path,
+            None,
+            "the file says the surface repeats across its edges (periodic), so a non-periodic \
+             reading (--not-periodic, periodic=False) does not apply: leave it out",
+        ));
+    }
     let (lx, ly) = match read {
         Topography::Surface(m) => (Some(m.grid.length_x), Some(m.grid.length_y)),
         Topography::Profile(p) => (p.length, None),
