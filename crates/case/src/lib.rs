@@ -1017,6 +1017,16 @@ impl SweepPath {
     /// The largest step between two solves [m] on `problem` (`None`: no splitting), checked
     /// against `controls`.
     pub fn max_step(&self, problem: &ContactProblem, controls: &[Control]) -> Result<Option<f64>> {
+        if let Some(h) = self.max_step
+            && controls
+                .iter()
+                .all(|c| matches!(c, Control::MeanPressure(_) | Control::Force(_)))
+        {
+            bail!(
+                "--max-step {h:e} does not apply to a path of loads: load steps are never split \
+                 (it splits approach and central-gap steps)"
+            );
+        }
         let max_step = self.max_step.or(problem.adhesive().then(|| problem.law.range()));
         if let Some(h) = max_step
             && !(h.is_finite() && h > 0.0)

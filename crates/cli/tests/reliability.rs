@@ -258,6 +258,19 @@ fn values_that_would_be_dropped_are_refused() {
         &[
             "sweep",
             "--example",
+            "challenge-small",
+            "--max-step",
+            "1e-9",
+            "--out",
+            "split",
+        ],
+        Must::Refuse("--max-step 1e-9 does not apply to a path of loads"),
+    );
+    check(
+        &d,
+        &[
+            "sweep",
+            "--example",
             "hertz",
             "--keep-steps",
             "7,1000",
