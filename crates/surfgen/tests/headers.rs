@@ -97,6 +97,63 @@ fn tmd(lx: f32, ly: f32) -> Vec<u8> {
     b
 }
 
+/// `seed` with the value of the header line that starts with `key` (after its separator, `=`
+/// or spaces) replaced by `v`.
+fn with_value(seed: &[u8], key: &str, v: f64) -> Vec<u8> {
+    let at = seed
+        .windows(key.len() + 1)
+        .position(|w| w.starts_with(key.as_bytes()) && (w[key.len()] == b'=' || w[key.len()] == b' '))
+        .expect("the key is in the seed");
+    let start = at
+        + key.len()
+        + seed[at + key.len()..]
+            .iter()
+            .position(|&b| b != b'=' && b != b' ')
+            .unwrap();
+    let end = start
+        + seed[start..]
+            .iter()
+            .position(|&b| b == b'\n' || b == b'\r')
+            .unwrap();
+    [&seed[..start], format!("{v:?}").as_bytes(), &seed[end..]].concat()
+}
+
+/// The PicoView and Nanosurf files of `fuzz.rs`: 3 x 2 heights of 16 bits after a text header.
+fn mi() -> Vec<u8> {
+    let mut b =
+        b"fileType      Image\nxPixels       3\nyPixels       2\nxLength       1e-6\nyLength       1e-6\n\
+bufferLabel   Topography\nbufferRange   1.5\nbufferUnit    um\ndata          BINARY\n"
+            .to_vec();
+    b.extend(
+        [1i16, -2, 300, 4000, -5000, 6]
+            .iter()
+            .flat_map(|v| v.to_le_bytes()),
+    );
+    b
+}
+
+fn nid() -> Vec<u8> {
+    let mut b = b"[DataSet]\nGroupCount=1\nGr0-Count=1\nGr0-Ch0=DataSet-0:1\n\
+[DataSet-0:1]\nPoints=3\nLines=2\nDim0Range=1e-6\nDim0Unit=m\nDim1Range=1e-6\nDim1Unit=m\n\
+Dim2Min=-1e-7\nDim2Range=2e-7\nDim2Unit=m\nSaveBits=16\nSaveSign=Signed\n#!"
+        .to_vec();
+    b.extend(
+        [10i16, -20, 300, 4000, -5000, 6]
+            .iter()
+            .flat_map(|v| v.to_le_bytes()),
+    );
+    b
+}
+
+/// A text SDF file as our writer makes it, 4 x 3 points.
+fn sdf() -> Vec<u8> {
+    let grid = surfgen::Grid::new(4, 3, 4e-6, 3e-6).unwrap();
+    let heights = ndarray::Array2::from_shape_fn((3, 4), |(j, i)| 1e-7 * (i + 2 * j) as f64);
+    let path = file("seed.sdf", b"");
+    io::write(&surfgen::Surface::new(heights, grid, false).unwrap(), &path, None).unwrap();
+    std::fs::read(&path).unwrap()
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 64, failure_persistence: None, ..ProptestConfig::default() })]
 
@@ -112,6 +169,17 @@ proptest! {
         let (lx, ly) = if field == 0 { (v as f32, 1.0) } else { (1.5, v as f32) };
         let path = file("h.tmd", &tmd(lx, ly));
         judged(&path, ["x length", "y length"][field], v)?;
+    }
+
+    #[test]
+    fn text_header_numbers(format in 0..3usize, field in 0..3usize, v in number()) {
+        let (name, seed, keys): (&str, Vec<u8>, [&str; 3]) = match format {
+            0 => ("h.mi", mi(), ["xLength", "yLength", "bufferRange"]),
+            1 => ("h.nid", nid(), ["Dim0Range", "Dim2Min", "Dim2Range"]),
+            _ => ("h.sdf", sdf(), ["Xscale", "Yscale", "Zscale"]),
+        };
+        let path = file(name, &with_value(&seed, keys[field], v));
+        judged(&path, keys[field], v)?;
     }
 
     #[test]

@@ -80,9 +80,17 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
             let unit = ch.get(key).map(String::as_str).unwrap_or("m");
             length_unit(unit).ok_or_else(|| bad(format!("[{name}]: unknown unit {key} '{unit}'")))
         };
-        // Checked when the channel is read: a listed channel may lack them.
+        // Checked when the channel is read: a listed channel may lack them, but one it gives
+        // must be a size.
         let length = |range: &str, unit: &str| Some(number(range).ok()? * lateral(unit).ok()?);
         let (length_x, length_y) = (length("Dim0Range", "Dim0Unit"), length("Dim1Range", "Dim1Unit"));
+        let bad_length = ["Dim0Range", "Dim1Range"].into_iter().find_map(|key| {
+            ch.get(key)?;
+            match number(key) {
+                Err(e) => Some(e),
+                Ok(v) => header(path, &format!("[{name}] {key}"), v, Number::Size).err(),
+            }
+        });
         let signed = ch.get("SaveSign").is_none_or(|s| s == "Signed");
         let smallest = if signed {
             -(2f64.powi(bits as i32 - 1))
@@ -110,10 +118,8 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                 let (min, range) = (min?, range?);
                 header(&file, &format!("[{name}] Dim2Min"), min, Number::Offset)?;
                 header(&file, &format!("[{name}] Dim2Range"), range, Number::Scale)?;
-                for (key, l) in [("Dim0Range", length_x), ("Dim1Range", length_y)] {
-                    if let Some(l) = l {
-                        header(&file, &format!("[{name}] {key}"), l, Number::Size)?;
-                    }
+                if let Some(e) = bad_length {
+                    return Err(e);
                 }
                 let scale = range / 2f64.powi(bits as i32);
                 let values: Vec<f64> = raw
