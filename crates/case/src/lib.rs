@@ -686,7 +686,9 @@ impl Case {
                 let read = options
                     .with_channel(path, self.channel.as_deref())
                     .and_then(|options| io::read_noting(path, &options));
-                let (surface, note) = read.map_err(|e| naming("reading", path, e))?;
+                let (surface, note) = read
+                    .map_err(|e| naming("reading", path, e))
+                    .context("--surface")?;
                 filled = note;
                 Some(surface)
             }
@@ -706,7 +708,12 @@ impl Case {
                     s.grid.ny
                 );
             }
-            check_memory(s.grid.nx, s.grid.ny, s.grid.length_x, s.grid.length_y)?;
+            check_memory(s.grid.nx, s.grid.ny, s.grid.length_x, s.grid.length_y).with_context(|| {
+                format!(
+                    "the surface file (--surface) of {} x {} points",
+                    s.grid.nx, s.grid.ny
+                )
+            })?;
             size = (s.grid.length_x, s.grid.length_y);
             heights = Some(s.heights);
         } else {
@@ -722,9 +729,20 @@ impl Case {
             let l = self
                 .length
                 .context("the grid needs its size: --length L [m] (and --n)")?;
+            for (key, points) in [("n", n), ("ny", ny)] {
+                if points < 2 {
+                    bail!("--{key} must be at least 2 grid points, got {points}");
+                }
+            }
+            if !(l > 0.0 && l <= surfgen::grid::MAX_LENGTH) {
+                bail!("--length must be > 0 m and at most 1e100 m, got {l:?}");
+            }
             let ly = self.length_y.unwrap_or(l * ny as f64 / n as f64);
+            if !(ly > 0.0 && ly <= surfgen::grid::MAX_LENGTH) {
+                bail!("--length-y must be > 0 m and at most 1e100 m, got {ly:?}");
+            }
             let grid = Grid::new(n, ny, l, ly)?;
-            check_memory(n, ny, l, ly)?;
+            check_memory(n, ny, l, ly).with_context(|| format!("--n {n}, --ny {ny}"))?;
             if generated {
                 let spec = SurfaceSpec {
                     grid,
@@ -751,7 +769,7 @@ impl Case {
             builder = builder.roughness(h, size.0, size.1);
         }
         builder = match (self.sphere_radius, self.wave_amplitude) {
-            (Some(_), Some(_)) => bail!("give a sphere or a wave, not both"),
+            (Some(_), Some(_)) => bail!("give --sphere-radius or --wave-amplitude, not both"),
             (Some(radius), None) => builder.shape(Shape::Sphere {
                 radius,
                 profile: if self.exact_sphere.unwrap_or(false) {

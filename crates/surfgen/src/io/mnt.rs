@@ -191,10 +191,10 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
             ("x axis step", sx.step, Number::Size),
             ("y axis step", sy.step, Number::Size),
             ("height axis step", sz.step, Number::Scale),
-            ("height axis origin", sz.origin, Number::Offset),
         ] {
             header(path, field, v, number)?;
         }
+        super::offset(path, "height axis origin", sz.origin, "height axis step", sz.step)?;
         let n = nx
             .checked_mul(ny)
             .filter(|&n| n >= 1)

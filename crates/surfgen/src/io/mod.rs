@@ -723,6 +723,27 @@ pub(crate) fn header(path: &Path, field: &str, value: f64, number: Number) -> Re
     }
 }
 
+/// A height offset `value` of the header field `field`, checked against the height step
+/// `step` (from the field `step_field`) it is added to: an offset so much larger than the step
+/// that the heights' differences fall below its rounding would read as a flat surface, so the
+/// pair is refused, both named.
+pub(crate) fn offset(path: &Path, field: &str, value: f64, step_field: &str, step: f64) -> Result<f64> {
+    header(path, field, value, Number::Offset)?;
+    // Beyond 2^50 steps the offset's rounding (2^-52 of it) reaches a quarter of a step.
+    if value.abs() > step.abs() * 2f64.powi(50) {
+        return Err(SurfError::parse(
+            path,
+            None,
+            format!(
+                "the header's {field} is {value:?}, more than 2^50 height steps ({:?}, from its \
+                 {step_field}): the heights would lose their differences to its rounding",
+                step.abs()
+            ),
+        ));
+    }
+    Ok(value)
+}
+
 /// The index of the channel `key` names in the file: an index, or a channel's name (exactly,
 /// else ignoring case).
 pub fn channel_index(path: &Path, options: &ReadOptions, key: &str) -> Result<usize> {

@@ -116,8 +116,14 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
             },
             values: Box::new(move || {
                 let (min, range) = (min?, range?);
-                header(&file, &format!("[{name}] Dim2Min"), min, Number::Offset)?;
                 header(&file, &format!("[{name}] Dim2Range"), range, Number::Scale)?;
+                super::offset(
+                    &file,
+                    &format!("[{name}] Dim2Min"),
+                    min,
+                    "Dim2Range",
+                    range / 2f64.powi(bits as i32),
+                )?;
                 if let Some(e) = bad_length {
                     return Err(e);
                 }

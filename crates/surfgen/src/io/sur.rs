@@ -59,7 +59,7 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
     };
     let (ux, uy, uz) = (unit(180)?, unit(196)?, unit(212)?);
     let skip = i16_at(334).max(0) as usize + i16_at(336).max(0) as usize;
-    let z_offset = header(path, "height offset", f32_at(474), Number::Offset)?;
+    let z_offset = super::offset(path, "height offset", f32_at(474), "height step dz", dz)?;
     let (nx, ny) = (usize::try_from(nx).unwrap_or(0), usize::try_from(ny).unwrap_or(0));
     let start = HEADER + skip;
     let n = nx

@@ -124,7 +124,13 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
         number("Record1/Axes/CZ/Increment")?.unwrap_or(1.0),
         Number::Scale,
     )?;
-    let z_offset = number("Record1/Axes/CZ/Offset")?.unwrap_or(0.0);
+    let z_offset = super::offset(
+        path,
+        "Record1/Axes/CZ/Offset",
+        number("Record1/Axes/CZ/Offset")?.unwrap_or(0.0),
+        "Record1/Axes/CZ/Increment",
+        z_scale,
+    )?;
     let kind = get("Record1/Axes/CZ/DataType").unwrap_or("D");
     let size = match kind {
         "I" => 2,
