@@ -325,15 +325,6 @@ impl Default for ReadOptions {
 }
 
 impl Unmeasured {
-    /// Filled if `fill`, else refused.
-    pub fn filled_if(fill: bool) -> Self {
-        if fill {
-            Unmeasured::Fill
-        } else {
-            Unmeasured::Refuse
-        }
-    }
-
     /// Filled if `fill` up to `max_fraction` of the points ([`MAX_FILLED_FRACTION`] if `None`),
     /// else refused; a fraction outside [0, 1] is refused, naming `max_unmeasured`.
     pub fn filled_up_to(fill: bool, max_fraction: Option<f64>) -> Result<Self> {
