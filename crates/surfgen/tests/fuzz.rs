@@ -192,7 +192,7 @@ fn readers_never_panic_and_allocate_at_most_a_multiple_of_the_file() {
     // Unmeasured points filled, so that the fill is fuzzed too.
     let options = ReadOptions {
         length_x: Some(1e-5),
-        unmeasured: io::Unmeasured::Fill,
+        unmeasured: io::Unmeasured::FillUpTo(1.0),
         ..Default::default()
     };
     let mut rng = ChaCha8Rng::seed_from_u64(31);

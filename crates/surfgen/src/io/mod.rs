@@ -239,7 +239,7 @@ impl Measurement {
         }
         if unmeasured > 0 {
             let fraction = unmeasured as f64 / n as f64;
-            if let Some(limit) = policy.fill_limit()
+            if let Unmeasured::FillUpTo(limit) = policy
                 && fraction > limit
             {
                 return Err(SurfError::parse(
@@ -266,7 +266,7 @@ impl Measurement {
                         ),
                     ));
                 }
-                Unmeasured::Fill | Unmeasured::FillUpTo(_) => fill_harmonic(&mut self.heights, self.periodic),
+                Unmeasured::FillUpTo(_) => fill_harmonic(&mut self.heights, self.periodic),
             }
         }
         Surface::new(self.heights, self.grid, self.periodic)
@@ -301,9 +301,7 @@ pub enum Unmeasured {
     #[default]
     Refuse,
     /// Filled by harmonic interpolation from the measured points around them ([`fill_harmonic`]),
-    /// up to [`MAX_FILLED_FRACTION`] of the points (more is refused).
-    Fill,
-    /// Filled as [`Unmeasured::Fill`], up to this fraction of the points, in [0, 1].
+    /// up to this fraction of the points, in [0, 1] (more is refused).
     FillUpTo(f64),
 }
 
@@ -340,17 +338,7 @@ impl Unmeasured {
                 "applies with fill_unmeasured (--fill-unmeasured), which fills the points",
             )),
             (false, None) => Ok(Unmeasured::Refuse),
-            (true, None) => Ok(Unmeasured::Fill),
-            (true, Some(f)) => Ok(Unmeasured::FillUpTo(f)),
-        }
-    }
-
-    /// The largest fraction of unmeasured points filled; `None` when they are refused.
-    fn fill_limit(self) -> Option<f64> {
-        match self {
-            Unmeasured::Refuse => None,
-            Unmeasured::Fill => Some(MAX_FILLED_FRACTION),
-            Unmeasured::FillUpTo(f) => Some(f),
+            (true, f) => Ok(Unmeasured::FillUpTo(f.unwrap_or(MAX_FILLED_FRACTION))),
         }
     }
 }
