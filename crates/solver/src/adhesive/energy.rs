@@ -1,5 +1,5 @@
 //! Energy descent: adhesive contact under a local potential law as one bound-constrained
-//! minimisation over the gap (or the displacement) of `gap_problem`, with no outer loop (the
+//! minimisation over the gap (or the displacement) of `gap`, with no outer loop (the
 //! constrained nonlinear conjugate gradients of Bugnicourt et al., Tribol. Lett. 66:29, 2018,
 //! which ContactMechanics/Adhesion also uses).
 //!
@@ -29,7 +29,7 @@ use std::time::Instant;
 /// Cuts of a step that would raise the energy before the solve gives up.
 const MAX_CUTS: usize = 40;
 
-use super::gap_problem::{Energy, Point, Setup, finish, on_wall, setup};
+use super::gap::{Energy, Point, Setup, finish, on_wall, setup};
 
 /// The energy descent of the module docs.
 pub(super) struct EnergyDescent;
@@ -61,7 +61,7 @@ fn potential<'a>(job: &Job<'a>) -> Result<Energy<'a>> {
         }
         energy => energy,
     };
-    super::gap_problem::check_control(job, "energy descent")?;
+    super::gap::check_control(job, "energy descent")?;
     Ok(potential)
 }
 

@@ -5,7 +5,7 @@
 //! adhesive part `p_a <= 0` (the law). Every method implements the trait `AdhesiveMethod` in a file
 //! of its own: the dual loops (`dual_loop`), the energy descent (`energy`), Newton
 //! (`newton`) and the damped relaxation (`flow`), the last three over the gap problem of
-//! `gap_problem`; Newton's linear solves
+//! `gap`; Newton's linear solves
 //! are the GMRES of `krylov`. `solve` checks the input,
 //! resolves [`Method::Auto`], asks the method whether it can solve the problem, and runs it.
 
@@ -14,7 +14,7 @@ mod driver;
 mod dual_loop;
 mod energy;
 mod flow;
-mod gap_problem;
+mod gap;
 mod krylov;
 mod newton;
 pub(crate) use newton::restart_for;

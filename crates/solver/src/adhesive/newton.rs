@@ -28,7 +28,7 @@
 
 use super::driver::Driver;
 use super::energy;
-use super::gap_problem::{self, GradientSums, Point, Problem, Setup, on_wall};
+use super::gap::{self, GradientSums, Point, Problem, Setup, on_wall};
 use super::krylov::{Gmres, LinearOperator};
 use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Start};
 use crate::error::{Result, SolverError};
@@ -304,8 +304,8 @@ fn solve(job: &Job, observer: &mut dyn FnMut(usize, f64) -> bool) -> Result<(Adh
     let law = job.law;
     let predictor = match (law.local_potential(), law.field_potential()) {
         (Some(_), _) => None,
-        (None, Some(field)) => Some(gap_problem::Energy::Field(field)),
-        (None, None) => law.flat_potential().map(gap_problem::Energy::Local),
+        (None, Some(field)) => Some(gap::Energy::Field(field)),
+        (None, None) => law.flat_potential().map(gap::Energy::Local),
     };
     let (state, report) = iterate(job, predictor.is_some(), observer)?;
     let Some(potential) = predictor.filter(|_| report.termination == Termination::MaxIterations) else {
@@ -359,7 +359,7 @@ pub(super) fn iterate(
         mut x,
         delta,
         load,
-    } = gap_problem::setup(job, gap_problem::Energy::None)?;
+    } = gap::setup(job, gap::Energy::None)?;
     // The line and surface laws: the preconditioner couples each cell to its +x neighbour as
     // their cell means do.
     problem.couple_rows(&mut x)?;
@@ -480,7 +480,7 @@ pub(super) fn iterate(
         predictor: 0,
     };
     let outcome = driver.finish(iterations, problem.calls);
-    Ok(gap_problem::finish(
+    Ok(gap::finish(
         job,
         &problem,
         x,
