@@ -68,6 +68,12 @@ impl Domain {
         self.dx * self.dy
     }
 
+    /// The displacement \[m\] of one cell under unit pressure \[Pa\] on itself, on a half-space
+    /// of composite modulus `e_star` \[Pa\]: the cell's compliance [m/Pa].
+    pub fn cell_compliance(&self, e_star: f64) -> f64 {
+        love::cell_influence(0.0, 0.0, self.dx / 2.0, self.dy / 2.0, e_star)
+    }
+
     fn validate(&self) -> Result<()> {
         for (name, n) in [("nx", self.nx), ("ny", self.ny)] {
             if n < 2 {

@@ -15,7 +15,7 @@
 
 use crate::error::{Result, SolverError};
 use crate::fields::{flat, flat_mut};
-use crate::method::Observer;
+use crate::observer::Observer;
 use crate::options::{ContactOptions, Control};
 use crate::report::{ContactReport, Termination, count_clusters};
 use crate::state::ContactState;
@@ -57,7 +57,7 @@ pub fn solve(
         options,
         &mut state,
         warm.is_some(),
-        &mut |i, r| crate::method::heard(observer, 0, i, r),
+        &mut |i, r| crate::observer::heard(observer, 0, i, r),
     )?;
     crate::error::finite_result(
         &[

@@ -47,6 +47,7 @@ pub mod error;
 mod fields;
 pub mod geometry;
 pub mod method;
+pub mod observer;
 pub mod options;
 pub mod problem;
 pub mod pull_off;
@@ -57,15 +58,15 @@ pub mod sweep;
 
 pub use adhesive::{AdhesiveReport, AdhesiveState, Iterations, Start};
 pub use error::{Result, SolverError};
-pub use method::{Method, Mixing, Observer, Settings};
+pub use method::{Method, Mixing, Settings};
+pub use observer::{Branch, Observer, SweepPoint};
 pub use options::{ContactOptions, Control};
 pub use problem::{ContactProblem, ProblemBuilder, Shape, memory_estimate};
 pub use pull_off::{PullOff, PullOffSearch};
 pub use report::{ContactReport, Termination};
 pub use state::ContactState;
 pub use sweep::{
-    Branch, CyclePoint, CycleSummary, MAX_SUBSTEPS, RETRIES, SweepPoint, approach_cycle, count_substeps,
-    substeps, summarize,
+    CyclePoint, CycleSummary, MAX_SUBSTEPS, RETRIES, approach_cycle, count_substeps, substeps, summarize,
 };
 
 /// The README's library example, run as a doctest.

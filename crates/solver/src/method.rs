@@ -1,13 +1,12 @@
-//! Which adhesive method solves a problem, how hard it tries, and who watches.
+//! Which adhesive method solves a problem, and how hard it tries.
 //!
 //! The five methods (`docs/solvers.md` says which one when) share one entry point,
 //! [`crate::ContactProblem::solve`], one set of [`Settings`] and one report. [`Method::Auto`]
 //! is resolved here, from the law and the control, so the library and the command line pick
 //! the same method for the same problem.
 
+use crate::error::{Result, invalid};
 use crate::options::{ContactOptions, Control};
-use crate::sweep::SweepPoint;
-use crate::{AdhesiveState, error::Result, error::invalid};
 use elastic::Domain;
 use ljadhesion::AdhesionLaw;
 
@@ -88,8 +87,7 @@ impl Method {
         let energy = law.local_potential().is_some() || law.field_potential().is_some();
         let averaged = !energy && law.flat_potential().is_some() && law.stiffness_bound().is_finite();
         let periodic = domain.periodic;
-        let coarse =
-            law.stiffness_bound() * crate::adhesive::cell_compliance(domain, e_star) > Method::FLOW_ABOVE;
+        let coarse = law.stiffness_bound() * domain.cell_compliance(e_star) > Method::FLOW_ABOVE;
         if approach && adhesive && energy {
             Method::EnergyDescent
         } else if approach && adhesive && averaged {
@@ -208,44 +206,4 @@ impl Default for Settings {
             },
         }
     }
-}
-
-/// Watches a solve or a sweep. Both methods do nothing by default; `()` watches nothing.
-///
-/// ```
-/// use solver::{AdhesiveState, Observer, SweepPoint};
-///
-/// /// Prints each finished step of a sweep, and stops it once the bodies pull apart.
-/// struct Log;
-///
-/// impl Observer for Log {
-///     fn step(&mut self, k: usize, point: &SweepPoint, _: &AdhesiveState) -> bool {
-///         println!("step {k}: load {:e} N", point.report.load);
-///         point.report.attached_area_fraction > 0.0 || k == 0
-///     }
-/// }
-/// ```
-pub trait Observer {
-    /// After every iteration of a solve: the sweep step it belongs to (0 for a single solve),
-    /// the method's iteration count within the solve, and its residual.
-    fn iteration(&mut self, _step: usize, _iteration: usize, _residual: f64) {}
-
-    /// Asked after every iteration: `true` stops the solve where it stands, reported as
-    /// [`crate::Termination::Interrupted`], and a sweep after that step (a user's Ctrl-C).
-    fn interrupted(&mut self) -> bool {
-        false
-    }
-
-    /// After every step of a sweep, with its point and state; `false` stops the sweep.
-    fn step(&mut self, _index: usize, _point: &SweepPoint, _state: &AdhesiveState) -> bool {
-        true
-    }
-}
-
-impl Observer for () {}
-
-/// Shows `observer` an iteration of sweep step `step`; whether the solve goes on.
-pub(crate) fn heard(observer: &mut dyn Observer, step: usize, iteration: usize, residual: f64) -> bool {
-    observer.iteration(step, iteration, residual);
-    !observer.interrupted()
 }

@@ -6,7 +6,8 @@
 use crate::adhesive::{AdhesiveReport, AdhesiveState, Start};
 use crate::error::{Result, SolverError, invalid};
 use crate::geometry::{SphereProfile, flat_on_rough, sphere, wave};
-use crate::method::{Method, Observer, Settings};
+use crate::method::{Method, Settings};
+use crate::observer::Observer;
 use crate::options::{ContactOptions, Control};
 use crate::report::ContactReport;
 use crate::state::ContactState;
@@ -97,6 +98,15 @@ impl ContactProblem {
         Ok(problem)
     }
 
+    /// The body, the law and the initial gap, as the adhesive methods take them.
+    pub(crate) fn parts(&self) -> crate::adhesive::Parts<'_> {
+        crate::adhesive::Parts {
+            op: self.operator.as_ref(),
+            law: self.law.as_ref(),
+            g0: self.initial_gap.view(),
+        }
+    }
+
     /// The grid.
     pub fn domain(&self) -> Domain {
         *self.operator.domain()
@@ -127,8 +137,8 @@ impl ContactProblem {
         start: Start,
         observer: &mut dyn Observer,
     ) -> Result<(AdhesiveState, AdhesiveReport)> {
-        crate::adhesive::solve(self, control, settings, start, &mut |i, r| {
-            crate::method::heard(observer, 0, i, r)
+        crate::adhesive::solve(self.parts(), control, settings, start, &mut |i, r| {
+            crate::observer::heard(observer, 0, i, r)
         })
     }
 
@@ -234,20 +244,11 @@ impl ContactProblem {
 pub fn memory_estimate(nx: usize, ny: usize, periodic: bool, method: Option<Method>) -> f64 {
     // Counted in f64: a grid too large to hold is to be refused, not to overflow the count.
     let cells = nx as f64 * ny as f64;
-    let (per_cell, basis) = match (method, periodic) {
-        (None, _) => (128.0, 0.0),
-        (Some(Method::EnergyDescent | Method::Flow), true) => (256.0, 0.0),
-        (Some(Method::EnergyDescent | Method::Flow), false) => (768.0, 0.0),
-        (Some(Method::DualLoop | Method::Accelerated), _) => (384.0, 0.0),
-        (Some(Method::Newton | Method::Auto), _) => {
-            // Newton's unknown lives on the padded 2nx x 2ny grid of a free domain.
-            let unknown = if periodic { cells } else { 4.0 * cells };
-            let fields = crate::adhesive::restart_for(unknown.min(usize::MAX as f64) as usize) + 1;
-            let rest = if periodic { 392.0 } else { 1056.0 };
-            (rest, 8.0 * fields as f64 * unknown)
-        }
+    let bytes = match method {
+        None => 128.0 * cells,
+        Some(method) => crate::adhesive::peak_bytes(method, cells, periodic),
     };
-    per_cell * cells + basis + 16.0 * 1024.0 * 1024.0
+    bytes + 16.0 * 1024.0 * 1024.0
 }
 
 impl std::fmt::Debug for ContactProblem {

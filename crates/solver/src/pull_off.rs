@@ -4,10 +4,11 @@
 
 use crate::adhesive::AdhesiveState;
 use crate::error::{Result, invalid};
-use crate::method::{Observer, Settings};
+use crate::method::Settings;
+use crate::observer::Observer;
+use crate::observer::SweepPoint;
 use crate::options::Control;
 use crate::problem::ContactProblem;
-use crate::sweep::SweepPoint;
 
 /// How [`ContactProblem::pull_off`] unloads.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]

@@ -2,52 +2,13 @@
 //! gaps) solved in order, each step warm-started from the last, so that loading and unloading
 //! follow their own branches; and what a sweep shows (pull-off, jumps, hysteresis).
 
-use crate::adhesive::{AdhesiveReport, AdhesiveState, Start};
+use crate::adhesive::{AdhesiveState, Start};
 use crate::error::{Result, SolverError, invalid};
-use crate::method::{Observer, Settings};
+use crate::method::Settings;
+use crate::observer::{Branch, Observer, SweepPoint};
 use crate::options::Control;
 use crate::problem::ContactProblem;
 use crate::report::Termination;
-
-/// The direction of a sweep step.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Branch {
-    /// Bodies moving together (approach or load increasing, central gap decreasing).
-    Loading,
-    /// Bodies moving apart.
-    Unloading,
-}
-
-impl Branch {
-    /// `loading` or `unloading`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Branch::Loading => "loading",
-            Branch::Unloading => "unloading",
-        }
-    }
-}
-
-/// One solved step of a sweep.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct SweepPoint {
-    /// The control of this step.
-    pub control: Control,
-    /// Its direction.
-    pub branch: Branch,
-    /// The solve's report. When the step was split (see [`ContactProblem::sweep`]), its iteration counts and
-    /// wall time include the substeps'.
-    pub report: AdhesiveReport,
-    /// Intermediate solves taken before this control (0 when the step was not split), in the
-    /// last attempt.
-    pub substeps: usize,
-    /// How many of those intermediate solves missed their tolerance.
-    pub unconverged_substeps: usize,
-    /// Times the step was solved again in finer substeps because it did not converge (see
-    /// [`ContactProblem::sweep`]); 0 when the first attempt converged.
-    pub retries: usize,
-}
 
 /// Times [`ContactProblem::sweep`] halves the substeps of a step that does not converge.
 pub const RETRIES: usize = 3;
@@ -178,9 +139,10 @@ impl ContactProblem {
                         ..*settings
                     };
                     let used = if retries == 0 { settings } else { &limited };
-                    let (next, report) = crate::adhesive::solve(problem, sub, used, from, &mut |i, r| {
-                        crate::method::heard(observer, k, i, r)
-                    })?;
+                    let (next, report) =
+                        crate::adhesive::solve(problem.parts(), sub, used, from, &mut |i, r| {
+                            crate::observer::heard(observer, k, i, r)
+                        })?;
                     budget = budget.saturating_sub(report.iterations.count());
                     match &mut spent {
                         Some((iterations, calls, time)) => {

@@ -48,7 +48,7 @@ fn rough_adhesive_contact_balances_and_enlarges_the_area() {
         law.pressure_field(state.contact.gap.view(), &cells, law_p.view_mut())
             .unwrap();
         let mean_err = (&law_p - &state.adhesive_pressure).mapv(f64::abs).mean().unwrap();
-        let compliance = solver::adhesive::cell_compliance(&domain, op.e_star());
+        let compliance = domain.cell_compliance(op.e_star());
         assert!(mean_err * compliance / law.range() < options.tolerance);
         // Total displacement and gap agree with the elastic operator.
         let mut u = Array2::zeros(g0.dim());
@@ -206,7 +206,7 @@ fn the_lennard_jones_laws_converge_on_cells_far_coarser_than_the_process_zone() 
             println!("{name}: areas {areas:?}, equations {errors:?}");
             // The mean pressure as prescribed, up to the force imbalance the tolerance leaves a
             // cell: 1e-6 z0 over a cell's compliance, 0.1 Pa here.
-            let imbalance = 1e-6 * lj.z0() / solver::adhesive::cell_compliance(op.domain(), e_star);
+            let imbalance = 1e-6 * lj.z0() / op.domain().cell_compliance(e_star);
             for (point, &p) in points.iter().zip(&loads) {
                 assert!(
                     point.report.converged(),

@@ -104,7 +104,7 @@ fn auto_takes_the_tested_method_for_each_law_and_control() {
         periodic,
     };
     let fine = grid(1e-9, true);
-    let cell_stiffness = 1.0 / solver::adhesive::cell_compliance(&fine, e_star);
+    let cell_stiffness = 1.0 / fine.cell_compliance(e_star);
     assert!(
         ljadhesion::AdhesionLaw::stiffness_bound(&SurfaceLaw(lj())) < Method::FLOW_ABOVE * cell_stiffness
     );

@@ -2,7 +2,8 @@
 //! tolerance and the iteration limit, stall detection, and the outcome a solve ends with. A
 //! method decides what a stall means for it (the dual loop changes its mixing, Newton gives up).
 
-use super::{Iterations, Outcome};
+use super::Iterations;
+use super::job::Outcome;
 use crate::method::Settings;
 use crate::report::Termination;
 use std::time::Instant;

@@ -18,7 +18,8 @@
 //! inner iteration times many inner iterations per outer one in the dual loop.
 
 use super::driver::Driver;
-use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job};
+use super::job::{AdhesiveMethod, Job};
+use super::{AdhesiveReport, AdhesiveState, Iterations};
 use crate::error::{Result, SolverError};
 use crate::fields::{flat, flat_mut};
 use crate::report::Termination;
@@ -45,6 +46,11 @@ impl AdhesiveMethod for EnergyDescent {
         observer: &mut dyn FnMut(usize, f64) -> bool,
     ) -> Result<(AdhesiveState, AdhesiveReport)> {
         solve(job, potential(job)?, observer)
+    }
+
+    fn peak_bytes(&self, cells: f64, periodic: bool) -> f64 {
+        // A free domain's unknown is the padded 2nx x 2ny grid.
+        if periodic { 256.0 * cells } else { 768.0 * cells }
     }
 }
 

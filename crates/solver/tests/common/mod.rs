@@ -148,7 +148,7 @@ pub fn equilibrium_error(
     };
     law.pressure_field(state.contact.gap.view(), &cells, law_p.view_mut())
         .unwrap();
-    let c = solver::adhesive::cell_compliance(&domain, op.e_star());
+    let c = domain.cell_compliance(op.e_star());
     let mut worst = 0.0f64;
     for (k, (&p, &g)) in state.contact.pressure.iter().zip(&state.contact.gap).enumerate() {
         assert!(p >= 0.0 && g >= 0.0 && (p == 0.0 || g == 0.0));

@@ -358,7 +358,11 @@ impl FarField {
     }
 
     /// The rest of [`FarField::update`] from its rows' sums.
-    pub(super) fn settle(&mut self, problem: &mut Problem, rows: &[([f64; 13], Vec<usize>)]) -> Result<(f64, Moments)> {
+    pub(super) fn settle(
+        &mut self,
+        problem: &mut Problem,
+        rows: &[([f64; 13], Vec<usize>)],
+    ) -> Result<(f64, Moments)> {
         let sums = rows.iter().map(|r| &r.0).fold([0.0; 13], |mut a, r| {
             a.iter_mut().zip(r).for_each(|(a, r)| *a += r);
             a

@@ -30,7 +30,7 @@
 //! Near a fold a patch of cells can crawl for thousands of steps past the ghost of a state
 //! that has just vanished (its soft mode nearly unstiffened, FIRE's restarts keeping it from
 //! gathering speed). Under approach control, once the flow stalls a second time, it hands its
-//! point to Newton ([`hand_over`]), whose implicit steps cross such a mode in a few: on the
+//! point to Newton ([`newton::polish`]), whose implicit steps cross such a mode in a few: on the
 //! rough spheres of Figs. 11-14 it lands on the state the flow reaches when let run
 //! (`docs/decisions.md`). If Newton does not converge, the flow goes on.
 //!
@@ -59,7 +59,8 @@
 
 use super::driver::Driver;
 use super::gap::{Energy, Point, Problem, Row, Setup, check_control, finish, setup};
-use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Outcome, Start, newton};
+use super::job::{AdhesiveMethod, Job};
+use super::{AdhesiveReport, AdhesiveState, Iterations, newton};
 use crate::error::{Result, SolverError};
 use crate::report::Termination;
 use ndarray::{Array2, Zip};
@@ -148,6 +149,11 @@ impl AdhesiveMethod for Flow {
     ) -> Result<(AdhesiveState, AdhesiveReport)> {
         solve(job, energy(job)?, observer, Course::STANDARD)
     }
+
+    fn peak_bytes(&self, cells: f64, periodic: bool) -> f64 {
+        // A free domain's unknown is the padded 2nx x 2ny grid.
+        if periodic { 256.0 * cells } else { 768.0 * cells }
+    }
 }
 
 /// What the law gives the gap problem (its energy where it has one, which saves probing its
@@ -175,7 +181,7 @@ struct Course {
     /// split into its near and far parts ([`Problem::split_elastic`]).
     relax: bool,
     /// Under approach control, the residual (in ranges) below which the flow hands its point to
-    /// Newton ([`hand_over`]); `None`: when it crawls, at a second stall ([`STALL`]).
+    /// Newton ([`newton::polish`]); `None`: when it crawls, at a second stall ([`STALL`]).
     hand_over_below: Option<f64>,
 }
 
@@ -274,7 +280,15 @@ fn solve<'a>(
         };
         if crawling && load.is_none() && newton_steps.is_none() {
             // Newton failing in any way (a non-finite linearisation too) leaves the flow to go on.
-            let handed = hand_over(job, &mut problem, &x, delta, &mut driver, steps).ok();
+            let handed = newton::polish(
+                job,
+                &mut problem,
+                &x,
+                delta,
+                HANDOVER_STEPS,
+                &mut |k, residual| driver.record(steps + k, residual),
+            )
+            .ok();
             newton_steps = Some(handed.as_ref().map_or(0, |(_, r)| r.iterations.count()));
             if let Some((state, mut report)) = handed
                 && (report.converged() || report.termination == Termination::Interrupted)
@@ -382,42 +396,4 @@ fn solve<'a>(
     let newton = newton_steps.unwrap_or(0);
     let outcome = driver.finish(Iterations::Flow { steps, newton }, problem.calls);
     Ok(finish(job, &problem, x, &sums, (delta, load), outcome))
-}
-
-/// Newton (pseudo-transient, from the flow's point `x` at the approach `delta`, for at most
-/// [`HANDOVER_STEPS`]) where the flow crawls: its implicit steps cross the soft mode a patch
-/// crawls along near a fold in a few steps where the flow's explicit ones take thousands, and
-/// its small pseudo-time steps far from a solution follow the same relaxation. Its iterations
-/// are recorded by `driver` after the flow's `steps`.
-fn hand_over(
-    job: &Job,
-    problem: &mut Problem,
-    x: &Point,
-    delta: f64,
-    driver: &mut Driver,
-    steps: usize,
-) -> Result<(AdhesiveState, AdhesiveReport)> {
-    let mut at = Point::new(x.gap.clone());
-    problem.evaluate(&mut at)?;
-    let sums = problem.project_gradient(&mut at);
-    let outcome = Outcome {
-        iterations: Iterations::Flow { steps, newton: 0 },
-        operator_calls: 0,
-        history: Vec::new(),
-        termination: Termination::MaxIterations,
-        started: Instant::now(),
-    };
-    let (state, _) = finish(job, problem, at, &sums, (delta, None), outcome);
-    let settings = crate::Settings {
-        max_iterations: HANDOVER_STEPS,
-        ..*job.settings
-    };
-    let newton = Job {
-        start: Start::Warm(&state),
-        settings: &settings,
-        ..*job
-    };
-    newton::iterate(&newton, false, &mut |k, residual| {
-        driver.record(steps + k, residual)
-    })
 }

@@ -41,12 +41,7 @@ fn the_far_field_keeps_the_flows_states() {
                 method: Method::Flow,
                 start: states.last().map_or(Start::Loading, |(s, _)| Start::Warm(s)),
             };
-            let solved = solve(
-                &job,
-                energy(&job).unwrap(),
-                &mut |_, _| true,
-                course,
-            );
+            let solved = solve(&job, energy(&job).unwrap(), &mut |_, _| true, course);
             states.push(solved.unwrap());
         }
         states
@@ -120,8 +115,7 @@ fn the_far_field_keeps_the_flows_states() {
 fn newton_takes_over_from_the_flow_at_the_flows_state() {
     let (n, side, z0) = (48, 60e-9, 1e-9);
     let heights = Array2::from_shape_fn((n, n), |(j, i)| {
-        0.4 * z0
-            * ((i as f64 * 0.7).sin() * (j as f64 * 0.9).cos() + (i as f64 * 0.3 + j as f64 * 0.4).cos())
+        0.4 * z0 * ((i as f64 * 0.7).sin() * (j as f64 * 0.9).cos() + (i as f64 * 0.3 + j as f64 * 0.4).cos())
     });
     let problem = ContactProblem::builder()
         .roughness(heights, side, side)

@@ -26,7 +26,7 @@ mod rows;
 mod setup;
 mod stiffness;
 
-pub(super) use setup::{Setup, check_control, finish, setup};
+pub(super) use setup::{Setup, check_control, finish, setup, state};
 pub(super) use stiffness::Stiffness;
 use stiffness::{Split, near_row};
 
@@ -346,7 +346,6 @@ impl Problem<'_> {
             self.calls += 1;
         }
         let energy = self.energy;
-        let with_energy = !matches!(energy, Energy::None);
         // By rows on a periodic grid only: the unknown is the block, with no padding.
         let law_rows = by_rows
             .then(|| self.law.stiffness_rows())
@@ -367,10 +366,16 @@ impl Problem<'_> {
             }
             Energy::Local(_) => {}
         }
-        let load = self.load.unwrap_or(0.0);
-        let project = self.mean_gap.is_none();
-        let cell_energies = flat(&self.probe.0);
         let (gs, bs) = (flat(&at.gap), flat(&self.base));
+        let pass = Pass {
+            shape: (mx, nx, ny),
+            gap: gs,
+            base: bs,
+            cell_energies: flat(&self.probe.0),
+            energy,
+            load: self.load.unwrap_or(0.0),
+            project: self.mean_gap.is_none(),
+        };
         // The split's far part is taken out for the pass over the rows, which writes it (after
         // a transform) or reads it (near), and put back after it.
         let mut split = self.split.take();
@@ -382,7 +387,7 @@ impl Problem<'_> {
         let elastic_rows: Vec<&mut [f64]> = flat_mut(&mut at.elastic).chunks_mut(mx).collect();
         let (block_gap, coupling) = (at.gap.slice(s![..ny, ..nx]), &at.coupling);
         let shared = &*self;
-        let rows: Vec<([f64; 7], S)> = flat_mut(&mut at.law)
+        let rows: Vec<(RowSums, S)> = flat_mut(&mut at.law)
             .par_chunks_mut(mx)
             .zip(flat_mut(&mut at.curvature).par_chunks_mut(mx))
             .zip(flat_mut(&mut at.gradient).par_chunks_mut(mx))
@@ -422,50 +427,7 @@ impl Problem<'_> {
                         }
                         _ => (lr, cr, shared.coupling_row(coupling, j)),
                     };
-                    // Elastic energy, interaction energy and the load's potential, free gradient
-                    // and count, non-finite gaps, smallest gap, largest projected gradient.
-                    let mut sums = [0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY, 0.0];
-                    for i in 0..mx {
-                        let k = j * mx + i;
-                        let g = gs[k];
-                        if with_energy {
-                            sums[0] += (g - bs[k]) * es[i];
-                        }
-                        if !g.is_finite() {
-                            sums[4] += 1.0;
-                        }
-                        if j >= ny || i >= nx {
-                            // The padding: elasticity alone (the law's fields written only if not
-                            // zero already: the padding is 3/4 of a free grid).
-                            if lr[i] != 0.0 || cr[i] != 0.0 {
-                                (lr[i], cr[i]) = (0.0, 0.0);
-                            }
-                            rr[i] = es[i];
-                            sums[6] = sums[6].max(es[i].abs());
-                            continue;
-                        }
-                        // Only a local potential writes here: rewriting the law's fields unchanged
-                        // would cost two field-sized writes a step on grids past the cache.
-                        let (v, p) = match energy {
-                            Energy::Local(potential) => {
-                                let (v, p, c) = potential.evaluate(g);
-                                (lr[i], cr[i]) = (p, c);
-                                (v, p)
-                            }
-                            Energy::Field(_) => (cell_energies[j * nx + i], lr[i]),
-                            Energy::None => (0.0, lr[i]),
-                        };
-                        rr[i] = es[i] - p + load;
-                        sums[1] += v + load * g;
-                        sums[5] = sums[5].min(g);
-                        if g > 0.0 {
-                            sums[2] += rr[i];
-                            sums[3] += 1.0;
-                        } else if project && rr[i] >= 0.0 {
-                            rr[i] = 0.0;
-                        }
-                        sums[6] = sums[6].max(rr[i].abs());
-                    }
+                    let sums = pass.balance_row(j, es, lr, cr, rr);
                     let row = Row {
                         j,
                         gap: &gs[j * mx..][..mx],
@@ -481,16 +443,9 @@ impl Problem<'_> {
             s.made = true;
         }
         self.split = split;
-        let (sums, results): (Vec<[f64; 7]>, Vec<S>) = rows.into_iter().unzip();
-        let t = sums
-            .iter()
-            .fold([0.0, 0.0, 0.0, 0.0, 0.0, f64::INFINITY, 0.0], |mut a, b| {
-                a.iter_mut().take(5).zip(b).for_each(|(a, b)| *a += b);
-                a[5] = a[5].min(b[5]);
-                a[6] = a[6].max(b[6]);
-                a
-            });
-        if t[4] > 0.0 {
+        let (sums, results): (Vec<RowSums>, Vec<S>) = rows.into_iter().unzip();
+        let t = sums.iter().fold(RowSums::EMPTY, RowSums::and);
+        if t.non_finite > 0.0 {
             let k = gs.iter().position(|g| !g.is_finite()).unwrap_or(0);
             return Err(SolverError::NonFinite {
                 what: "gap",
@@ -500,10 +455,10 @@ impl Problem<'_> {
             });
         }
         let n = (self.nx * self.ny) as f64;
-        at.energy = (0.5 * t[0] / n, t[1] / n);
-        at.free = (t[2], t[3]);
-        at.min_gap = t[5];
-        at.largest = t[6];
+        at.energy = (0.5 * t.elastic_energy / n, t.interaction_energy / n);
+        at.free = (t.free_gradient, t.free_cells);
+        at.min_gap = t.min_gap;
+        at.largest = t.max_gradient;
         at.law_stored = law_rows.is_none();
         Ok(results)
     }
@@ -667,6 +622,125 @@ impl Problem<'_> {
             })
             .reduce(|| 0.0, f64::max);
         GradientSums { lambda, max }
+    }
+}
+
+/// What one evaluation's pass over the rows shares ([`Problem::evaluate_rows`]).
+struct Pass<'a> {
+    /// Columns of the unknown, columns and rows of the domain's block.
+    shape: (usize, usize, usize),
+    /// The unknown and the base, flat.
+    gap: &'a [f64],
+    base: &'a [f64],
+    /// The cells' energies of a field energy (else empty).
+    cell_energies: &'a [f64],
+    energy: Energy<'a>,
+    /// The prescribed mean pressure \[Pa\] (else 0).
+    load: f64,
+    /// Whether the gradient is projected here (no prescribed mean gap).
+    project: bool,
+}
+
+/// A row's share of an evaluation's sums, added over the rows in order
+/// ([`crate::sum`]'s rule: the same bits on any number of threads).
+#[derive(Clone, Copy)]
+struct RowSums {
+    /// `sum (g - b) S (g - b)` \[Pa m\] (with an energy only).
+    elastic_energy: f64,
+    /// Interaction energy plus the load's potential, summed \[J/m^2\].
+    interaction_energy: f64,
+    /// The gradient's sum over the cells off the wall \[Pa\], and their number.
+    free_gradient: f64,
+    free_cells: f64,
+    /// Cells with a non-finite gap.
+    non_finite: f64,
+    /// The smallest gap \[m\] on the block.
+    min_gap: f64,
+    /// The largest projected gradient `|r|` \[Pa\].
+    max_gradient: f64,
+}
+
+impl RowSums {
+    const EMPTY: RowSums = RowSums {
+        elastic_energy: 0.0,
+        interaction_energy: 0.0,
+        free_gradient: 0.0,
+        free_cells: 0.0,
+        non_finite: 0.0,
+        min_gap: f64::INFINITY,
+        max_gradient: 0.0,
+    };
+
+    fn and(mut self, b: &RowSums) -> RowSums {
+        self.elastic_energy += b.elastic_energy;
+        self.interaction_energy += b.interaction_energy;
+        self.free_gradient += b.free_gradient;
+        self.free_cells += b.free_cells;
+        self.non_finite += b.non_finite;
+        self.min_gap = self.min_gap.min(b.min_gap);
+        self.max_gradient = self.max_gradient.max(b.max_gradient);
+        self
+    }
+}
+
+impl Pass<'_> {
+    /// Row `j`'s gradient `rr` from its elastic pressure `es` and the law (its pressure `lr` and
+    /// curvature `cr`, written here by a local potential), projected without a prescribed mean
+    /// gap, and the row's sums.
+    fn balance_row(&self, j: usize, es: &[f64], lr: &mut [f64], cr: &mut [f64], rr: &mut [f64]) -> RowSums {
+        let Pass {
+            shape: (mx, nx, ny),
+            gap: gs,
+            base: bs,
+            cell_energies,
+            energy,
+            load,
+            project,
+        } = *self;
+        let with_energy = !matches!(energy, Energy::None);
+        let mut sums = RowSums::EMPTY;
+        for i in 0..mx {
+            let k = j * mx + i;
+            let g = gs[k];
+            if with_energy {
+                sums.elastic_energy += (g - bs[k]) * es[i];
+            }
+            if !g.is_finite() {
+                sums.non_finite += 1.0;
+            }
+            if j >= ny || i >= nx {
+                // The padding: elasticity alone (the law's fields written only if not
+                // zero already: the padding is 3/4 of a free grid).
+                if lr[i] != 0.0 || cr[i] != 0.0 {
+                    (lr[i], cr[i]) = (0.0, 0.0);
+                }
+                rr[i] = es[i];
+                sums.max_gradient = sums.max_gradient.max(es[i].abs());
+                continue;
+            }
+            // Only a local potential writes here: rewriting the law's fields unchanged
+            // would cost two field-sized writes a step on grids past the cache.
+            let (v, p) = match energy {
+                Energy::Local(potential) => {
+                    let (v, p, c) = potential.evaluate(g);
+                    (lr[i], cr[i]) = (p, c);
+                    (v, p)
+                }
+                Energy::Field(_) => (cell_energies[j * nx + i], lr[i]),
+                Energy::None => (0.0, lr[i]),
+            };
+            rr[i] = es[i] - p + load;
+            sums.interaction_energy += v + load * g;
+            sums.min_gap = sums.min_gap.min(g);
+            if g > 0.0 {
+                sums.free_gradient += rr[i];
+                sums.free_cells += 1.0;
+            } else if project && rr[i] >= 0.0 {
+                rr[i] = 0.0;
+            }
+            sums.max_gradient = sums.max_gradient.max(rr[i].abs());
+        }
+        sums
     }
 }
 

@@ -14,7 +14,12 @@ impl Problem<'_> {
     /// many times stiffer than a cell), `r` `at`'s projected gradient and `mu` the weighted mean
     /// that keeps the moving cells' sum at zero when the mean gap is prescribed. Returns
     /// `<z, r>` and `<z, old>`.
-    pub(in crate::adhesive) fn precondition(&self, at: &Point, old: &Array2<f64>, out: &mut Array2<f64>) -> [f64; 2] {
+    pub(in crate::adhesive) fn precondition(
+        &self,
+        at: &Point,
+        old: &Array2<f64>,
+        out: &mut Array2<f64>,
+    ) -> [f64; 2] {
         let mx = self.mx;
         let rs = flat(&at.gradient);
         let cs = flat(&at.curvature);

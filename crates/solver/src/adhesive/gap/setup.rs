@@ -2,7 +2,8 @@
 //! the state and report made from its solution.
 
 use super::{Energy, GradientSums, Point, Problem, Stiffness};
-use crate::adhesive::{AdhesiveReport, AdhesiveState, Job, Outcome, Start, assemble, cells};
+use crate::adhesive::job::{Job, Outcome, assemble, cells};
+use crate::adhesive::{AdhesiveReport, AdhesiveState, Start};
 use crate::error::{Result, SolverError, invalid};
 use crate::options::Control;
 use crate::state::ContactState;
@@ -207,9 +208,26 @@ pub(in crate::adhesive) fn finish(
     problem: &Problem,
     x: Point,
     sums: &GradientSums,
-    (delta, load): (f64, Option<f64>),
+    at: (f64, Option<f64>),
     mut outcome: Outcome,
 ) -> (AdhesiveState, AdhesiveReport) {
+    let AdhesiveState {
+        contact,
+        adhesive_pressure,
+    } = state(job, problem, x, sums, at);
+    outcome.operator_calls = problem.calls;
+    assemble(job, contact, adhesive_pressure, outcome)
+}
+
+/// The state at the point `x`, whose gradient `sums` describe (see [`setup`] for `delta` and
+/// `load`): the start another method takes from this one.
+pub(in crate::adhesive) fn state(
+    job: &Job,
+    problem: &Problem,
+    x: Point,
+    sums: &GradientSums,
+    (delta, load): (f64, Option<f64>),
+) -> AdhesiveState {
     let g0 = job.g0;
     let domain = problem.domain;
     let shape = domain.shape();
@@ -253,6 +271,8 @@ pub(in crate::adhesive) fn finish(
         displacement,
         approach,
     };
-    outcome.operator_calls = problem.calls;
-    assemble(job, contact, law_pressure, outcome)
+    AdhesiveState {
+        contact,
+        adhesive_pressure: law_pressure,
+    }
 }

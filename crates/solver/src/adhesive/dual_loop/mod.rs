@@ -12,14 +12,17 @@
 //! `|law(g) - p_a|` times the compliance of one cell, over the law's range, is below the
 //! tolerance: the mean gap error that the pending adhesive correction would cause locally.
 
-use super::anderson::Anderson;
+mod anderson;
+
 use super::driver::Driver;
-use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Start, assemble, cells};
+use super::job::{AdhesiveMethod, Job, assemble, cells};
+use super::{AdhesiveReport, AdhesiveState, Iterations, Start};
 use crate::cg::{Scratch, solve_in};
 use crate::error::Result;
 use crate::options::{ContactOptions, Control};
 use crate::report::Termination;
 use crate::state::ContactState;
+use anderson::Anderson;
 use ndarray::{Array2, Zip};
 use std::time::Instant;
 
@@ -47,6 +50,10 @@ impl AdhesiveMethod for DualLoop {
         observer: &mut dyn FnMut(usize, f64) -> bool,
     ) -> Result<(AdhesiveState, AdhesiveReport)> {
         solve(job, self.accelerated, observer)
+    }
+
+    fn peak_bytes(&self, cells: f64, _periodic: bool) -> f64 {
+        384.0 * cells
     }
 }
 
@@ -89,7 +96,7 @@ fn solve(
     let mut shifted = Array2::<f64>::zeros(shape);
     let mut law_shifted = Array2::<f64>::zeros(shape);
     let mut cell_beta = Array2::<f64>::zeros(shape);
-    let c_cell = super::cell_compliance(&domain, op.e_star());
+    let c_cell = domain.cell_compliance(op.e_star());
     let probe = 1e-3 * law.range();
     let mut beta = settings.mixing.relaxation.unwrap_or(1.0);
     let beta_max = 1.0;

@@ -26,16 +26,19 @@
 //! Convergence: the largest force imbalance of a cell times its compliance, over the law's
 //! range (the energy descent's measure), below the tolerance.
 
+mod krylov;
+
 use super::driver::Driver;
 use super::energy;
 use super::gap::{self, GradientSums, Point, Problem, Setup, on_wall};
-use super::krylov::{Gmres, LinearOperator};
-use super::{AdhesiveMethod, AdhesiveReport, AdhesiveState, Iterations, Job, Start};
+use super::job::{AdhesiveMethod, Job};
+use super::{AdhesiveReport, AdhesiveState, Iterations, Start};
 use crate::error::{Result, SolverError};
 use crate::fields::{flat, flat_mut};
 use crate::options::Control;
 use crate::report::Termination;
 use crate::sum::dot;
+use krylov::{Gmres, LinearOperator};
 use ndarray::{Array2, Zip, s};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -78,7 +81,7 @@ const BACKTRACKS: usize = 3;
 
 /// The Krylov vectors GMRES keeps before it restarts on fields of `cells` values: [`RESTART`],
 /// or fewer where their `restart + 1` fields would take more than [`BASIS_BYTES`].
-pub(crate) fn restart_for(cells: usize) -> usize {
+fn restart_for(cells: usize) -> usize {
     let fields = (BASIS_BYTES / (8.0 * cells as f64)).floor() as usize;
     fields.saturating_sub(1).clamp(MIN_RESTART, RESTART)
 }
@@ -293,6 +296,15 @@ impl AdhesiveMethod for Newton {
     ) -> Result<(AdhesiveState, AdhesiveReport)> {
         solve(job, observer)
     }
+
+    fn peak_bytes(&self, cells: f64, periodic: bool) -> f64 {
+        // The unknown lives on the padded 2nx x 2ny grid of a free domain; the Krylov basis is
+        // capped on large grids ([`restart_for`]).
+        let unknown = if periodic { cells } else { 4.0 * cells };
+        let fields = restart_for(unknown.min(usize::MAX as f64) as usize) + 1;
+        let rest = if periodic { 392.0 } else { 1056.0 };
+        rest * cells + 8.0 * fields as f64 * unknown
+    }
 }
 
 /// Solves under approach control (periodic or free) with any law; see the module docs.
@@ -341,6 +353,35 @@ fn solve(job: &Job, observer: &mut dyn FnMut(usize, f64) -> bool) -> Result<(Adh
     polished.residual_history = history;
     polished.wall_time_s = started.elapsed().as_secs_f64();
     Ok((state, polished))
+}
+
+/// Newton as another method's polish: pseudo-transient, from its point `x` of `problem` at the
+/// approach `delta`, for at most `max_steps`, telling `observer` its iterations. The flow hands
+/// over so where it crawls: these implicit steps cross the soft mode a patch crawls along near
+/// a fold in a few steps where the flow's explicit ones take thousands, and the small
+/// pseudo-time steps far from a solution follow the same relaxation.
+pub(in crate::adhesive) fn polish(
+    job: &Job,
+    problem: &mut Problem,
+    x: &Point,
+    delta: f64,
+    max_steps: usize,
+    observer: &mut dyn FnMut(usize, f64) -> bool,
+) -> Result<(AdhesiveState, AdhesiveReport)> {
+    let mut at = Point::new(x.gap.clone());
+    problem.evaluate(&mut at)?;
+    let sums = problem.project_gradient(&mut at);
+    let start = gap::state(job, problem, at, &sums, (delta, None));
+    let settings = crate::Settings {
+        max_iterations: max_steps,
+        ..*job.settings
+    };
+    let polish = Job {
+        start: Start::Warm(&start),
+        settings: &settings,
+        ..*job
+    };
+    iterate(&polish, false, observer)
 }
 
 /// Newton from the start of `job`; with `give_up`, it stops (unconverged) as soon as it has to
@@ -480,14 +521,7 @@ pub(super) fn iterate(
         predictor: 0,
     };
     let outcome = driver.finish(iterations, problem.calls);
-    Ok(gap::finish(
-        job,
-        &problem,
-        x,
-        &sums,
-        (delta, load),
-        outcome,
-    ))
+    Ok(gap::finish(job, &problem, x, &sums, (delta, load), outcome))
 }
 
 #[cfg(test)]
