@@ -55,45 +55,6 @@ pub enum LawKind {
     Dugdale,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
-#[serde(rename_all = "kebab-case")]
-pub enum OuterKind {
-    /// `energy` for the point, surface-energy and exponential laws, `newton` for the line and surface laws
-    /// (approach or mean-gap control, both), `flow` for the line and surface laws under load
-    /// control on periodic domains, `accelerated` elsewhere.
-    Auto,
-    /// The paper's relaxation of the adhesive pressure.
-    DualLoop,
-    /// Anderson mixing of the adhesive pressure (fewer outer iterations, same solution).
-    Accelerated,
-    /// No outer loop: conjugate gradients on the total energy (point, surface-energy or exponential law;
-    /// approach or mean-gap control, or load control on periodic domains; fastest there).
-    Energy,
-    /// No outer loop, any law but Dugdale's (surface included): Newton-Krylov on the cells'
-    /// force balance (approach or mean-gap control).
-    Newton,
-    /// No outer loop, any law but Dugdale's (surface included): the damped relaxation, which
-    /// settles on stable states where the others circle (the surface law on cells far coarser
-    /// than the process zone); approach or mean-gap control, or load control on periodic
-    /// domains.
-    Flow,
-}
-
-impl OuterKind {
-    /// The library's method of this name.
-    pub fn method(self) -> Method {
-        match self {
-            OuterKind::Auto => Method::Auto,
-            OuterKind::DualLoop => Method::DualLoop,
-            OuterKind::Accelerated => Method::Accelerated,
-            OuterKind::Energy => Method::EnergyDescent,
-            OuterKind::Newton => Method::Newton,
-            OuterKind::Flow => Method::Flow,
-        }
-    }
-}
-
 /// A contact case: every flag is also a key of the TOML case file (`--config`), with the same
 /// name in snake_case. Flags override the file.
 #[derive(Debug, Default, Clone, Serialize, Deserialize)]
@@ -180,10 +141,9 @@ pub struct Case {
     /// Range of the exponential or Dugdale law [m] (Dugdale default: 0.974 z0 if --z0 given).
     #[cfg_attr(feature = "clap", arg(long))]
     pub range: Option<f64>,
-    /// Adhesive solver: auto (the default: energy, newton or flow where they are the tested
-    /// choice, else accelerated), dual-loop, accelerated, energy, newton or flow.
+    /// Adhesive solver (`auto` by default: the tested choice for the law and the control).
     #[cfg_attr(feature = "clap", arg(long, value_enum))]
-    pub solver: Option<OuterKind>,
+    pub solver: Option<Method>,
     /// Convergence tolerance: without adhesion the scale-free gap residual (default 1e-8, at
     /// least 1e-13); with adhesion, in units of the law's range [-] (default 1e-6, the paper's
     /// criterion), for dual-loop and accelerated the outer residual (a mean gap error: loads
@@ -413,7 +373,7 @@ impl Case {
         }));
         if adhesive {
             self.law = self.law.or(Some(LawKind::Surface));
-            self.solver = self.solver.or(Some(OuterKind::Auto));
+            self.solver = self.solver.or(Some(Method::Auto));
         } else {
             self.law = Some(LawKind::None);
         }
@@ -459,7 +419,7 @@ impl Case {
     /// The adhesive solve's settings: `--solver auto` is the library's [`Method::Auto`].
     pub fn settings(&self) -> Settings {
         Settings {
-            method: self.solver.map_or(Method::Auto, OuterKind::method),
+            method: self.solver.unwrap_or_default(),
             tolerance: self.tolerance.unwrap_or(Settings::DEFAULT_TOLERANCE),
             max_iterations: self.max_iterations.unwrap_or(Settings::DEFAULT_MAX_ITERATIONS),
             ..Settings::default()

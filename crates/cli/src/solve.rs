@@ -10,7 +10,7 @@ use elastic::Domain;
 use indicatif::{ProgressBar, ProgressStyle};
 use ndarray::Array2;
 use serde_json::json;
-use solver::{Control, Iterations, Observer, Start};
+use solver::{Control, Observer, Start};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -213,21 +213,6 @@ impl Observer for Progress {
     }
 }
 
-/// The method's counts as words: "12 outer, 345 inner".
-pub fn counts(iterations: &Iterations) -> String {
-    match *iterations {
-        Iterations::Loop { outer, inner, .. } => format!("{outer} outer, {inner} inner"),
-        Iterations::Descent { iterations } => format!("{iterations} descent"),
-        Iterations::Flow { steps, newton: 0 } => format!("{steps} flow steps"),
-        Iterations::Flow { steps, newton } => format!("{steps} flow steps, then {newton} Newton steps"),
-        Iterations::Newton {
-            steps,
-            krylov,
-            predictor,
-        } => format!("{steps} Newton steps, {krylov} Krylov, {predictor} predictor"),
-    }
-}
-
 fn solve_adhesive(
     args: &SolveArgs,
     case: &Case,
@@ -279,7 +264,7 @@ fn solve_adhesive(
     say!("attached area fraction   {:.6}", report.attached_area_fraction);
     say!(
         "iterations               {} ({}), residual {:.2e}, {}",
-        counts(&report.iterations),
+        report.iterations,
         report.method,
         report.residual,
         report.termination
@@ -291,11 +276,7 @@ fn solve_adhesive(
         format!(
             "the adhesive solve did not converge: {}, residual {:.3e} after {} iterations ({}) \
              (tolerance {:.1e})",
-            report.termination,
-            report.residual,
-            counts(&report.iterations),
-            report.method,
-            settings.tolerance
+            report.termination, report.residual, report.iterations, report.method, settings.tolerance
         ),
         args.keep_going,
         out,

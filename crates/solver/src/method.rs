@@ -10,10 +10,12 @@ use crate::options::{ContactOptions, Control};
 use elastic::Domain;
 use ljadhesion::AdhesionLaw;
 
-/// An adhesive solution method.
+/// An adhesive solution method, named on the command line and in case files by
+/// [`Method::name`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum Method {
-    /// The tested choice for the problem ([`Method::resolve`]).
+    /// The tested choice for the law, the control and the grid (see `Method::resolve`).
     #[default]
     Auto,
     /// The paper's relaxation of the adhesive pressure, `p_a <- p_a + beta (law(g) - p_a)`,
@@ -25,6 +27,7 @@ pub enum Method {
     /// No outer loop: constrained conjugate gradients on the total energy, for laws with a
     /// local potential (point, exponential), under approach control, or load control on
     /// periodic domains.
+    #[cfg_attr(feature = "clap", value(name = "energy"))]
     EnergyDescent,
     /// No outer loop: Newton-Krylov on the cells' force balance with pseudo-transient
     /// continuation, for any law but Dugdale's (the surface law included), under approach
@@ -110,6 +113,14 @@ impl std::fmt::Display for Method {
 impl serde::Serialize for Method {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
         serializer.serialize_str(self.name())
+    }
+}
+
+/// Read by its name ([`Method::name`]).
+impl<'de> serde::Deserialize<'de> for Method {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> std::result::Result<Self, D::Error> {
+        let name = <std::borrow::Cow<'de, str>>::deserialize(deserializer)?;
+        name.parse().map_err(serde::de::Error::custom)
     }
 }
 

@@ -112,6 +112,23 @@ impl Iterations {
     }
 }
 
+/// The counts in words: "12 outer, 345 inner".
+impl std::fmt::Display for Iterations {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Iterations::Loop { outer, inner, .. } => write!(f, "{outer} outer, {inner} inner"),
+            Iterations::Descent { iterations } => write!(f, "{iterations} descent"),
+            Iterations::Flow { steps, newton: 0 } => write!(f, "{steps} flow steps"),
+            Iterations::Flow { steps, newton } => write!(f, "{steps} flow steps, then {newton} Newton steps"),
+            Iterations::Newton {
+                steps,
+                krylov,
+                predictor,
+            } => write!(f, "{steps} Newton steps, {krylov} Krylov, {predictor} predictor"),
+        }
+    }
+}
+
 /// Scalars of an adhesive solution and the history of its solve. SI units; loads positive
 /// compressive.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]

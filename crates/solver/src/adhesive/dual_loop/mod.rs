@@ -33,6 +33,25 @@ const INNER_FACTOR: f64 = 0.01;
 /// Outer iterations without a 10 % improvement of the best residual that count as a stall.
 const STALL: usize = 60;
 
+/// The relaxation factor `beta`: its floor as a share of the starting one, and that floor's
+/// share once the loop has stalled (a jump makes the residual grow for a while by itself, so
+/// the factor needs a floor; a stalled loop needs a lower one to settle).
+const FLOOR: f64 = 0.05;
+const STALLED_FLOOR: f64 = 0.02;
+/// `beta`'s cut at a stall and when the residual grows (by more than [`JUMP`] times, or at
+/// all in the plain loop), and its growth after [`FALLING`] falling iterations in a row.
+const STALL_CUT: f64 = 0.5;
+const CUT: f64 = 0.7;
+const JUMP: f64 = 2.0;
+const GROWTH: f64 = 1.2;
+const FALLING: usize = 5;
+/// The probe of a cell's attractive stiffness, in ranges of the law.
+const PROBE: f64 = 1e-3;
+/// The loosest inner tolerance, and how far above the requested one the last inner solve may
+/// be while the outer loop is taken as converged.
+const INNER_LOOSEST: f64 = 1e-4;
+const INNER_SLACK: f64 = 1e3;
+
 /// The dual loop; `accelerated` mixes the iterates.
 pub(super) struct DualLoop {
     pub accelerated: bool,
@@ -97,10 +116,10 @@ fn solve(
     let mut law_shifted = Array2::<f64>::zeros(shape);
     let mut cell_beta = Array2::<f64>::zeros(shape);
     let c_cell = domain.cell_compliance(op.e_star());
-    let probe = 1e-3 * law.range();
+    let probe = PROBE * law.range();
     let mut beta = settings.mixing.relaxation.unwrap_or(1.0);
     let beta_max = 1.0;
-    let beta_min = 0.05 * beta;
+    let beta_min = FLOOR * beta;
     let mut mixer = Anderson::new(if accelerated { settings.mixing.history } else { 0 });
     let (mut calls, mut inner_iterations, mut outer) = (0, 0, 0);
     let mut driver = Driver::new(settings, observer, started);
@@ -143,7 +162,7 @@ fn solve(
                 let rms = (g_eff.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / n).sqrt();
                 let wanted = INNER_FACTOR * r.min(1.0) * law.range() / rms.max(f64::MIN_POSITIVE);
                 ContactOptions {
-                    tolerance: wanted.clamp(settings.contact.tolerance, 1e-4),
+                    tolerance: wanted.clamp(settings.contact.tolerance, INNER_LOOSEST),
                     ..settings.contact
                 }
             }
@@ -176,7 +195,7 @@ fn solve(
         if driver.stop(
             outer,
             residual,
-            inner_ok && inner_options.tolerance <= settings.contact.tolerance * 1e3,
+            inner_ok && inner_options.tolerance <= settings.contact.tolerance * INNER_SLACK,
         ) {
             break;
         }
@@ -192,20 +211,24 @@ fn solve(
             stalls += 1;
             driver.restart_stall_count(outer);
             mixer = Anderson::new(0);
-            beta = (beta * 0.5).max(beta_min * 0.02);
+            beta = (beta * STALL_CUT).max(beta_min * STALLED_FLOOR);
             falling = 0;
         } else if let Some(previous) = driver.previous()
             && residual > previous
         {
-            if residual > 2.0 * previous || !accelerated {
-                beta = (beta * 0.7).max(if stalls > 0 { beta_min * 0.02 } else { beta_min });
+            if residual > JUMP * previous || !accelerated {
+                beta = (beta * CUT).max(if stalls > 0 {
+                    beta_min * STALLED_FLOOR
+                } else {
+                    beta_min
+                });
                 mixer.reset();
             }
             falling = 0;
         } else {
             falling += 1;
-            if falling >= 5 {
-                beta = (beta * 1.2).min(beta_max);
+            if falling >= FALLING {
+                beta = (beta * GROWTH).min(beta_max);
                 falling = 0;
             }
         }

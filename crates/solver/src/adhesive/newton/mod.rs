@@ -78,6 +78,17 @@ const PATIENCE: usize = 150;
 const ESCAPE: usize = 5;
 /// Halvings of a step that raises the residual before a new direction is sought.
 const BACKTRACKS: usize = 3;
+/// Each backtrack halves the step.
+const BACKTRACK: f64 = 0.5;
+/// The directional difference's step: the largest cell's move, in ranges of the law.
+const DIFFERENCE: f64 = 1e-6;
+/// Eisenstat-Walker forcing (their choice 2): `eta = GAMMA r_k^2 / r_{k-1}^2` kept within
+/// `[ETA_MIN, ETA_MAX]`, so the Krylov solves are loose while the residual falls slowly.
+const GAMMA: f64 = 0.9;
+const ETA_MIN: f64 = 1e-4;
+const ETA_MAX: f64 = 0.1;
+/// The pseudo-time step's cut when no step along the direction lowers the residual enough.
+const NO_STEP_CUT: f64 = 0.1;
 
 /// The Krylov vectors GMRES keeps before it restarts on fields of `cells` values: [`RESTART`],
 /// or fewer where their `restart + 1` fields would take more than [`BASIS_BYTES`].
@@ -200,7 +211,7 @@ impl LinearOperator for Linearised<'_, '_> {
         let largest = v.slice(block).iter().fold(0.0f64, |m, v| m.max(v.abs()));
         if largest > 0.0 {
             // A forward difference of the whole field: the law's neighbours move too.
-            let h = 1e-6 * problem.law.range() / largest;
+            let h = DIFFERENCE * problem.law.range() / largest;
             Zip::from(&mut linear.perturbed)
                 .and(x.gap.slice(block))
                 .and(v.slice(block))
@@ -431,7 +442,7 @@ pub(super) fn iterate(
         }
         steps += 1;
         // Eisenstat-Walker forcing: solve loosely while the residual falls slowly.
-        let eta = (0.9 * last_ratio * last_ratio).clamp(1e-4, 0.1);
+        let eta = (GAMMA * last_ratio * last_ratio).clamp(ETA_MIN, ETA_MAX);
         linear.prepare(&problem, &x, dt);
         rhs.zip_mut_with(&x.gradient, |b, &r| *b = -r);
         let (iterations, solved) = gmres.solve(
@@ -474,7 +485,7 @@ pub(super) fn iterate(
             if cut == BACKTRACKS {
                 break;
             }
-            fraction *= 0.5;
+            fraction *= BACKTRACK;
         }
         let trial_sums = match trial_sums {
             Some(sums) => sums,
@@ -489,7 +500,7 @@ pub(super) fn iterate(
                 problem.project_gradient(&mut trial)
             }
             None => {
-                dt = (dt * 0.1).max(MIN_DT);
+                dt = (dt * NO_STEP_CUT).max(MIN_DT);
                 continue;
             }
         };
