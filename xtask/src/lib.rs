@@ -23,10 +23,7 @@ pub mod fig11;
 pub mod fig12;
 pub mod fig13;
 pub mod fig14;
-// The command line's plotting module, compiled in from its source: one style for both.
-#[path = "../../crates/cli/src/plot.rs"]
-#[allow(dead_code)]
-pub mod plot;
+pub use plot;
 pub mod report;
 pub mod rough_sphere;
 

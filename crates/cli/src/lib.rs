@@ -6,7 +6,7 @@
 
 pub mod bench;
 pub mod output;
-pub mod plot;
+pub use plot;
 pub mod run;
 pub mod solve;
 pub mod study;

@@ -4,8 +4,7 @@
 //! did not converge ([`Curve::solved`]) is drawn as a hollow circle, whatever its curve's mark,
 //! and the legend then says what hollow means; no other mark is hollow but the large rings.
 //!
-//! Machines here have no system fonts, so the DejaVu Sans font shipped in `assets/fonts` is
-//! compiled in and registered before the first text is drawn.
+//! Machines without system fonts draw text too: the DejaVu Sans font in `fonts/` is compiled in and registered before the first text is drawn.
 
 use anyhow::{Context, Result, anyhow};
 use ndarray::ArrayView2;
@@ -16,7 +15,7 @@ use plotters::style::{FontStyle, register_font};
 use std::path::Path;
 use std::sync::Once;
 
-static FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
+static FONT: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
 
 /// Registers the bundled font (once); call before drawing any text.
 pub fn ensure_font() {
