@@ -63,7 +63,7 @@ pub fn write(dir: &Path, sweeps: &[Sweep]) -> Result<Vec<(PathBuf, PathBuf, usiz
 pub fn run(dir: &Path, sweeps: &[Sweep]) -> Result<Vec<PathBuf>> {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     for (file, out, _) in write(dir, sweeps)? {
-        roughcontact::study::run(&file, &out, cores, None)?;
+        runs::study::run(&file, &out, cores, None)?;
     }
     sweeps
         .iter()

@@ -1,7 +1,6 @@
 //! `sweep`: a quasi-static approach-retraction cycle (or any list of approaches, mean
 //! pressures or central gaps) with continuation, written step by step and resumable.
 
-use crate::plot::{self, Chart, Curve, Mark, PALETTE};
 use crate::run::{CurveWriter, Reuse, RunDir, on_workers, read_state, results};
 use crate::solve::finish;
 use crate::{note, say};
@@ -9,6 +8,7 @@ use anyhow::{Context, Result, bail};
 use case::{Case, SweepPath, beside, layered, to_toml};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
+use plot::{Chart, Curve, Mark, PALETTE};
 use serde_json::json;
 use solver::{
     AdhesiveState, Branch, Control, CyclePoint, CycleSummary, Observer, SweepPoint, Termination, summarize,

@@ -21,8 +21,9 @@ pub struct StudyArgs {
     /// `combine` ("product", the default: every combination; or "zip": the lists side by side),
     /// and optionally `names`, the runs' directory names in order [default: key=value joined].
     study: PathBuf,
-    /// Study directory: runs/ and the merged tables [default: the study file without its
-    /// extension].
+    /// Study directory: runs/ and the merged tables [default: run/study/ and the study file's
+    /// name without its extension, under the working directory: never beside the study file,
+    /// which may sit in a checkout's data/].
     #[arg(long)]
     out: Option<PathBuf>,
     /// Runs side by side on this machine, each with its share of the cores (shared among the
@@ -481,7 +482,13 @@ pub fn run(study: &Path, out: &Path, jobs: usize, threads: Option<usize>) -> Res
 pub fn study(a: StudyArgs, threads: Option<usize>) -> Result<()> {
     let study = Study::read(&a.study)?;
     let starts_until = a.start_within.map(|d| Instant::now() + d);
-    let root = a.out.clone().unwrap_or_else(|| a.study.with_extension(""));
+    let root = match &a.out {
+        Some(out) => out.clone(),
+        None => {
+            let stem = a.study.file_stem().context("a study file's name is needed")?;
+            Path::new("run/study").join(stem)
+        }
+    };
     let runs_dir = root.join("runs");
     if a.dry_run {
         for r in &study.runs {

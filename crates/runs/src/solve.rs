@@ -1,6 +1,5 @@
 //! `solve`: one normal contact, with or without adhesion, from flags or a TOML case file.
 
-use crate::plot;
 use crate::run::{Reuse, RunDir, on_workers, results};
 use crate::{note, say};
 use anyhow::{Context, Result, bail};
