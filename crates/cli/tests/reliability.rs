@@ -88,7 +88,7 @@ fn studies_check_their_runs_before_running_and_write_real_csv() {
         std::fs::write(&file, format!("command = \"solve\"\n{STUDY_BASE}[axes]\n{axes}")).unwrap();
         check(&d, &["study", file.to_str().unwrap()], Must::Refuse(fragment));
         assert!(
-            !d.join(name).exists(),
+            !d.join("run/study").join(name).exists(),
             "{name}: a refused study made its directory"
         );
     }
@@ -100,8 +100,8 @@ fn studies_check_their_runs_before_running_and_write_real_csv() {
     )
     .unwrap();
     check(&d, &["study", file.to_str().unwrap()], Must::Succeed);
-    let table = std::fs::read_to_string(d.join("failing/study.csv")).unwrap();
-    let groups = std::fs::read_to_string(d.join("failing/study-groups.csv")).unwrap();
+    let table = std::fs::read_to_string(d.join("run/study/failing/study.csv")).unwrap();
+    let groups = std::fs::read_to_string(d.join("run/study/failing/study-groups.csv")).unwrap();
     assert!(
         table.contains("failed") && groups.starts_with("modulus,runs"),
         "{table}\n{groups}"
@@ -118,7 +118,7 @@ fn a_run_under_way_in_another_study_is_left_to_it() {
     )
     .unwrap();
     // This process holds run seed=1's lock, as a second study running it would.
-    let run = d.join("s/runs/seed=1");
+    let run = d.join("run/study/s/runs/seed=1");
     std::fs::create_dir_all(&run).unwrap();
     let lock = std::fs::OpenOptions::new()
         .create(true)
@@ -137,7 +137,7 @@ fn a_run_under_way_in_another_study_is_left_to_it() {
         !run.join("error.txt").exists(),
         "the run under way elsewhere got an error.txt"
     );
-    let table = std::fs::read_to_string(d.join("s/study.csv")).unwrap();
+    let table = std::fs::read_to_string(d.join("run/study/s/study.csv")).unwrap();
     assert!(table.contains("under way elsewhere"), "{table}");
     drop(lock);
     // The other study gone, the same command runs it.

@@ -43,7 +43,8 @@ fn fresh(name: &str) -> PathBuf {
 
 fn study(dir: &Path, extra: &[&str]) -> Output {
     let file = dir.join("study.toml");
-    let mut args = vec!["study", file.to_str().unwrap()];
+    let out = dir.join("study");
+    let mut args = vec!["study", file.to_str().unwrap(), "--out", out.to_str().unwrap()];
     args.extend(extra);
     let o = roughcontact(&args);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -102,7 +103,8 @@ fn serial_parallel_sharded_and_resumed_studies_give_the_same_tables() {
     let killed = fresh("study-killed");
     let file = killed.join("study.toml");
     let mut child = Command::new(env!("CARGO_BIN_EXE_roughcontact"))
-        .args(["study", file.to_str().unwrap()])
+        .args(["study", file.to_str().unwrap(), "--out"])
+        .arg(killed.join("study"))
         .spawn()
         .unwrap();
     let runs = killed.join("study").join("runs");
@@ -284,7 +286,8 @@ fn mpirun_gives_the_serial_table() {
             "2",
             env!("CARGO_BIN_EXE_roughcontact"),
         ])
-        .args(["study", file.to_str().unwrap()])
+        .args(["study", file.to_str().unwrap(), "--out"])
+        .arg(ranks.join("study"))
         .output()
         .expect("mpirun runs");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

@@ -15,7 +15,8 @@ use ljadhesion::AdhesionLaw;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum Method {
-    /// The tested choice for the law, the control and the grid (see `Method::resolve`).
+    /// The tested choice for the law, the control and the grid: the energy descent, Newton or
+    /// the flow where one of them is, else the accelerated loop (`Method::resolve`).
     #[default]
     Auto,
     /// The paper's relaxation of the adhesive pressure, `p_a <- p_a + beta (law(g) - p_a)`,
@@ -24,8 +25,8 @@ pub enum Method {
     /// The dual loop with Anderson mixing of the adhesive pressure: the same fixed point in
     /// fewer outer iterations. Any law and control.
     Accelerated,
-    /// No outer loop: constrained conjugate gradients on the total energy, for laws with a
-    /// local potential (point, exponential), under approach control, or load control on
+    /// No outer loop: constrained conjugate gradients on the total energy, for laws with an
+    /// energy (point, surface-energy, exponential), under approach control, or load control on
     /// periodic domains.
     #[cfg_attr(feature = "clap", value(name = "energy"))]
     EnergyDescent,

@@ -2,12 +2,19 @@
 //! `docs/solvers.md` for the methods).
 //!
 //! The pressure is split into a compressive part `p_c >= 0` (the contact constraint) and an
-//! adhesive part `p_a <= 0` (the law). Every method implements the trait `AdhesiveMethod` in a file
-//! of its own: the dual loops (`dual_loop`), the energy descent (`energy`), Newton
-//! (`newton`) and the damped relaxation (`flow`), the last three over the gap problem of
-//! `gap`; Newton's linear solves
-//! are the GMRES of `krylov`. `solve` checks the input,
-//! resolves [`Method::Auto`], asks the method whether it can solve the problem, and runs it.
+//! adhesive part `p_a <= 0` (the law). The rooms:
+//!
+//! - `state`, `report`: what a solve gives (public), `job`: what a method is given, the trait
+//!   `AdhesiveMethod` it implements and the report it assembles; `driver`: the iteration loop's
+//!   limits, stalls and observer, shared by every method.
+//! - the methods, a file or folder each: the dual loops (`dual_loop`, with its Anderson
+//!   mixing), the energy descent (`energy`), Newton (`newton`, with its GMRES) and the damped
+//!   relaxation (`flow`, with its far field). The last three work on the gap problem of `gap`
+//!   (the system, its stiffness, the row-coupled preconditioner, the set-up); they compose
+//!   through small calls: Newton's `polish` finishes the flow's crawl, the energy descent
+//!   predicts Newton's start.
+//! - here: the dispatch. `solve` checks the input, resolves [`Method::Auto`], asks the
+//!   method whether it can solve the problem, and runs it.
 
 mod driver;
 mod dual_loop;
