@@ -56,7 +56,7 @@ pub struct Rung<'a> {
     pub sticky: &'a challenge::Outcome,
 }
 
-/// The outcomes of [`runs`] as rungs, coarsest first.
+/// The outcomes of [`runs()`] as rungs, coarsest first.
 pub fn rungs<'a>(ctx: &Context, out: &'a [challenge::Outcome]) -> Vec<Rung<'a>> {
     grids(ctx)
         .into_iter()

@@ -65,7 +65,7 @@ impl ContactProblem {
     /// ([`Settings::max_iterations`]), so a step costs at most `1 + RETRIES` limits. The failed
     /// attempts' iterations and time are counted in the step's report. A step that still does not
     /// converge (or a load or central-gap step) is reported (in its
-    /// [`AdhesiveReport::termination`]) and the sweep goes on from it.
+    /// [`crate::AdhesiveReport::termination`]) and the sweep goes on from it.
     ///
     /// `max_step` \[m\] keeps the sweep quasi-static: a step of approach (or of central gap) longer
     /// than it is split into equal substeps no longer than it, each solved and warm-started in

@@ -43,7 +43,7 @@ pub enum Iterations {
 }
 
 impl Iterations {
-    /// The iterations the limit [`Settings::max_iterations`] bounds: outer iterations,
+    /// The iterations the limit [`crate::Settings::max_iterations`] bounds: outer iterations,
     /// descent iterations or Newton steps.
     pub fn count(&self) -> usize {
         match *self {
@@ -165,7 +165,7 @@ pub struct AdhesiveReport {
     pub iterations: Iterations,
     /// Calls to the elastic operator.
     pub operator_calls: usize,
-    /// Final residual, in units of the law's range ([`Settings::tolerance`]).
+    /// Final residual, in units of the law's range ([`crate::Settings::tolerance`]).
     pub residual: f64,
     /// The residual after every iteration.
     pub residual_history: Vec<f64>,
