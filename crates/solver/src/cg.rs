@@ -154,14 +154,7 @@ pub(crate) fn solve_in(
             got: g0.dim(),
         });
     }
-    if let Some(((row, col), &value)) = g0.indexed_iter().find(|(_, v)| !v.is_finite()) {
-        return Err(SolverError::NonFinite {
-            what: "initial gap",
-            row,
-            col,
-            value,
-        });
-    }
+    crate::error::finite("initial gap", g0)?;
     options.validate()?;
     let cell = domain.cell_area();
     let n = (domain.nx * domain.ny) as f64;

@@ -56,6 +56,19 @@ pub(crate) fn invalid(name: &'static str, value: f64, reason: impl Into<String>)
     }
 }
 
+/// Refuses an input field holding a NaN or an infinity, naming where.
+pub(crate) fn finite(what: &'static str, field: ndarray::ArrayView2<f64>) -> Result<()> {
+    match field.indexed_iter().find(|(_, v)| !v.is_finite()) {
+        Some(((row, col), &value)) => Err(SolverError::NonFinite {
+            what,
+            row,
+            col,
+            value,
+        }),
+        None => Ok(()),
+    }
+}
+
 /// Refuses a result with a non-finite field or number, naming the first one found.
 pub(crate) fn finite_result(fields: &[(&str, &ndarray::Array2<f64>)], numbers: &[(&str, f64)]) -> Result<()> {
     if let Some((name, value)) = numbers.iter().find(|(_, v)| !v.is_finite()) {

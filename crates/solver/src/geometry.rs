@@ -18,18 +18,6 @@ pub enum SphereProfile {
     Exact,
 }
 
-fn check_finite(what: &'static str, field: ArrayView2<f64>) -> Result<()> {
-    match field.indexed_iter().find(|(_, v)| !v.is_finite()) {
-        Some(((row, col), &value)) => Err(SolverError::NonFinite {
-            what,
-            row,
-            col,
-            value,
-        }),
-        None => Ok(()),
-    }
-}
-
 fn shift_to_zero(mut g0: Array2<f64>) -> Array2<f64> {
     let min = g0.iter().cloned().fold(f64::INFINITY, f64::min);
     g0.mapv_inplace(|v| v - min);
@@ -39,7 +27,7 @@ fn shift_to_zero(mut g0: Array2<f64>) -> Array2<f64> {
 /// A rigid flat against a rough surface of `heights` \[m\] (peaks towards the flat):
 /// `g0 = max(H) - H`.
 pub fn flat_on_rough(heights: ArrayView2<f64>) -> Result<Array2<f64>> {
-    check_finite("height", heights)?;
+    crate::error::finite("height", heights)?;
     Ok(shift_to_zero(heights.mapv(|h| -h)))
 }
 
@@ -86,7 +74,7 @@ fn with_roughness(mut g0: Array2<f64>, heights: Option<ArrayView2<f64>>) -> Resu
                 got: h.dim(),
             });
         }
-        check_finite("height", h)?;
+        crate::error::finite("height", h)?;
         g0 -= &h;
     }
     Ok(shift_to_zero(g0))

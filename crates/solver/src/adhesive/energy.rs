@@ -18,6 +18,7 @@
 //! inner iteration times many inner iterations per outer one in the dual loop.
 
 use super::driver::Driver;
+use super::gap::{Energy, Point, Setup, finish, on_wall, setup};
 use super::job::{AdhesiveMethod, Job};
 use super::{AdhesiveReport, AdhesiveState, Iterations};
 use crate::error::{Result, SolverError};
@@ -29,8 +30,6 @@ use std::time::Instant;
 
 /// Cuts of a step that would raise the energy before the solve gives up.
 const MAX_CUTS: usize = 40;
-
-use super::gap::{Energy, Point, Setup, finish, on_wall, setup};
 
 /// The energy descent of the module docs.
 pub(super) struct EnergyDescent;
@@ -49,8 +48,7 @@ impl AdhesiveMethod for EnergyDescent {
     }
 
     fn peak_bytes(&self, cells: f64, periodic: bool) -> f64 {
-        // A free domain's unknown is the padded 2nx x 2ny grid.
-        if periodic { 256.0 * cells } else { 768.0 * cells }
+        super::gap::peak_bytes(cells, periodic)
     }
 }
 

@@ -136,6 +136,7 @@ pub(crate) fn solve(
     };
     let imp = implementation(method);
     imp.check(&job)?;
+    crate::error::finite("initial gap", g0)?;
     let (state, report) = imp.solve(&job, observer)?;
     crate::error::finite_result(
         &[

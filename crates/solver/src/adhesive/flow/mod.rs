@@ -151,8 +151,7 @@ impl AdhesiveMethod for Flow {
     }
 
     fn peak_bytes(&self, cells: f64, periodic: bool) -> f64 {
-        // A free domain's unknown is the padded 2nx x 2ny grid.
-        if periodic { 256.0 * cells } else { 768.0 * cells }
+        super::gap::peak_bytes(cells, periodic)
     }
 }
 

@@ -744,6 +744,13 @@ impl Pass<'_> {
     }
 }
 
+/// Roughly the peak memory \[bytes\] of a gap method's solve on a grid of `cells` cells
+/// without a Krylov basis (the energy descent, the flow): the bytes a cell measured at
+/// 256^2-1024^2 (`docs/performance.md`); a free domain's unknown is the padded 2nx x 2ny grid.
+pub(super) fn peak_bytes(cells: f64, periodic: bool) -> f64 {
+    if periodic { 256.0 * cells } else { 768.0 * cells }
+}
+
 /// Whether cell `(j, i)` of the unknown, at `g`, is on the wall: the unknown is the gap (the
 /// domain's `(ny, nx)` block) and it is closed.
 pub(super) fn on_wall(j: usize, i: usize, g: f64, nx: usize, ny: usize) -> bool {

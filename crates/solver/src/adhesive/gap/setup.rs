@@ -49,14 +49,6 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
     let domain = *op.domain();
     let shape = domain.shape();
     let (ny, nx) = shape;
-    if let Some(((row, col), &value)) = g0.indexed_iter().find(|(_, v)| !v.is_finite()) {
-        return Err(SolverError::NonFinite {
-            what: "initial gap",
-            row,
-            col,
-            value,
-        });
-    }
     let n = (nx * ny) as f64;
     // The cells' energies of a field energy; a probe's buffers are made when first needed.
     let probe = || {
