@@ -73,3 +73,8 @@ pub use sweep::{
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
+
+/// The guide's library page, run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/howto/library.md")]
+pub struct GuideLibraryDoctests;

@@ -10,66 +10,79 @@ use crate::options::{ContactOptions, Control};
 use elastic::Domain;
 use ljadhesion::AdhesionLaw;
 
-/// An adhesive solution method, named on the command line and in case files by
-/// [`Method::name`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
-pub enum Method {
-    /// The tested choice for the law, the control and the grid: the energy descent, Newton or
-    /// the flow where one of them is, else the accelerated loop (`Method::resolve`).
-    #[default]
-    Auto,
-    /// The paper's relaxation of the adhesive pressure, `p_a <- p_a + beta (law(g) - p_a)`,
-    /// around non-adhesive inner solves (the paper's Fig. 4).
-    DualLoop,
-    /// The dual loop with Anderson mixing of the adhesive pressure: the same fixed point in
-    /// fewer outer iterations. Any law and control.
-    Accelerated,
-    /// No outer loop: constrained conjugate gradients on the total energy, for laws with an
-    /// energy (point, surface-energy, exponential), under approach control, or load control on
-    /// periodic domains.
-    #[cfg_attr(feature = "clap", value(name = "energy"))]
-    EnergyDescent,
-    /// No outer loop: Newton-Krylov on the cells' force balance with pseudo-transient
-    /// continuation, for any law but Dugdale's (the surface law included), under approach
-    /// control.
-    Newton,
-    /// No outer loop: a damped relaxation of the cells under the force on them (FIRE) in
-    /// explicit projected steps until it rests, for any law with a finite stiffness (the line
-    /// and surface laws included), under approach control, or load control on periodic
-    /// domains. It settles on stable states where no other method converges (the surface law
-    /// on cells far coarser than the process zone), in many cheap iterations.
-    Flow,
+/// The adhesive methods, one entry each: the variant of [`Method`] with its doc, its name on
+/// the command line and in case files, and its implementation (a type in `adhesive/` that
+/// implements `AdhesiveMethod`). `$then` is the macro that expands the table: [`Method`] here,
+/// the dispatch in `adhesive`. Adding a method is its folder and one entry.
+macro_rules! adhesive_methods {
+    ($then:ident) => {
+        $then! {
+            /// The tested choice for the law, the control and the grid: the energy descent,
+            /// Newton or the flow where one of them is, else the accelerated loop
+            /// (`Method::resolve`).
+            #[default]
+            Auto = "auto" => dual_loop::DualLoop { accelerated: true },
+            /// The paper's relaxation of the adhesive pressure, `p_a <- p_a + beta (law(g) - p_a)`,
+            /// around non-adhesive inner solves (the paper's Fig. 4).
+            DualLoop = "dual-loop" => dual_loop::DualLoop { accelerated: false },
+            /// The dual loop with Anderson mixing of the adhesive pressure: the same fixed point in
+            /// fewer outer iterations. Any law and control.
+            Accelerated = "accelerated" => dual_loop::DualLoop { accelerated: true },
+            /// No outer loop: constrained conjugate gradients on the total energy, for laws with an
+            /// energy (point, surface-energy, exponential), under approach control, or load control on
+            /// periodic domains.
+            EnergyDescent = "energy" => energy::EnergyDescent,
+            /// No outer loop: Newton-Krylov on the cells' force balance with pseudo-transient
+            /// continuation, for any law but Dugdale's (the surface law included), under approach
+            /// control.
+            Newton = "newton" => newton::Newton,
+            /// No outer loop: a damped relaxation of the cells under the force on them (FIRE) in
+            /// explicit projected steps until it rests, for any law with a finite stiffness (the line
+            /// and surface laws included), under approach control, or load control on periodic
+            /// domains. It settles on stable states where no other method converges (the surface law
+            /// on cells far coarser than the process zone), in many cheap iterations.
+            Flow = "flow" => flow::Flow,
+        }
+    };
 }
+pub(crate) use adhesive_methods;
+
+/// [`Method`], [`Method::ALL`] and [`Method::name`] from the table (the implementations are
+/// the dispatch's).
+macro_rules! define_methods {
+    ($($(#[$meta:meta])* $variant:ident = $name:literal => $implementation:expr,)*) => {
+        /// An adhesive solution method, named on the command line and in case files by
+        /// [`Method::name`]; `Auto` is the default.
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+        pub enum Method {
+            $(
+                $(#[$meta])*
+                #[cfg_attr(feature = "clap", value(name = $name))]
+                $variant,
+            )*
+        }
+
+        impl Method {
+            /// Every method, `Auto` first.
+            pub const ALL: &'static [Method] = &[$(Method::$variant),*];
+
+            /// The method's name as the command line takes it.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(Method::$variant => $name,)*
+                }
+            }
+        }
+    };
+}
+adhesive_methods!(define_methods);
 
 impl Method {
     /// The ratio of the law's stiffness bound to a cell's own elastic stiffness above which
     /// [`Method::resolve`] takes the flow rather than Newton under approach control
     /// (`docs/decisions.md`: the two take the same time near 5-8).
     pub const FLOW_ABOVE: f64 = 8.0;
-
-    /// Every method, `Auto` first.
-    pub const ALL: [Method; 6] = [
-        Method::Auto,
-        Method::DualLoop,
-        Method::Accelerated,
-        Method::EnergyDescent,
-        Method::Newton,
-        Method::Flow,
-    ];
-
-    /// The method's name as the command line takes it (`auto`, `dual-loop`, `accelerated`,
-    /// `energy`, `newton`, `flow`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Auto => "auto",
-            Method::DualLoop => "dual-loop",
-            Method::Accelerated => "accelerated",
-            Method::EnergyDescent => "energy",
-            Method::Newton => "newton",
-            Method::Flow => "flow",
-        }
-    }
 
     /// The method for `law` under `control` on `domain`, over a half-space of composite modulus
     /// `e_star` \[Pa\]: itself, or for [`Method::Auto`] the energy descent for the laws with an
@@ -129,10 +142,14 @@ impl std::str::FromStr for Method {
     type Err = String;
 
     fn from_str(s: &str) -> std::result::Result<Self, String> {
-        Method::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
-            let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
-            format!("unknown method `{s}`; the methods are {}", names.join(", "))
-        })
+        Method::ALL
+            .iter()
+            .copied()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
+                format!("unknown method `{s}`; the methods are {}", names.join(", "))
+            })
     }
 }
 

@@ -137,7 +137,7 @@ fn auto_takes_the_tested_method_for_each_law_and_control() {
             }
         }
     }
-    for m in Method::ALL {
+    for &m in Method::ALL {
         assert_eq!(m.name().parse::<Method>(), Ok(m));
     }
 }

@@ -37,15 +37,18 @@ use job::{AdhesiveMethod, Job};
 use ljadhesion::AdhesionLaw;
 use ndarray::ArrayView2;
 
-fn implementation(method: Method) -> &'static dyn AdhesiveMethod {
-    match method {
-        Method::DualLoop => &dual_loop::DualLoop { accelerated: false },
-        Method::Auto | Method::Accelerated => &dual_loop::DualLoop { accelerated: true },
-        Method::EnergyDescent => &energy::EnergyDescent,
-        Method::Newton => &newton::Newton,
-        Method::Flow => &flow::Flow,
-    }
+/// The implementation of each method, from the table of methods (`Auto` is resolved before
+/// the dispatch; as a fallback it is the accelerated loop).
+macro_rules! dispatch {
+    ($($(#[$meta:meta])* $variant:ident = $name:literal => $implementation:expr,)*) => {
+        fn implementation(method: Method) -> &'static dyn AdhesiveMethod {
+            match method {
+                $(Method::$variant => &$implementation,)*
+            }
+        }
+    };
 }
+crate::method::adhesive_methods!(dispatch);
 
 /// Roughly the peak memory \[bytes\] a solve by `method` takes on a grid of `cells` cells
 /// ([`AdhesiveMethod::peak_bytes`]); `Auto` counts as the largest, Newton.
