@@ -1,6 +1,6 @@
 //! Refusing a run this machine cannot hold, before anything is allocated.
 
-use anyhow::{Result, bail};
+use crate::error::{Error, Result, bail};
 
 const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
 
@@ -27,12 +27,12 @@ pub fn check(what: &str, bytes: f64) -> Result<()> {
     if let Some((available, total)) = machine()
         && bytes > available
     {
-        bail!(
+        return Err(Error::Memory(format!(
             "{what} needs about {:.1} GiB of memory; this machine has {:.1} GiB available (of {:.1} GiB)",
             bytes / GIB,
             available / GIB,
             total / GIB
-        );
+        )));
     }
     Ok(())
 }

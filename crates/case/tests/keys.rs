@@ -126,7 +126,7 @@ fn same(given: &toml::Value, recorded: &toml::Value) -> bool {
 fn judge(table: toml::Table) -> Result<(), TestCaseError> {
     let keys = all_keys();
     let given = table.clone();
-    let outcome = std::panic::catch_unwind(|| -> anyhow::Result<String> {
+    let outcome = std::panic::catch_unwind(|| -> case::Result<String> {
         let (mut case, control): (Case, SolveControl) = from_table("the keys", table)?;
         case.fill_defaults("run/solve");
         let built = case.build()?;

@@ -72,6 +72,7 @@ fn main() -> ExitCode {
     };
     if let Some(n) = cli.threads
         && let Err(e) = case::memory::check_threads("--threads", n)
+            .map_err(anyhow::Error::from)
             .and_then(|()| Ok(rayon::ThreadPoolBuilder::new().num_threads(n).build_global()?))
     {
         roughcontact::note_err(format_args!("error: {e:#}"));

@@ -70,9 +70,9 @@ impl SurfaceFile {
             unmeasured: io::Unmeasured::filled_up_to(self.fill_unmeasured, self.max_unmeasured)
                 .map_err(|e| anyhow::anyhow!(e).context("--max-unmeasured"))?,
         };
-        options
+        Ok(options
             .with_channel(&self.file, self.channel.as_deref())
-            .map_err(|e| case::naming("reading", &self.file, e))
+            .map_err(|e| case::naming("reading", &self.file, e))?)
     }
 
     /// The surface, and a warning on standard error when points were filled.

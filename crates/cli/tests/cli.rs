@@ -1250,7 +1250,7 @@ fn auto_picks_the_librarys_method_for_every_built_in_example() {
         ("wavy-jkr", vec!["--n", "64", "--steps", "1"]),
     ] {
         // The library's choice for the example's law and path, from its case file alone.
-        let text = std::fs::read_to_string(format!("../../data/examples/{name}.toml")).unwrap();
+        let text = std::fs::read_to_string(format!("../runs/cases/{name}.toml")).unwrap();
         let table: toml::Table = toml::from_str(&text).unwrap();
         let number = |k: &str| table.get(k).and_then(|v| v.as_float());
         let law: Box<dyn AdhesionLaw> = match table.get("law").and_then(|v| v.as_str()) {

@@ -25,6 +25,9 @@ macro_rules! lennard_jones_scales {
         fn name(&self) -> &'static str {
             $name
         }
+        fn lennard_jones(&self) -> Option<LennardJones> {
+            Some(self.0)
+        }
     };
 }
 
@@ -358,6 +361,8 @@ impl LocalPotential for ExponentialLaw {
 pub struct DugdaleLaw {
     w0: f64,
     range: f64,
+    /// The Lennard-Jones law it was made equivalent to ([`DugdaleLaw::equivalent_to`]).
+    lj: Option<LennardJones>,
 }
 
 impl DugdaleLaw {
@@ -366,6 +371,7 @@ impl DugdaleLaw {
         Ok(DugdaleLaw {
             w0: positive("work_of_adhesion", w0)?,
             range: positive("range", range)?,
+            lj: None,
         })
     }
 
@@ -375,6 +381,7 @@ impl DugdaleLaw {
         DugdaleLaw {
             w0,
             range: w0 / -lj.min_pressure(),
+            lj: Some(*lj),
         }
     }
 
@@ -411,6 +418,9 @@ impl AdhesionLaw for DugdaleLaw {
     }
     fn name(&self) -> &'static str {
         "dugdale"
+    }
+    fn lennard_jones(&self) -> Option<LennardJones> {
+        self.lj
     }
 }
 

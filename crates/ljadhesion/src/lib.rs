@@ -114,6 +114,13 @@ pub trait AdhesionLaw: Sync + Send {
     /// Short name (`point`, `line`, `surface`, `exponential`, `dugdale`).
     fn name(&self) -> &'static str;
 
+    /// The Lennard-Jones law behind this one, if any: the point, line and surface laws' own,
+    /// the Dugdale law's it was made equivalent to. Its `z0` is the length of the Tabor
+    /// parameter.
+    fn lennard_jones(&self) -> Option<LennardJones> {
+        None
+    }
+
     /// The law as a [`LocalPotential`], if it is one: each cell's pressure depends on its own
     /// gap alone and derives from an interaction energy (the point, exponential and no-adhesion
     /// laws). Energy-minimising solvers need it; the line and surface laws, which mix a cell's

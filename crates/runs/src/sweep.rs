@@ -16,7 +16,7 @@ use solver::{
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Built-in cases, runnable with no input files (their TOML is in `data/examples`).
+/// Built-in cases, runnable with no input files (their TOML is in `cases/`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Example {
     /// Rigid sphere on an elastic flat without adhesion (Hertz), ~1 s.
@@ -36,24 +36,12 @@ pub enum Example {
 impl Example {
     fn toml(self) -> (&'static str, &'static str) {
         match self {
-            Example::Hertz => ("hertz", include_str!("../../../data/examples/hertz.toml")),
-            Example::JkrSphere => (
-                "jkr-sphere",
-                include_str!("../../../data/examples/jkr-sphere.toml"),
-            ),
-            Example::DmtSphere => (
-                "dmt-sphere",
-                include_str!("../../../data/examples/dmt-sphere.toml"),
-            ),
-            Example::RoughSphere => (
-                "rough-sphere",
-                include_str!("../../../data/examples/rough-sphere.toml"),
-            ),
-            Example::ChallengeSmall => (
-                "challenge-small",
-                include_str!("../../../data/examples/challenge-small.toml"),
-            ),
-            Example::WavyJkr => ("wavy-jkr", include_str!("../../../data/examples/wavy-jkr.toml")),
+            Example::Hertz => ("hertz", include_str!("../cases/hertz.toml")),
+            Example::JkrSphere => ("jkr-sphere", include_str!("../cases/jkr-sphere.toml")),
+            Example::DmtSphere => ("dmt-sphere", include_str!("../cases/dmt-sphere.toml")),
+            Example::RoughSphere => ("rough-sphere", include_str!("../cases/rough-sphere.toml")),
+            Example::ChallengeSmall => ("challenge-small", include_str!("../cases/challenge-small.toml")),
+            Example::WavyJkr => ("wavy-jkr", include_str!("../cases/wavy-jkr.toml")),
         }
     }
 }
@@ -93,35 +81,7 @@ pub struct SweepArgs {
 }
 
 pub fn sweep(args: SweepArgs) -> Result<()> {
-    let (name, text) = match (&args.config, args.example) {
-        (Some(path), _) => (
-            path.display().to_string(),
-            Some(std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?),
-        ),
-        (None, Some(e)) => {
-            let (n, t) = e.toml();
-            (format!("example {n}"), Some(t.to_string()))
-        }
-        (None, None) => (String::new(), None),
-    };
-    let (mut case, mut path) = layered(
-        text.as_deref().map(|t| (name.as_str(), t)),
-        &args.case,
-        &args.path,
-    )?;
-    beside(
-        args.config.as_deref(),
-        args.case.surface.is_none(),
-        &mut case.surface,
-    );
-    beside(
-        args.config.as_deref(),
-        args.path.start_from.is_none(),
-        &mut path.start_from,
-    );
-    case.fill_defaults("run/sweep");
-    path.fill_defaults();
-    let resolved = to_toml(&case, &path)?;
+    let (case, path, resolved) = resolved_case(&args)?;
     if args.print_config {
         say!("{resolved}");
         return Ok(());
@@ -136,18 +96,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     // Read and check a --start-from state before anything is written, so that a wrong one leaves
     // the output directory as it was.
     let saved = match &path.start_from {
-        Some(dir) => {
-            let state = read_state(dir)?;
-            let shape = problem.initial_gap.dim();
-            if state.contact.gap.dim() != shape {
-                bail!(
-                    "--start-from: {} holds a {:?} grid, this case has {shape:?}",
-                    dir.display(),
-                    state.contact.gap.dim()
-                );
-            }
-            Some((dir, state))
-        }
+        Some(dir) => Some((dir, start_from(dir, problem)?)),
         None => None,
     };
     let max_step = path.max_step(problem, &controls)?;
@@ -160,37 +109,13 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     };
     let run = RunDir::open(&case.out.clone().expect("defaulted"), reuse)?;
     let out = run.path();
-
-    // Resume: the same case (wherever the directory is now), the finished rows and the last state.
-    let mut rows = Vec::new();
-    let mut start = None;
-    if args.resume && run.has_curve() {
-        if !same_case(&run.case().unwrap_or_default(), &resolved) {
-            bail!(
-                "--resume: {} holds a different case; rerun without --resume (or with the same settings)",
-                out.display()
-            );
-        }
-        rows = run.read_curve()?;
-        if search.is_some() && rows.len() > controls.len() {
-            // The pull-off search had begun: it is redone from the path's last state.
-            rows.truncate(controls.len());
-            run.truncate_curve(rows.len())?;
-        }
-        check_rows(&rows, &controls).with_context(|| {
-            format!(
-                "--resume: {}/curve.csv does not belong to this path",
-                out.display()
-            )
-        })?;
-        if let Some(last) = rows.last() {
-            start = Some(run.resume_state(rows.len() - 1, last.approach)?);
-        }
-        note!("resuming after {} of {} steps", rows.len(), controls.len());
+    let (mut rows, mut start) = if args.resume && run.has_curve() {
+        resumed(&run, &resolved, &controls, search.is_some())?
     } else {
         run.write_case(&resolved)?;
         run.start_curve()?;
-    }
+        (Vec::new(), None)
+    };
     // A sweep from a saved state (also one resumed before its first step finished).
     if let (None, Some((dir, state))) = (&start, saved) {
         note!(
@@ -216,16 +141,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         _ => f64::NAN,
     };
     let total = controls.len() + search.map_or(0, |s| s.most_steps(last));
-    let bar = if crate::quiet() {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::new(total as u64)
-    }
-    .with_style(
-        ProgressStyle::with_template("{bar:30} {pos}/{len} steps, {elapsed} elapsed, ~{eta} left  {msg}")
-            .expect("valid template"),
-    );
-    bar.set_position(done as u64);
+    let bar = progress_bar(total, done);
     let started = Instant::now();
     let mut writer = StepWriter {
         run: &run,
@@ -269,35 +185,9 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     rows.extend(points.iter().map(CyclePoint::from));
     let cycle = rows;
     let summary = summarize(&cycle);
+    let theory = Theory::of(&case, problem, &summary);
 
     let domain = problem.domain();
-    let lj_z0 = case.z0.filter(|_| problem.adhesive());
-    // A wave's crests are its spheres: Johnson's (1995) parameter and JKR pull-off come with it.
-    let wave = case.wave_amplitude.map(|amplitude| theory::wavy::Wave {
-        amplitude,
-        wavelength: domain.nx as f64 * domain.dx,
-        e_star: problem.e_star(),
-        work_of_adhesion: case.work_of_adhesion.unwrap_or(0.0),
-    });
-    let radius = case.sphere_radius.or(wave.map(|w| w.crest_radius()));
-    let tabor = match (radius, lj_z0, case.work_of_adhesion) {
-        (Some(r), Some(z0), Some(w0)) => Some(theory::tabor_parameter(r, w0, problem.e_star(), z0)),
-        _ => None,
-    };
-    let wave = wave.filter(|_| problem.adhesive());
-    // A wave's pull-off as the mean pressure over its (periodic) box [Pa].
-    let pull_off_pressure = summary
-        .pull_off_force
-        .map(|f| f / (domain.cell_area() * (domain.nx * domain.ny) as f64));
-    let johnson = wave.map(|w| {
-        json!({
-            "johnson_parameter": w.johnson_alpha(),
-            "crest_radius": w.crest_radius(),
-            "full_contact_pressure": w.full_contact_pressure(),
-            "jkr_pull_off_mean_pressure": w.jkr_pull_off().0,
-            "pull_off_mean_pressure": pull_off_pressure,
-        })
-    });
     let range = problem.law.range();
     let json = json!({
         "path": path,
@@ -317,8 +207,8 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             }),
         "adhesive_range": problem.adhesive().then_some(range),
         "adhesive_range_per_cell": problem.adhesive().then_some(range / domain.dx.max(domain.dy)),
-        "tabor_parameter": tabor,
-        "wave": johnson,
+        "tabor_parameter": theory.tabor,
+        "wave": theory.johnson(),
         "max_step": max_step,
         "warnings": warnings,
         "steps": cycle.len(),
@@ -328,6 +218,187 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     if !args.no_png && cycle.len() > 1 {
         plot_cycle(&out.join("load_approach.png"), &cycle, &summary)?;
     }
+    print_cycle(&cycle, &summary, &theory, &case, &built, controls[0])?;
+    say!("wrote {}/curve.csv, summary.json", out.display());
+    let failed = cycle.iter().filter(|p| !p.converged).count();
+    finish(
+        summary.all_converged,
+        format!(
+            "{failed} of {} steps did not converge (see curve.csv)",
+            cycle.len()
+        ),
+        args.keep_going,
+        out,
+    )
+}
+
+/// The case and path of `args` (a file, a built-in example, flags), defaults filled, with
+/// their resolved TOML.
+fn resolved_case(args: &SweepArgs) -> Result<(Case, SweepPath, String)> {
+    let (name, text) = match (&args.config, args.example) {
+        (Some(path), _) => (
+            path.display().to_string(),
+            Some(std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?),
+        ),
+        (None, Some(e)) => {
+            let (n, t) = e.toml();
+            (format!("example {n}"), Some(t.to_string()))
+        }
+        (None, None) => (String::new(), None),
+    };
+    let (mut case, mut path) = layered(
+        text.as_deref().map(|t| (name.as_str(), t)),
+        &args.case,
+        &args.path,
+    )?;
+    beside(
+        args.config.as_deref(),
+        args.case.surface.is_none(),
+        &mut case.surface,
+    );
+    beside(
+        args.config.as_deref(),
+        args.path.start_from.is_none(),
+        &mut path.start_from,
+    );
+    case.fill_defaults("run/sweep");
+    path.fill_defaults();
+    let resolved = to_toml(&case, &path)?;
+    Ok((case, path, resolved))
+}
+
+/// The saved state in `dir` (`--start-from`), checked against the problem's grid.
+fn start_from(dir: &Path, problem: &solver::ContactProblem) -> Result<AdhesiveState> {
+    let state = read_state(dir)?;
+    let shape = problem.initial_gap.dim();
+    if state.contact.gap.dim() != shape {
+        bail!(
+            "--start-from: {} holds a {:?} grid, this case has {shape:?}",
+            dir.display(),
+            state.contact.gap.dim()
+        );
+    }
+    Ok(state)
+}
+
+/// A resumed sweep: the same case (wherever the directory is now), its finished rows and the
+/// last state. A pull-off search that had begun (`search`) is redone from the path's last
+/// state.
+fn resumed(
+    run: &RunDir,
+    resolved: &str,
+    controls: &[Control],
+    search: bool,
+) -> Result<(Vec<CyclePoint>, Option<AdhesiveState>)> {
+    let out = run.path();
+    if !same_case(&run.case().unwrap_or_default(), resolved) {
+        bail!(
+            "--resume: {} holds a different case; rerun without --resume (or with the same settings)",
+            out.display()
+        );
+    }
+    let mut rows = run.read_curve()?;
+    if search && rows.len() > controls.len() {
+        rows.truncate(controls.len());
+        run.truncate_curve(rows.len())?;
+    }
+    check_rows(&rows, controls).with_context(|| {
+        format!(
+            "--resume: {}/curve.csv does not belong to this path",
+            out.display()
+        )
+    })?;
+    let start = match rows.last() {
+        Some(last) => Some(run.resume_state(rows.len() - 1, last.approach)?),
+        None => None,
+    };
+    note!("resuming after {} of {} steps", rows.len(), controls.len());
+    Ok((rows, start))
+}
+
+/// The sweep's progress bar at `done` of `total` steps (hidden when quiet).
+fn progress_bar(total: usize, done: usize) -> ProgressBar {
+    let bar = if crate::quiet() {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(total as u64)
+    }
+    .with_style(
+        ProgressStyle::with_template("{bar:30} {pos}/{len} steps, {elapsed} elapsed, ~{eta} left  {msg}")
+            .expect("valid template"),
+    );
+    bar.set_position(done as u64);
+    bar
+}
+
+/// What theory says beside a cycle: the Tabor parameter of a sphere or a wave's crests with a
+/// Lennard-Jones law (the problem's), and for an adhesive wave Johnson's (1995) solution.
+struct Theory {
+    tabor: Option<f64>,
+    wave: Option<theory::wavy::Wave>,
+    /// The cycle's pull-off as the mean pressure over the box [Pa].
+    pull_off_pressure: Option<f64>,
+    /// The law's work of adhesion [J/m^2] (zero without adhesion).
+    work_of_adhesion: f64,
+}
+
+impl Theory {
+    fn of(case: &Case, problem: &solver::ContactProblem, summary: &CycleSummary) -> Theory {
+        let domain = problem.domain();
+        let work_of_adhesion = problem.law.work_of_adhesion();
+        // A wave's crests are its spheres: Johnson's parameter and JKR pull-off come with it.
+        let wave = case.wave_amplitude.map(|amplitude| theory::wavy::Wave {
+            amplitude,
+            wavelength: domain.nx as f64 * domain.dx,
+            e_star: problem.e_star(),
+            work_of_adhesion,
+        });
+        let radius = case.sphere_radius.or(wave.map(|w| w.crest_radius()));
+        let tabor = match (radius, problem.law.lennard_jones()) {
+            (Some(r), Some(lj)) => Some(theory::tabor_parameter(
+                r,
+                work_of_adhesion,
+                problem.e_star(),
+                lj.z0(),
+            )),
+            _ => None,
+        };
+        Theory {
+            tabor,
+            wave: wave.filter(|_| problem.adhesive()),
+            pull_off_pressure: summary
+                .pull_off_force
+                .map(|f| f / (domain.cell_area() * (domain.nx * domain.ny) as f64)),
+            work_of_adhesion,
+        }
+    }
+
+    /// Johnson's numbers for `summary.json`.
+    fn johnson(&self) -> Option<serde_json::Value> {
+        self.wave.map(|w| {
+            json!({
+                "johnson_parameter": w.johnson_alpha(),
+                "crest_radius": w.crest_radius(),
+                "full_contact_pressure": w.full_contact_pressure(),
+                "jkr_pull_off_mean_pressure": w.jkr_pull_off().0,
+                "pull_off_mean_pressure": self.pull_off_pressure,
+            })
+        })
+    }
+}
+
+/// The cycle's results on standard output, beside the theory that applies: a sphere's
+/// pull-off against Maugis-Dugdale, a smooth sphere without adhesion against Hertz, a wave
+/// against Johnson; under load control the contact area a step.
+fn print_cycle(
+    cycle: &[CyclePoint],
+    summary: &CycleSummary,
+    theory: &Theory,
+    case: &Case,
+    built: &case::Built,
+    first: Control,
+) -> Result<()> {
+    let problem = &built.problem;
     say!("steps                 {}", cycle.len());
     if let Some(w) = summary.pull_off_force {
         say!(
@@ -335,10 +406,10 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             summary.pull_off_approach.unwrap_or(f64::NAN)
         );
         // A sphere's pull-off in its natural unit, beside Maugis-Dugdale's at its Tabor parameter.
-        if let (Some(r), Some(w0), None) = (case.sphere_radius, case.work_of_adhesion, wave) {
-            let unit = std::f64::consts::PI * r * w0;
+        if let (Some(r), true, None) = (case.sphere_radius, theory.work_of_adhesion > 0.0, theory.wave) {
+            let unit = std::f64::consts::PI * r * theory.work_of_adhesion;
             let mut line = format!("                      = {:.4} pi R w0", w / unit);
-            if let Some(mu) = tabor {
+            if let Some(mu) = theory.tabor {
                 let md = theory::maugis::MaugisDugdale::new(theory::maugis_parameter_of_tabor(mu));
                 line += &format!(
                     " (Maugis-Dugdale's least load at lambda = 1.157 mu: {:.4})",
@@ -366,10 +437,11 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         );
     }
     // Under load control the contact area is the result: a line a step.
-    if matches!(controls[0], Control::MeanPressure(_)) {
+    if matches!(first, Control::MeanPressure(_)) {
+        let domain = problem.domain();
         say!("mean pressure [Pa]  contact area  attached area  branch");
         let area = domain.cell_area() * (domain.nx * domain.ny) as f64;
-        for p in &cycle {
+        for p in cycle {
             say!(
                 "{:>18.4e}  {:>12.6}  {:>13.6}  {}",
                 p.load / area,
@@ -388,27 +460,17 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     if let Some(w) = summary.hysteresis_energy {
         say!("hysteresis energy     {w:.6e} J (lost around the closed part of the cycle)");
     }
-    if let Some(mu) = tabor {
+    if let Some(mu) = theory.tabor {
         say!("Tabor parameter       {mu:.4}");
     }
-    if let (Some(w), Some(p)) = (wave, pull_off_pressure) {
+    if let (Some(w), Some(p)) = (theory.wave, theory.pull_off_pressure) {
         say!(
             "pull-off pressure     {p:.6e} Pa; Johnson's JKR wave (alpha {:.4}): {:.6e} Pa",
             w.johnson_alpha(),
             w.jkr_pull_off().0
         );
     }
-    say!("wrote {}/curve.csv, summary.json", out.display());
-    let failed = cycle.iter().filter(|p| !p.converged).count();
-    finish(
-        summary.all_converged,
-        format!(
-            "{failed} of {} steps did not converge (see curve.csv)",
-            cycle.len()
-        ),
-        args.keep_going,
-        out,
-    )
+    Ok(())
 }
 
 /// Whether two resolved cases (TOML) are the same apart from their output directory, which

@@ -93,6 +93,19 @@ impl<'a> Scratch<'a> {
             preconditioner: None,
         }
     }
+
+    /// The direction and its response on the operator's grid, and the preconditioner made
+    /// once it is first `needed`.
+    fn prepare(&mut self, needed: bool) {
+        let shape = self.op.domain().shape();
+        if needed && self.preconditioner.is_none() {
+            self.preconditioner = Some(Preconditioner::new(self.op));
+        }
+        if self.direction.dim() != shape {
+            self.direction = Array2::zeros(shape);
+            self.response = Array2::zeros(shape);
+        }
+    }
 }
 
 /// The inverse of the operator by FFT, applied to the gap residual on the contact set.
@@ -147,6 +160,252 @@ pub(crate) fn solve_in(
     let started = Instant::now();
     let domain = *op.domain();
     let shape = domain.shape();
+    let (target_load, h_ref) = checked(&domain, g0, control, options)?;
+    let cell = domain.cell_area();
+
+    let (warm, mut approach) = start(state, shape, warm, control);
+    let ContactState {
+        pressure: p,
+        gap,
+        displacement: u,
+        approach: state_approach,
+    } = state;
+    initial_pressure(p, g0, control, target_load, warm, op);
+
+    let g0 = g0.as_standard_layout();
+    let g0s = flat(&g0);
+    let nx = domain.nx;
+    // Under approach control the mean of the pressure on the contact set has no elastic
+    // stiffness on a periodic grid, which the operator's inverse cannot precondition: near full
+    // contact the step it gives releases every cell (a wave at 40 of its 58 z0, measured).
+    let preconditioned = options.preconditioned && target_load.is_some();
+    scratch.prepare(preconditioned);
+    let Scratch {
+        ws,
+        direction: t,
+        response: r,
+        preconditioner,
+        ..
+    } = scratch;
+    let mut preconditioner = preconditioner.as_mut().filter(|_| preconditioned);
+    let mut g_norm_old = 1.0;
+    let mut conjugate = false;
+    let nothing = p.iter().all(|&v| v == 0.0);
+    let mut termination = if nothing {
+        Termination::NoContact
+    } else {
+        Termination::MaxIterations
+    };
+    let mut tally = Tally::default();
+
+    if nothing {
+        released_everywhere(u, gap, g0.view(), approach);
+    } else {
+        loop {
+            let fresh = tally.fresh_needed || tally.since_fresh >= 32;
+            if fresh {
+                tally.fresh_product(op, ws, p, u)?;
+            }
+            // Pass A: pending rescale, gap before the approach, contact count and gap sum.
+            let s = std::mem::replace(&mut tally.pending, 1.0);
+            let [in_contact, gap_sum] = rescale_and_gap(p, u, gap, g0s, nx, s);
+            if target_load.is_some() {
+                approach = gap_sum / in_contact;
+            }
+            // Pass B: the approach, the residuals in and out of contact, and <g, t_old> on the
+            // contact set for the step length.
+            let [g2_contact, g2_out, g_t_old] = residuals(gap, p, t, approach, nx);
+            // The KKT residual: p >= 0 holds by construction, so zero gap where p > 0 and no
+            // interpenetration where p = 0 are all that is left to check.
+            let residual = ((g2_contact + g2_out) / in_contact.max(1.0)).sqrt() / h_ref;
+            if residual < options.tolerance && !fresh {
+                // Confirm on a fresh product before accepting.
+                tally.fresh_needed = true;
+                continue;
+            }
+            tally.history.push(residual);
+            if !observer(tally.iterations, residual) {
+                termination = Termination::Interrupted;
+                break;
+            }
+            if residual < options.tolerance {
+                termination = Termination::Converged;
+                break;
+            }
+            if tally.iterations == options.max_iterations {
+                break;
+            }
+            tally.iterations += 1;
+            tally.since_fresh += 1;
+            // The (preconditioned) residual the direction is built from, less `shift` (its mean on
+            // the contact set under load control), and its product with the residual there.
+            let (z, shift, gz): (&Array2<f64>, f64, f64) = match preconditioner.as_deref_mut() {
+                None => (&*gap, 0.0, g2_contact),
+                Some(pre) => {
+                    let (shift, gz) = pre.apply(gap, p, in_contact);
+                    (&pre.image, shift, gz)
+                }
+            };
+            let beta = if conjugate { gz / g_norm_old } else { 0.0 };
+            g_norm_old = gz;
+            let direction = Direction {
+                z,
+                shift,
+                gz,
+                beta,
+                g_t_old,
+            };
+            let load_control = target_load.map(|_| in_contact);
+            let [p_sum, changed, released, moved, bent] =
+                along_direction(op, ws, (p, u, gap), (t, r), direction, load_control)?;
+            tally.calls += 1;
+            // Polonsky & Keer restart the conjugate directions on every release. Preconditioned and
+            // cold, a few edge cells then flip in and out each iteration and the search zig-zags,
+            // so there the directions are kept while the projection changes little of the step; a
+            // warm start is next to its solution, where restarts are cheaper than stale directions
+            // (`docs/decisions.md`). Any change of the active set makes the updated u inexact.
+            conjugate = if preconditioned && !warm {
+                bent <= KEEP_DIRECTIONS * KEEP_DIRECTIONS * moved
+            } else {
+                released == 0.0
+            };
+            tally.fresh_needed |= changed > 0.0;
+            if p_sum == 0.0 {
+                termination = Termination::NoContact;
+                released_everywhere(u, gap, g0.view(), approach);
+                break;
+            }
+            if let Some(w) = target_load {
+                tally.pending = w / (p_sum * cell);
+            }
+        }
+    }
+    let report = ContactReport {
+        iterations: tally.iterations,
+        residual: tally.history.last().copied().unwrap_or(0.0),
+        residual_history: tally.history,
+        termination,
+        operator_calls: tally.calls,
+        wall_time_s: started.elapsed().as_secs_f64(),
+        ..report(op, p, u, gap, approach)
+    };
+    *state_approach = approach;
+    Ok(report)
+}
+
+/// A solve's bookkeeping. `u = K p` is either fresh from the operator or updated in step as
+/// `u - tau K t` (exact when no cell was clipped or released); `pending` is a load rescale of
+/// both p and u not yet applied. A fresh product is taken every 32 iterations and before
+/// accepting convergence, so round-off cannot accumulate.
+struct Tally {
+    history: Vec<f64>,
+    calls: usize,
+    iterations: usize,
+    fresh_needed: bool,
+    since_fresh: usize,
+    pending: f64,
+}
+
+impl Tally {
+    /// `u = K p` from the operator, the pending rescale applied to `p` first.
+    fn fresh_product(
+        &mut self,
+        op: &dyn Compliance,
+        ws: &mut elastic::Workspace,
+        p: &mut Array2<f64>,
+        u: &mut Array2<f64>,
+    ) -> Result<()> {
+        if self.pending != 1.0 {
+            *p *= std::mem::replace(&mut self.pending, 1.0);
+        }
+        op.apply(p.view(), u.view_mut(), ws)?;
+        self.calls += 1;
+        self.since_fresh = 0;
+        self.fresh_needed = false;
+        Ok(())
+    }
+}
+
+impl Default for Tally {
+    fn default() -> Self {
+        Tally {
+            history: Vec::new(),
+            calls: 0,
+            iterations: 0,
+            fresh_needed: true,
+            since_fresh: 0,
+            pending: 1.0,
+        }
+    }
+}
+
+/// What a conjugate direction is made of.
+struct Direction<'a> {
+    /// The (preconditioned) residual, less `shift`, its mean on the contact set under load
+    /// control; `gz` its product with the residual there.
+    z: &'a Array2<f64>,
+    shift: f64,
+    gz: f64,
+    /// The weight of the last direction, and that direction's product with the residual.
+    beta: f64,
+    g_t_old: f64,
+}
+
+/// Passes C to F: the conjugate direction into `t`, its response `r = K t`, the step length
+/// along it, and the step ([`step`], whose sums it returns). Under load control
+/// (`load_control`: the cells in contact) the mean of `K t` only moves the approach.
+fn along_direction(
+    op: &dyn Compliance,
+    ws: &mut elastic::Workspace,
+    (p, u, gap): (&mut Array2<f64>, &mut Array2<f64>, &Array2<f64>),
+    (t, r): (&mut Array2<f64>, &mut Array2<f64>),
+    d: Direction,
+    load_control: Option<f64>,
+) -> Result<[f64; 5]> {
+    let nx = p.ncols();
+    // Pass C: conjugate direction on the contact set, and its sum there.
+    let t_sum = direction(t, p, d.z, d.shift, d.beta, nx);
+    // Under load control the mean of K t over the contact set only moves the approach:
+    // <K t - mean, t> = <K t, t - mean(t)>, so the mean of t is all that is needed.
+    let t_mean = load_control.map_or(0.0, |in_contact| t_sum / in_contact);
+    let gt = d.gz + d.beta * d.g_t_old;
+    op.apply(t.view(), r.view_mut(), ws)?;
+    // Pass D: curvature along t.
+    let rt = crate::sum::rows3(p.view(), r.view(), t.view(), |p, r, t| {
+        if p > 0.0 { r * (t - t_mean) } else { 0.0 }
+    });
+    let tau = if rt > 0.0 { gt / rt } else { 0.0 };
+    // Pass F: step, projection onto p >= 0, release of every interpenetrating cell at zero
+    // pressure (free ones and those just clipped: releasing the clipped ones too saves about
+    // a tenth of the iterations on rough surfaces), and the matching update of u while it
+    // stays exact.
+    Ok(step(p, u, gap, t, r, tau, nx))
+}
+
+/// Where a solve starts: `state` itself when `warm` and on the grid of `shape`, else
+/// unloaded; returns whether it is warm and the approach it starts at.
+fn start(state: &mut ContactState, shape: (usize, usize), warm: bool, control: Control) -> (bool, f64) {
+    let warm = warm && state.pressure.dim() == shape && state.displacement.dim() == shape;
+    if !warm {
+        *state = ContactState::unloaded(shape);
+    }
+    let approach = match control {
+        Control::Approach(d) => d,
+        _ if warm => state.approach,
+        _ => 0.0,
+    };
+    (warm, approach)
+}
+
+/// Checks the input of a solve on `domain`; returns the load the control prescribes [N] (none
+/// under approach control) and the scale of the gap residual, the RMS of `g0` [m].
+fn checked(
+    domain: &elastic::Domain,
+    g0: ArrayView2<f64>,
+    control: Control,
+    options: &ContactOptions,
+) -> Result<(Option<f64>, f64)> {
+    let shape = domain.shape();
     if g0.dim() != shape {
         return Err(SolverError::ShapeMismatch {
             what: "initial gap",
@@ -160,33 +419,40 @@ pub(crate) fn solve_in(
     let n = (domain.nx * domain.ny) as f64;
     control.validate_without_adhesion()?;
     let target_load = match control {
-        Control::MeanPressure(p) => Some(("mean_pressure", p, p * n * cell)),
-        Control::Force(w) => Some(("load", w, w)),
+        Control::MeanPressure(p) => Some(p * n * cell),
+        Control::Force(w) => Some(w),
         Control::Approach(_) | Control::CentralGap(_) => None,
     };
     let g0_mean = g0.mean().unwrap_or(0.0);
     let h_ref = (g0.iter().map(|v| (v - g0_mean).powi(2)).sum::<f64>() / n)
         .sqrt()
         .max(f64::MIN_POSITIVE);
+    Ok((target_load, h_ref))
+}
 
-    let warm = warm && state.pressure.dim() == shape && state.displacement.dim() == shape;
-    if !warm {
-        *state = ContactState::unloaded(shape);
-    }
-    let ContactState {
-        pressure: p,
-        gap,
-        displacement: u,
-        approach: state_approach,
-    } = state;
-    let mut approach = match control {
-        Control::Approach(d) => d,
-        _ if warm => *state_approach,
-        _ => 0.0,
-    };
+/// No contact: no displacement, the gap the undeformed one less the approach.
+fn released_everywhere(u: &mut Array2<f64>, gap: &mut Array2<f64>, g0: ArrayView2<f64>, approach: f64) {
+    u.fill(0.0);
+    Zip::from(gap).and(g0).par_for_each(|g, &g0| *g = g0 - approach);
+}
+
+/// The pressure a solve starts from: a warm start's own if it has contact; else the
+/// prescribed mean pressure everywhere, or under approach control the overlap times a cell's
+/// stiffness; scaled to the prescribed load.
+fn initial_pressure(
+    p: &mut Array2<f64>,
+    g0: ArrayView2<f64>,
+    control: Control,
+    target_load: Option<f64>,
+    warm: bool,
+    op: &dyn Compliance,
+) {
+    let domain = op.domain();
+    let cell = domain.cell_area();
+    let n = (domain.nx * domain.ny) as f64;
     match (warm, target_load, control) {
         (true, _, _) if p.iter().any(|&v| v > 0.0) => {}
-        (_, Some((.., w)), _) => p.fill(w / (n * cell)),
+        (_, Some(w), _) => p.fill(w / (n * cell)),
         (_, None, Control::Approach(d)) => {
             // Overlap times a cell's stiffness: any positive guess on the overlap will do.
             let k = op.e_star() / domain.dx.min(domain.dy);
@@ -196,296 +462,206 @@ pub(crate) fn solve_in(
         }
         _ => unreachable!("either a load or an approach is prescribed"),
     }
-    if let Some((.., w)) = target_load
+    if let Some(w) = target_load
         && w > 0.0
     {
         let total = p.sum() * cell;
         *p *= w / total;
     }
+}
 
-    let g0 = g0.as_standard_layout();
-    let g0s = flat(&g0);
-    let nx = domain.nx;
-    // Under approach control the mean of the pressure on the contact set has no elastic
-    // stiffness on a periodic grid, which the operator's inverse cannot precondition: near full
-    // contact the step it gives releases every cell (a wave at 40 of its 58 z0, measured).
-    let preconditioned = options.preconditioned && target_load.is_some();
-    if preconditioned && scratch.preconditioner.is_none() {
-        scratch.preconditioner = Some(Preconditioner::new(op));
-    }
-    let Scratch {
-        ws,
-        direction: t,
-        response: r,
-        preconditioner,
-        ..
-    } = scratch;
-    let mut preconditioner = preconditioner.as_mut().filter(|_| preconditioned);
-    if t.dim() != shape {
-        *t = Array2::zeros(shape);
-        *r = Array2::zeros(shape);
-    }
-    let mut history = Vec::new();
-    let mut calls = 0;
-    let mut g_norm_old = 1.0;
-    let mut conjugate = false;
-    let mut termination = Termination::MaxIterations;
-    let mut iterations = 0;
-    // `u = K p` is either fresh from the operator or updated in step as `u - tau K t`
-    // (exact when no cell was clipped or released); `pending` is a load rescale of both p and
-    // u not yet applied. A fresh product is taken every 32 iterations and before accepting
-    // convergence, so round-off cannot accumulate.
-    let mut fresh_needed = true;
-    let mut since_fresh = 0;
-    let mut pending = 1.0;
+/// Pass A: the pending load rescale `s` of `p` and `u`, the gap before the approach, and the
+/// count of cells in contact and the sum of their gaps.
+fn rescale_and_gap(
+    p: &mut Array2<f64>,
+    u: &mut Array2<f64>,
+    gap: &mut Array2<f64>,
+    g0s: &[f64],
+    nx: usize,
+    s: f64,
+) -> [f64; 2] {
+    let sums: Vec<[f64; 2]> = flat_mut(p)
+        .par_chunks_mut(nx)
+        .zip(flat_mut(u).par_chunks_mut(nx))
+        .zip(flat_mut(gap).par_chunks_mut(nx))
+        .zip(g0s.par_chunks(nx))
+        .map(|(((p, u), g), g0)| {
+            let mut acc = [0.0; 2];
+            for i in 0..p.len() {
+                p[i] *= s;
+                u[i] *= s;
+                g[i] = g0[i] + u[i];
+                if p[i] > 0.0 {
+                    acc[0] += 1.0;
+                    acc[1] += g[i];
+                }
+            }
+            acc
+        })
+        .collect();
+    sums.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
+}
 
-    let nothing = p.iter().all(|&v| v == 0.0);
-    if nothing {
-        termination = Termination::NoContact;
-    }
-    loop {
-        if nothing {
-            break;
-        }
-        let fresh = fresh_needed || since_fresh >= 32;
-        if fresh {
-            if pending != 1.0 {
-                *p *= pending;
-                pending = 1.0;
+/// Pass B: the approach taken off the gap; the squared residuals in and out of contact, and
+/// `<g, t>` on the contact set.
+fn residuals(gap: &mut Array2<f64>, p: &Array2<f64>, t: &Array2<f64>, approach: f64, nx: usize) -> [f64; 3] {
+    let sums: Vec<[f64; 3]> = flat_mut(gap)
+        .par_chunks_mut(nx)
+        .zip(flat(p).par_chunks(nx))
+        .zip(flat(t).par_chunks(nx))
+        .map(|((g, p), t)| {
+            let mut acc = [0.0; 3];
+            for ((g, p), t) in g.iter_mut().zip(p).zip(t) {
+                *g -= approach;
+                if *p > 0.0 {
+                    acc[0] += *g * *g;
+                    acc[2] += *g * *t;
+                } else {
+                    acc[1] += g.min(0.0).powi(2);
+                }
             }
-            op.apply(p.view(), u.view_mut(), ws)?;
-            calls += 1;
-            since_fresh = 0;
-            fresh_needed = false;
-        }
-        // Pass A: pending rescale, gap before the approach, contact count and gap sum.
-        let s = std::mem::replace(&mut pending, 1.0);
-        let sums: Vec<[f64; 2]> = flat_mut(p)
-            .par_chunks_mut(nx)
-            .zip(flat_mut(u).par_chunks_mut(nx))
-            .zip(flat_mut(gap).par_chunks_mut(nx))
-            .zip(g0s.par_chunks(nx))
-            .map(|(((p, u), g), g0)| {
-                let mut acc = [0.0; 2];
-                for i in 0..p.len() {
-                    p[i] *= s;
-                    u[i] *= s;
-                    g[i] = g0[i] + u[i];
-                    if p[i] > 0.0 {
-                        acc[0] += 1.0;
-                        acc[1] += g[i];
-                    }
+            acc
+        })
+        .collect();
+    sums.iter()
+        .fold([0.0; 3], |a, b| [a[0] + b[0], a[1] + b[1], a[2] + b[2]])
+}
+
+impl Preconditioner {
+    /// The residual `gap` on the contact set of `p` through the operator's inverse, into
+    /// `image`; its mean there (`in_contact` cells) and its product with the residual, deflated
+    /// of that mean (preconditioning is under load control only).
+    fn apply(&mut self, gap: &Array2<f64>, p: &Array2<f64>, in_contact: f64) -> (f64, f64) {
+        let nx = p.ncols();
+        Zip::from(&mut self.masked)
+            .and(gap)
+            .and(p)
+            .par_for_each(|m, &g, &p| *m = if p > 0.0 { g } else { 0.0 });
+        self.fft.convolve(
+            self.masked.view(),
+            self.multiplier.view(),
+            self.image.view_mut(),
+            &mut self.ws,
+        );
+        let (ps, zs, gs) = (flat(p), flat(&self.image), flat(gap));
+        let [z_sum, zg, g_sum] = crate::sum::ordered(p.nrows(), |j| {
+            let mut acc = [0.0; 3];
+            for k in j * nx..(j + 1) * nx {
+                if ps[k] > 0.0 {
+                    acc[0] += zs[k];
+                    acc[1] += zs[k] * gs[k];
+                    acc[2] += gs[k];
                 }
-                acc
-            })
-            .collect();
-        let [in_contact, gap_sum] = sums.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]]);
-        if target_load.is_some() {
-            approach = gap_sum / in_contact;
-        }
-        // Pass B: the approach, the residuals in and out of contact, and <g, t_old> on the
-        // contact set for the step length.
-        let sums: Vec<[f64; 3]> = flat_mut(gap)
-            .par_chunks_mut(nx)
-            .zip(flat(p).par_chunks(nx))
-            .zip(flat(t).par_chunks(nx))
-            .map(|((g, p), t)| {
-                let mut acc = [0.0; 3];
-                for ((g, p), t) in g.iter_mut().zip(p).zip(t) {
-                    *g -= approach;
-                    if *p > 0.0 {
-                        acc[0] += *g * *g;
-                        acc[2] += *g * *t;
-                    } else {
-                        acc[1] += g.min(0.0).powi(2);
-                    }
-                }
-                acc
-            })
-            .collect();
-        let [g2_contact, g2_out, g_t_old] = sums
-            .iter()
-            .fold([0.0; 3], |a, b| [a[0] + b[0], a[1] + b[1], a[2] + b[2]]);
-        let gap_residual = ((g2_contact + g2_out) / in_contact.max(1.0)).sqrt() / h_ref;
-        // The KKT residual: p >= 0 holds by construction, so zero gap where p > 0 and no
-        // interpenetration where p = 0 are all that is left to check.
-        let residual = gap_residual;
-        if residual < options.tolerance && !fresh {
-            // Confirm on a fresh product before accepting.
-            fresh_needed = true;
-            continue;
-        }
-        history.push(residual);
-        if !observer(iterations, residual) {
-            termination = Termination::Interrupted;
-            break;
-        }
-        if residual < options.tolerance {
-            termination = Termination::Converged;
-            break;
-        }
-        if iterations == options.max_iterations {
-            break;
-        }
-        iterations += 1;
-        since_fresh += 1;
-        // The (preconditioned) residual the direction is built from, less `shift` (its mean on
-        // the contact set under load control), and its product with the residual there.
-        let (z, shift, gz): (&Array2<f64>, f64, f64) = match preconditioner.as_deref_mut() {
-            None => (&*gap, 0.0, g2_contact),
-            Some(pre) => {
-                Zip::from(&mut pre.masked)
-                    .and(&*gap)
-                    .and(&*p)
-                    .par_for_each(|m, &g, &p| *m = if p > 0.0 { g } else { 0.0 });
-                pre.fft.convolve(
-                    pre.masked.view(),
-                    pre.multiplier.view(),
-                    pre.image.view_mut(),
-                    &mut pre.ws,
-                );
-                let (ps, zs, gs) = (flat(p), flat(&pre.image), flat(gap));
-                let [z_sum, zg, g_sum] = crate::sum::ordered(p.nrows(), |j| {
-                    let mut acc = [0.0; 3];
-                    for k in j * nx..(j + 1) * nx {
-                        if ps[k] > 0.0 {
-                            acc[0] += zs[k];
-                            acc[1] += zs[k] * gs[k];
-                            acc[2] += gs[k];
-                        }
-                    }
-                    acc
-                });
-                // Deflated of its mean: preconditioning is under load control only.
-                let z_mean = z_sum / in_contact;
-                (&pre.image, z_mean, zg - z_mean * g_sum)
             }
-        };
-        // Pass C: conjugate direction on the contact set, and its sum there.
-        let beta = if conjugate { gz / g_norm_old } else { 0.0 };
-        g_norm_old = gz;
-        let sums: Vec<f64> = flat_mut(t)
-            .par_chunks_mut(nx)
-            .zip(flat(p).par_chunks(nx))
-            .zip(flat(z).par_chunks(nx))
-            .map(|((t, p), z)| {
-                let mut acc = 0.0;
-                for ((t, p), z) in t.iter_mut().zip(p).zip(z) {
-                    *t = if *p > 0.0 { z - shift + beta * *t } else { 0.0 };
-                    acc += *t;
-                }
-                acc
-            })
-            .collect();
-        // Under load control the mean of K t over the contact set only moves the approach:
-        // <K t - mean, t> = <K t, t - mean(t)>, so the mean of t is all that is needed.
-        let t_mean = if target_load.is_some() {
-            sums.iter().sum::<f64>() / in_contact
-        } else {
-            0.0
-        };
-        let gt = gz + beta * g_t_old;
-        op.apply(t.view(), r.view_mut(), ws)?;
-        calls += 1;
-        // Pass D: curvature along t.
-        let rt = crate::sum::rows3(p.view(), r.view(), t.view(), |p, r, t| {
-            if p > 0.0 { r * (t - t_mean) } else { 0.0 }
+            acc
         });
-        let tau = if rt > 0.0 { gt / rt } else { 0.0 };
-        // Pass F: step, projection onto p >= 0, release of every interpenetrating cell at zero
-        // pressure (free ones and those just clipped: releasing the clipped ones too saves about
-        // a tenth of the iterations on rough surfaces), and the matching update of u while it
-        // stays exact.
-        let rows: Vec<[f64; 5]> = flat_mut(p)
-            .par_chunks_mut(nx)
-            .zip(flat_mut(u).par_chunks_mut(nx))
-            .zip(flat(gap).par_chunks(nx))
-            .zip(flat(t).par_chunks(nx))
-            .zip(flat(r).par_chunks(nx))
-            .map(|((((p, u), g), t), r)| {
-                // The new load, the cells clipped or released, those released, and the squares
-                // of the step and of what the projection changed in it.
-                let mut acc = [0.0; 5];
-                for i in 0..p.len() {
-                    let old = p[i];
-                    let step = old - tau * t[i];
-                    let mut new = step;
-                    let mut changed = false;
-                    if old > 0.0 && new < 0.0 {
-                        new = 0.0;
+        let z_mean = z_sum / in_contact;
+        (z_mean, zg - z_mean * g_sum)
+    }
+}
+
+/// Pass C: the conjugate direction `t <- z - shift + beta t` on the contact set (zero off it),
+/// and its sum.
+fn direction(t: &mut Array2<f64>, p: &Array2<f64>, z: &Array2<f64>, shift: f64, beta: f64, nx: usize) -> f64 {
+    let sums: Vec<f64> = flat_mut(t)
+        .par_chunks_mut(nx)
+        .zip(flat(p).par_chunks(nx))
+        .zip(flat(z).par_chunks(nx))
+        .map(|((t, p), z)| {
+            let mut acc = 0.0;
+            for ((t, p), z) in t.iter_mut().zip(p).zip(z) {
+                *t = if *p > 0.0 { z - shift + beta * *t } else { 0.0 };
+                acc += *t;
+            }
+            acc
+        })
+        .collect();
+    sums.iter().sum::<f64>()
+}
+
+/// Pass F: the step `p - tau t` projected onto `p >= 0`, every interpenetrating cell at zero
+/// pressure released, and `u` updated to match. Returns the new load, the cells clipped or
+/// released, those released, and the squares of the step and of what the projection changed
+/// in it.
+fn step(
+    p: &mut Array2<f64>,
+    u: &mut Array2<f64>,
+    gap: &Array2<f64>,
+    t: &Array2<f64>,
+    r: &Array2<f64>,
+    tau: f64,
+    nx: usize,
+) -> [f64; 5] {
+    let rows: Vec<[f64; 5]> = flat_mut(p)
+        .par_chunks_mut(nx)
+        .zip(flat_mut(u).par_chunks_mut(nx))
+        .zip(flat(gap).par_chunks(nx))
+        .zip(flat(t).par_chunks(nx))
+        .zip(flat(r).par_chunks(nx))
+        .map(|((((p, u), g), t), r)| {
+            let mut acc = [0.0; 5];
+            for i in 0..p.len() {
+                let old = p[i];
+                let step = old - tau * t[i];
+                let mut new = step;
+                let mut changed = false;
+                if old > 0.0 && new < 0.0 {
+                    new = 0.0;
+                    changed = true;
+                }
+                if new == 0.0 {
+                    new = if g[i] < 0.0 { -tau * g[i] } else { 0.0 };
+                    if new > 0.0 {
                         changed = true;
+                        acc[2] += 1.0;
                     }
-                    if new == 0.0 {
-                        new = if g[i] < 0.0 { -tau * g[i] } else { 0.0 };
-                        if new > 0.0 {
-                            changed = true;
-                            acc[2] += 1.0;
-                        }
-                    }
-                    p[i] = new;
-                    u[i] -= tau * r[i];
-                    acc[0] += new;
-                    acc[1] += f64::from(u8::from(changed));
-                    acc[3] += (tau * t[i]).powi(2);
-                    acc[4] += (new - step).powi(2);
                 }
-                acc
-            })
-            .collect();
-        let [p_sum, changed, released, moved, bent] = rows.iter().fold([0.0; 5], |mut a, b| {
-            a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
-            a
-        });
-        // Polonsky & Keer restart the conjugate directions on every release. Preconditioned and
-        // cold, a few edge cells then flip in and out each iteration and the search zig-zags,
-        // so there the directions are kept while the projection changes little of the step; a
-        // warm start is next to its solution, where restarts are cheaper than stale directions
-        // (`docs/decisions.md`). Any change of the active set makes the updated u inexact.
-        conjugate = if preconditioned && !warm {
-            bent <= KEEP_DIRECTIONS * KEEP_DIRECTIONS * moved
-        } else {
-            released == 0.0
-        };
-        fresh_needed |= changed > 0.0;
-        if p_sum == 0.0 {
-            termination = Termination::NoContact;
-            u.fill(0.0);
-            Zip::from(&mut *gap)
-                .and(&g0)
-                .par_for_each(|g, &g0| *g = g0 - approach);
-            break;
-        }
-        if let Some((.., w)) = target_load {
-            pending = w / (p_sum * cell);
-        }
-    }
-    if nothing {
-        u.fill(0.0);
-        Zip::from(&mut *gap)
-            .and(&g0)
-            .par_for_each(|g, &g0| *g = g0 - approach);
-    }
-    // Report the gap as the solution defines it: zero in contact, non-negative elsewhere.
+                p[i] = new;
+                u[i] -= tau * r[i];
+                acc[0] += new;
+                acc[1] += f64::from(u8::from(changed));
+                acc[3] += (tau * t[i]).powi(2);
+                acc[4] += (new - step).powi(2);
+            }
+            acc
+        })
+        .collect();
+    rows.iter().fold([0.0; 5], |mut a, b| {
+        a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
+        a
+    })
+}
+
+/// What the solution `p`, `u` at `approach` says: load, contact, clusters, energy (the
+/// iterations' counts are the caller's). The gap is set as the solution defines it: zero in
+/// contact, non-negative elsewhere.
+fn report(
+    op: &dyn Compliance,
+    p: &Array2<f64>,
+    u: &Array2<f64>,
+    gap: &mut Array2<f64>,
+    approach: f64,
+) -> ContactReport {
     Zip::from(&mut *gap)
-        .and(&*p)
+        .and(p)
         .par_for_each(|g, &p| *g = if p > 0.0 { 0.0 } else { g.max(0.0) });
+    let domain = op.domain();
+    let cell = domain.cell_area();
+    let n = (domain.nx * domain.ny) as f64;
     let load = p.sum() * cell;
-    let contact = p.iter().filter(|&&v| v > 0.0).count() as f64 / n;
-    let report = ContactReport {
+    ContactReport {
         load,
         mean_pressure: load / (n * cell),
         approach,
-        contact_area_fraction: contact,
+        contact_area_fraction: p.iter().filter(|&&v| v > 0.0).count() as f64 / n,
         clusters: count_clusters(p.view(), domain.periodic),
         max_pressure: p.iter().cloned().fold(0.0, f64::max),
         elastic_energy: op.energy(p.view(), u.view()),
-        iterations,
-        residual: history.last().copied().unwrap_or(0.0),
-        residual_history: history,
-        termination,
-        operator_calls: calls,
-        wall_time_s: started.elapsed().as_secs_f64(),
-    };
-    *state_approach = approach;
-    Ok(report)
+        iterations: 0,
+        residual: 0.0,
+        residual_history: Vec::new(),
+        termination: Termination::Converged,
+        operator_calls: 0,
+        wall_time_s: 0.0,
+    }
 }

@@ -50,7 +50,12 @@ mod x3p;
 
 pub use fill::fill_harmonic;
 pub use npy::write_array as write_npy;
+mod format;
+mod options;
 mod text;
+
+pub use format::Format;
+pub use options::{ReadOptions, Unmeasured};
 
 use crate::error::{Result, SurfError};
 use crate::generate::SurfaceSpec;
@@ -273,103 +278,6 @@ impl Measurement {
     }
 }
 
-/// Options for files that do not carry their spacing, or carry it in other units.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ReadOptions {
-    /// Lateral size along x \[m\] for formats without spacing (bare `.npy`, plain matrix).
-    pub length_x: Option<f64>,
-    /// Lateral size along y \[m\]; defaults to `length_x * ny / nx` (square cells).
-    pub length_y: Option<f64>,
-    /// Metres per file unit, applied to heights and to coordinates read from the file
-    /// (e.g. `1e-4` for the contact-mechanics challenge's files, in units of 0.1 mm).
-    pub unit: f64,
-    /// Whether a file without metadata is periodic (an instrument's file is a measurement:
-    /// never).
-    pub periodic: bool,
-    /// Which channel of a multi-channel file to read, by its index in [`channels`]; `None`
-    /// reads the first channel of heights.
-    pub channel: Option<usize>,
-    /// What to do with points the instrument marks as not measured.
-    pub unmeasured: Unmeasured,
-}
-
-/// Points an instrument marks as not measured (dropouts, out of range): a contact calculation
-/// needs a height at every point, so they are refused unless the user asks for them filled.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub enum Unmeasured {
-    /// An error that counts them.
-    #[default]
-    Refuse,
-    /// Filled by harmonic interpolation from the measured points around them ([`fill_harmonic`]),
-    /// up to this fraction of the points, in [0, 1] (more is refused).
-    FillUpTo(f64),
-}
-
-/// The largest fraction of a surface's points filled unless the user allows more: beyond a
-/// quarter, the filled surface is more interpolation than measurement.
-pub const MAX_FILLED_FRACTION: f64 = 0.25;
-
-impl Default for ReadOptions {
-    fn default() -> Self {
-        ReadOptions {
-            length_x: None,
-            length_y: None,
-            unit: 1.0,
-            periodic: true,
-            channel: None,
-            unmeasured: Unmeasured::Refuse,
-        }
-    }
-}
-
-impl Unmeasured {
-    /// Filled if `fill` up to `max_fraction` of the points ([`MAX_FILLED_FRACTION`] if `None`),
-    /// else refused; a fraction outside [0, 1] is refused, naming `max_unmeasured`.
-    pub fn filled_up_to(fill: bool, max_fraction: Option<f64>) -> Result<Self> {
-        match (fill, max_fraction) {
-            (_, Some(f)) if !(0.0..=1.0).contains(&f) => Err(SurfError::invalid(
-                "max_unmeasured",
-                f,
-                "a fraction of the points in [0, 1]",
-            )),
-            (false, Some(f)) => Err(SurfError::invalid(
-                "max_unmeasured",
-                f,
-                "applies with fill_unmeasured (--fill-unmeasured), which fills the points",
-            )),
-            (false, None) => Ok(Unmeasured::Refuse),
-            (true, f) => Ok(Unmeasured::FillUpTo(f.unwrap_or(MAX_FILLED_FRACTION))),
-        }
-    }
-}
-
-impl ReadOptions {
-    /// These options reading the channel `key` names in the file at `path` (an index or a
-    /// name, [`channel_index`]); `None` keeps the default channel.
-    pub fn with_channel(self, path: &Path, key: Option<&str>) -> Result<Self> {
-        Ok(match key {
-            Some(key) => ReadOptions {
-                channel: Some(channel_index(path, &self, key)?),
-                ..self
-            },
-            None => self,
-        })
-    }
-
-    /// The grid of an `(ny, nx)` array read from `path`, from the lengths given here.
-    fn grid_for(&self, path: &Path, ny: usize, nx: usize) -> Result<Grid> {
-        let lx = self.length_x.ok_or_else(|| {
-            SurfError::parse(
-                path,
-                None,
-                "the file does not say its lateral size: give it (e.g. --length in metres)",
-            )
-        })?;
-        let ly = self.length_y.unwrap_or(lx * ny as f64 / nx as f64);
-        Grid::new(nx, ny, lx, ly)
-    }
-}
-
 /// The JSON sidecar of a `.npy` surface: its grid, how it was made and its statistics.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Metadata {
@@ -407,33 +315,6 @@ impl Metadata {
     }
 }
 
-/// The extensions read, for messages.
-const KNOWN: &str = ".npy, .txt/.dat/.asc/.csv, .xyz/.xyh, .gsf, .x3p, .sdf, .nc, .tmd, .mi, .nid, .sur, .opd, \
-                     .di/.spm, .ibw, .frt, .gwy, .h5/.hdf5/.datx, .mnt";
-
-/// The file formats, chosen by extension.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Format {
-    Npy,
-    Matrix,
-    Xyh,
-    Gsf,
-    X3p,
-    Sdf,
-    NetCdf,
-    Tmd,
-    Mi,
-    Nid,
-    Sur,
-    Opd,
-    Di,
-    Ibw,
-    Frt,
-    Gwy,
-    Hdf5,
-    Mnt,
-}
-
 /// `ny` rows of `nx` values stored from an image's top, as heights with row 0 at y = 0.
 pub(crate) fn rows_from_top(ny: usize, nx: usize, values: Vec<f64>) -> Array2<f64> {
     let mut a = Array2::from_shape_vec((ny, nx), values).expect("counted by the reader");
@@ -455,49 +336,6 @@ pub(crate) fn length_unit(name: &str) -> Option<f64> {
         "pm" => 1e-12,
         _ => return None,
     })
-}
-
-impl Format {
-    /// The format of `path`, from its extension.
-    pub fn of(path: &Path) -> Result<Format> {
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(|e| e.to_ascii_lowercase())
-            .unwrap_or_default();
-        match ext.as_str() {
-            "npy" => Ok(Format::Npy),
-            "txt" | "dat" | "asc" | "csv" => Ok(Format::Matrix),
-            "xyz" | "xyh" => Ok(Format::Xyh),
-            "gsf" => Ok(Format::Gsf),
-            "x3p" => Ok(Format::X3p),
-            "sdf" => Ok(Format::Sdf),
-            "nc" => Ok(Format::NetCdf),
-            "tmd" => Ok(Format::Tmd),
-            "mi" => Ok(Format::Mi),
-            "nid" => Ok(Format::Nid),
-            "sur" => Ok(Format::Sur),
-            "opd" => Ok(Format::Opd),
-            "di" | "spm" => Ok(Format::Di),
-            "ibw" => Ok(Format::Ibw),
-            "frt" => Ok(Format::Frt),
-            "gwy" => Ok(Format::Gwy),
-            "h5" | "hdf5" | "hdf" | "datx" => Ok(Format::Hdf5),
-            // Nanoscope's older files are numbered: .000, .001, ...
-            e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => Ok(Format::Di),
-            "mnt" => Ok(Format::Mnt),
-            "" => Err(SurfError::parse(
-                path,
-                None,
-                format!("the file name has no extension, which names the format: give one of {KNOWN}"),
-            )),
-            _ => Err(SurfError::parse(
-                path,
-                None,
-                format!("unknown surface format '.{ext}' (known: {KNOWN})"),
-            )),
-        }
-    }
 }
 
 /// The sidecar path of a `.npy` file: same stem, `.json`.
@@ -721,6 +559,20 @@ pub(crate) fn offset(path: &Path, field: &str, value: f64, step_field: &str, ste
         ));
     }
     Ok(value)
+}
+
+impl ReadOptions {
+    /// These options reading the channel `key` names in the file at `path` (an index or a
+    /// name, [`channel_index`]); `None` keeps the default channel.
+    pub fn with_channel(self, path: &Path, key: Option<&str>) -> Result<Self> {
+        Ok(match key {
+            Some(key) => ReadOptions {
+                channel: Some(channel_index(path, &self, key)?),
+                ..self
+            },
+            None => self,
+        })
+    }
 }
 
 /// The index of the channel `key` names in the file: an index, or a channel's name (exactly,

@@ -1,0 +1,304 @@
+//! A case's problem: the keys that do not apply refused, the surface read or generated, the
+//! geometry, material and law put together.
+
+use crate::error::{Context, Error, Result, bail};
+use crate::{Built, Case, DomainKind, LawKind, fingerprint};
+use solver::geometry::SphereProfile;
+use solver::{ContactProblem, Shape};
+use std::path::Path;
+use surfgen::io::{self, ReadOptions, Surface};
+use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfError, SurfaceSpec};
+
+impl Case {
+    /// Refuses every key given that the case would not use: a key of a surface file without
+    /// one, a generated surface's keys without a generated surface, a sphere's without a
+    /// sphere, adhesion's keys without adhesion or with a law that has no use for them. The one
+    /// place where keys that do not apply are refused, so that the record of a run is always
+    /// what was solved.
+    pub fn check_applicable(&self) -> Result<()> {
+        let file = self.surface.is_some();
+        let generated = self.rms_height.is_some() || self.rms_gradient.is_some();
+        let law = self.law.unwrap_or(if self.adhesive() {
+            LawKind::Surface
+        } else {
+            LawKind::None
+        });
+        let refused: [(&str, bool, &str); 14] = [
+            (
+                "rms_height",
+                self.rms_height.is_some() && (file || self.rms_gradient.is_some()),
+                "scales a generated surface; give it or --rms-gradient, and no --surface beside",
+            ),
+            (
+                "rms_gradient",
+                self.rms_gradient.is_some() && file,
+                "scales a generated surface; give no --surface beside",
+            ),
+            (
+                "max_unmeasured",
+                self.max_unmeasured.is_some() && !file,
+                "bounds the filled points of a surface file: give --surface",
+            ),
+            (
+                "unit",
+                self.unit.is_some() && !file,
+                "is a surface file's unit: give --surface",
+            ),
+            (
+                "channel",
+                self.channel.is_some() && !file,
+                "is a surface file's channel: give --surface",
+            ),
+            (
+                "fill_unmeasured",
+                self.fill_unmeasured.is_some() && !file,
+                "fills a surface file's unmeasured points: give --surface",
+            ),
+            (
+                "hurst",
+                self.hurst.is_some() && !generated,
+                "shapes a generated surface: give --rms-height or --rms-gradient",
+            ),
+            (
+                "rolloff_wavelength",
+                self.rolloff_wavelength.is_some() && !generated,
+                "shapes a generated surface: give --rms-height or --rms-gradient",
+            ),
+            (
+                "cutoff_wavelength",
+                self.cutoff_wavelength.is_some() && !generated,
+                "shapes a generated surface: give --rms-height or --rms-gradient",
+            ),
+            (
+                "seed",
+                self.seed.is_some() && !generated,
+                "seeds a generated surface: give --rms-height or --rms-gradient",
+            ),
+            (
+                "exact_sphere",
+                self.exact_sphere.is_some() && self.sphere_radius.is_none(),
+                "shapes a sphere: give --sphere-radius",
+            ),
+            (
+                "work_of_adhesion",
+                self.work_of_adhesion.is_some() && law == LawKind::None,
+                "needs an adhesive law, but --law none",
+            ),
+            (
+                "z0",
+                self.z0.is_some() && !law.takes_z0(),
+                "is the Lennard-Jones laws' (and Dugdale's LJ-equivalent) equilibrium separation; \
+                 this case has no such law",
+            ),
+            (
+                "solver",
+                self.solver.is_some() && law == LawKind::None,
+                "chooses the adhesive solver; without adhesion the conjugate gradients solve",
+            ),
+        ];
+        if let Some((key, _, why)) = refused.iter().find(|(_, given, _)| *given) {
+            bail!(
+                "--{} does not apply to this case: it {why}",
+                key.replace('_', "-")
+            );
+        }
+        Ok(())
+    }
+
+    /// Builds the problem; call [`Case::fill_defaults`] first.
+    pub fn build(&self) -> Result<Built> {
+        self.build_on(None)
+    }
+
+    /// Builds the problem on `roughness` (a surface in memory) instead of the `surface` file;
+    /// call [`Case::fill_defaults`] first.
+    pub fn build_on(&self, roughness: Option<Surface>) -> Result<Built> {
+        self.check_applicable()?;
+        let e_star = self.modulus.context(
+            "the composite modulus is required: --modulus E* [Pa] (or modulus = ... in the case file)",
+        )?;
+        if !(e_star.is_finite() && e_star > 0.0) {
+            bail!("--modulus must be a finite E* > 0 Pa, got {e_star}");
+        }
+        let law = self.law()?;
+        let periodic = self.domain.unwrap_or(DomainKind::Periodic) == DomainKind::Periodic;
+        let check_memory = |nx: usize, ny: usize, lx: f64, ly: f64| {
+            let domain = elastic::Domain {
+                nx,
+                ny,
+                dx: lx / nx as f64,
+                dy: ly / ny as f64,
+                periodic,
+            };
+            // Auto as under approach control: the larger of its choices.
+            let method = (law.work_of_adhesion() > 0.0).then(|| {
+                self.settings()
+                    .method
+                    .resolve(law.as_ref(), solver::Control::Approach(0.0), &domain, e_star)
+            });
+            crate::memory::check(
+                &format!("a {nx} x {ny} solve"),
+                solver::memory_estimate(nx, ny, periodic, method),
+            )
+        };
+        let mut builder = ContactProblem::builder()
+            .modulus(e_star)
+            .shared_law(law.clone())
+            .periodic(periodic);
+        let mut heights = None;
+        let mut filled = None;
+        let size;
+        let roughness = match (roughness, &self.surface) {
+            (Some(_), Some(path)) => bail!(
+                "give the roughness once: a surface in memory or the file {}",
+                path.display()
+            ),
+            (Some(s), None) => {
+                for (key, given) in [
+                    ("length", self.length.is_some()),
+                    ("length_y", self.length_y.is_some()),
+                    ("unit", self.unit.is_some()),
+                    ("channel", self.channel.is_some()),
+                    ("fill_unmeasured", self.fill_unmeasured.is_some()),
+                    ("max_unmeasured", self.max_unmeasured.is_some()),
+                ] {
+                    if given {
+                        bail!("`{key}` applies to a surface file; a surface in memory carries its own size");
+                    }
+                }
+                Some(s)
+            }
+            (None, Some(path)) => {
+                let options = ReadOptions {
+                    length_x: self.length,
+                    length_y: self.length_y,
+                    unit: self.unit.unwrap_or(1.0),
+                    periodic: true,
+                    channel: None,
+                    unmeasured: io::Unmeasured::filled_up_to(
+                        self.fill_unmeasured == Some(true),
+                        self.max_unmeasured,
+                    )?,
+                };
+                let read = options
+                    .with_channel(path, self.channel.as_deref())
+                    .and_then(|options| io::read_noting(path, &options));
+                let (surface, note) = read
+                    .map_err(|e| naming("reading", path, e))
+                    .context("--surface")?;
+                filled = note;
+                Some(surface)
+            }
+            (None, None) => None,
+        };
+        if let Some(s) = roughness {
+            let expected = (
+                self.n.unwrap_or(s.grid.nx),
+                self.ny.or(self.n).unwrap_or(s.grid.ny),
+            );
+            if expected != (s.grid.nx, s.grid.ny) {
+                bail!(
+                    "--n/--ny ask for {} x {} points, the surface file has {} x {}",
+                    expected.0,
+                    expected.1,
+                    s.grid.nx,
+                    s.grid.ny
+                );
+            }
+            check_memory(s.grid.nx, s.grid.ny, s.grid.length_x, s.grid.length_y).with_context(|| {
+                format!(
+                    "the surface file (--surface) of {} x {} points",
+                    s.grid.nx, s.grid.ny
+                )
+            })?;
+            size = (s.grid.length_x, s.grid.length_y);
+            heights = Some(s.heights);
+        } else {
+            let generated = self.rms_height.is_some() || self.rms_gradient.is_some();
+            if self.sphere_radius.is_none() && self.wave_amplitude.is_none() && !generated {
+                bail!(
+                    "nothing to press: give --surface FILE, --rms-height/--rms-gradient (a generated \
+                     surface) and/or --sphere-radius R or --wave-amplitude A [m]"
+                );
+            }
+            let n = self.n.unwrap_or(256);
+            let ny = self.ny.unwrap_or(n);
+            let l = self
+                .length
+                .context("the grid needs its size: --length L [m] (and --n)")?;
+            for (key, points) in [("n", n), ("ny", ny)] {
+                if points < 2 {
+                    bail!("--{key} must be at least 2 grid points, got {points}");
+                }
+            }
+            if !(l > 0.0 && l <= surfgen::grid::MAX_LENGTH) {
+                bail!("--length must be > 0 m and at most 1e100 m, got {l:?}");
+            }
+            let ly = self.length_y.unwrap_or(l * ny as f64 / n as f64);
+            if !(ly > 0.0 && ly <= surfgen::grid::MAX_LENGTH) {
+                bail!("--length-y must be > 0 m and at most 1e100 m, got {ly:?}");
+            }
+            let grid = Grid::new(n, ny, l, ly)?;
+            check_memory(n, ny, l, ly).with_context(|| format!("--n {n}, --ny {ny}"))?;
+            if generated {
+                let spec = SurfaceSpec {
+                    grid,
+                    psd: Psd::self_affine(
+                        self.hurst.unwrap_or(0.8),
+                        self.rolloff_wavelength.unwrap_or(l.max(ly) / 4.0),
+                        self.cutoff_wavelength.unwrap_or(4.0 * grid.dx().max(grid.dy())),
+                    ),
+                    normalization: match (self.rms_height, self.rms_gradient) {
+                        (Some(rq), _) => Normalization::RmsHeight(rq),
+                        (None, Some(g)) => Normalization::RmsGradient(g),
+                        _ => unreachable!("generated"),
+                    },
+                    amplitudes: Amplitudes::Exact,
+                    seed: self.seed.unwrap_or(1),
+                };
+                heights = Some(surfgen::generate(&spec)?.heights);
+            }
+            builder = builder.grid(n, ny, grid.length_x, grid.length_y);
+            size = (grid.length_x, grid.length_y);
+        }
+        let surface_hash = heights.as_ref().map(fingerprint);
+        if let Some(h) = heights {
+            builder = builder.roughness(h, size.0, size.1);
+        }
+        builder = match (self.sphere_radius, self.wave_amplitude) {
+            (Some(_), Some(_)) => bail!("give --sphere-radius or --wave-amplitude, not both"),
+            (Some(radius), None) => builder.shape(Shape::Sphere {
+                radius,
+                profile: if self.exact_sphere.unwrap_or(false) {
+                    SphereProfile::Exact
+                } else {
+                    SphereProfile::Paraboloid
+                },
+            }),
+            (None, Some(amplitude)) => {
+                if self.domain == Some(DomainKind::Free) {
+                    bail!("a wave repeats: it needs the periodic domain (--domain periodic)");
+                }
+                builder.wave(amplitude)
+            }
+            (None, None) => builder,
+        };
+        let mut problem = builder.build()?;
+        problem.warnings.extend(filled);
+        Ok(Built {
+            problem,
+            surface_hash,
+        })
+    }
+}
+
+/// A surface file's error, with the file named once: the reader's own errors already name it.
+pub fn naming(verb: &str, path: &Path, e: SurfError) -> Error {
+    match e {
+        SurfError::Io { .. } | SurfError::Parse { .. } => e.into(),
+        _ => Error::Context {
+            context: format!("{verb} {}", path.display()),
+            source: Box::new(e.into()),
+        },
+    }
+}
