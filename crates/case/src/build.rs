@@ -4,7 +4,7 @@
 use crate::error::{Context, Error, Result, bail};
 use crate::{Built, Case, DomainKind, LawKind, fingerprint};
 use solver::geometry::SphereProfile;
-use solver::{ContactProblem, Shape};
+use solver::{ContactProblem, ProblemBuilder, Shape};
 use std::path::Path;
 use surfgen::io::{self, ReadOptions, Surface};
 use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfError, SurfaceSpec};
@@ -145,10 +145,55 @@ impl Case {
             .modulus(e_star)
             .shared_law(law.clone())
             .periodic(periodic);
-        let mut heights = None;
-        let mut filled = None;
-        let size;
-        let roughness = match (roughness, &self.surface) {
+        let (roughness, filled) = self.roughness(roughness)?;
+        let (heights, size) = match roughness {
+            Some(s) => {
+                let expected = (
+                    self.n.unwrap_or(s.grid.nx),
+                    self.ny.or(self.n).unwrap_or(s.grid.ny),
+                );
+                if expected != (s.grid.nx, s.grid.ny) {
+                    bail!(
+                        "--n/--ny ask for {} x {} points, the surface file has {} x {}",
+                        expected.0,
+                        expected.1,
+                        s.grid.nx,
+                        s.grid.ny
+                    );
+                }
+                check_memory(s.grid.nx, s.grid.ny, s.grid.length_x, s.grid.length_y).with_context(|| {
+                    format!(
+                        "the surface file (--surface) of {} x {} points",
+                        s.grid.nx, s.grid.ny
+                    )
+                })?;
+                (Some(s.heights), (s.grid.length_x, s.grid.length_y))
+            }
+            None => {
+                let grid = self.grid()?;
+                let (n, ny) = (grid.nx, grid.ny);
+                check_memory(n, ny, grid.length_x, grid.length_y)
+                    .with_context(|| format!("--n {n}, --ny {ny}"))?;
+                builder = builder.grid(n, ny, grid.length_x, grid.length_y);
+                (self.generated(grid)?, (grid.length_x, grid.length_y))
+            }
+        };
+        let surface_hash = heights.as_ref().map(fingerprint);
+        if let Some(h) = heights {
+            builder = builder.roughness(h, size.0, size.1);
+        }
+        let mut problem = self.shaped(builder)?.build()?;
+        problem.warnings.extend(filled);
+        Ok(Built {
+            problem,
+            surface_hash,
+        })
+    }
+
+    /// The roughness given: a surface in memory or the `surface` file's (read, with a note of
+    /// the points filled), or none.
+    fn roughness(&self, roughness: Option<Surface>) -> Result<(Option<Surface>, Option<String>)> {
+        Ok(match (roughness, &self.surface) {
             (Some(_), Some(path)) => bail!(
                 "give the roughness once: a surface in memory or the file {}",
                 path.display()
@@ -166,7 +211,7 @@ impl Case {
                         bail!("`{key}` applies to a surface file; a surface in memory carries its own size");
                     }
                 }
-                Some(s)
+                (Some(s), None)
             }
             (None, Some(path)) => {
                 let options = ReadOptions {
@@ -186,86 +231,68 @@ impl Case {
                 let (surface, note) = read
                     .map_err(|e| naming("reading", path, e))
                     .context("--surface")?;
-                filled = note;
-                Some(surface)
+                (Some(surface), note)
             }
-            (None, None) => None,
-        };
-        if let Some(s) = roughness {
-            let expected = (
-                self.n.unwrap_or(s.grid.nx),
-                self.ny.or(self.n).unwrap_or(s.grid.ny),
+            (None, None) => (None, None),
+        })
+    }
+
+    /// The grid of a case without a surface file: `n` (and `ny`) points over `length` (and
+    /// `length_y`).
+    fn grid(&self) -> Result<Grid> {
+        let generated = self.rms_height.is_some() || self.rms_gradient.is_some();
+        if self.sphere_radius.is_none() && self.wave_amplitude.is_none() && !generated {
+            bail!(
+                "nothing to press: give --surface FILE, --rms-height/--rms-gradient (a generated \
+                 surface) and/or --sphere-radius R or --wave-amplitude A [m]"
             );
-            if expected != (s.grid.nx, s.grid.ny) {
-                bail!(
-                    "--n/--ny ask for {} x {} points, the surface file has {} x {}",
-                    expected.0,
-                    expected.1,
-                    s.grid.nx,
-                    s.grid.ny
-                );
-            }
-            check_memory(s.grid.nx, s.grid.ny, s.grid.length_x, s.grid.length_y).with_context(|| {
-                format!(
-                    "the surface file (--surface) of {} x {} points",
-                    s.grid.nx, s.grid.ny
-                )
-            })?;
-            size = (s.grid.length_x, s.grid.length_y);
-            heights = Some(s.heights);
-        } else {
-            let generated = self.rms_height.is_some() || self.rms_gradient.is_some();
-            if self.sphere_radius.is_none() && self.wave_amplitude.is_none() && !generated {
-                bail!(
-                    "nothing to press: give --surface FILE, --rms-height/--rms-gradient (a generated \
-                     surface) and/or --sphere-radius R or --wave-amplitude A [m]"
-                );
-            }
-            let n = self.n.unwrap_or(256);
-            let ny = self.ny.unwrap_or(n);
-            let l = self
-                .length
-                .context("the grid needs its size: --length L [m] (and --n)")?;
-            for (key, points) in [("n", n), ("ny", ny)] {
-                if points < 2 {
-                    bail!("--{key} must be at least 2 grid points, got {points}");
-                }
-            }
-            if !(l > 0.0 && l <= surfgen::grid::MAX_LENGTH) {
-                bail!("--length must be > 0 m and at most 1e100 m, got {l:?}");
-            }
-            let ly = self.length_y.unwrap_or(l * ny as f64 / n as f64);
-            if !(ly > 0.0 && ly <= surfgen::grid::MAX_LENGTH) {
-                bail!("--length-y must be > 0 m and at most 1e100 m, got {ly:?}");
-            }
-            let grid = Grid::new(n, ny, l, ly)?;
-            check_memory(n, ny, l, ly).with_context(|| format!("--n {n}, --ny {ny}"))?;
-            if generated {
-                let spec = SurfaceSpec {
-                    grid,
-                    psd: Psd::self_affine(
-                        self.hurst.unwrap_or(0.8),
-                        self.rolloff_wavelength.unwrap_or(l.max(ly) / 4.0),
-                        self.cutoff_wavelength.unwrap_or(4.0 * grid.dx().max(grid.dy())),
-                    ),
-                    normalization: match (self.rms_height, self.rms_gradient) {
-                        (Some(rq), _) => Normalization::RmsHeight(rq),
-                        (None, Some(g)) => Normalization::RmsGradient(g),
-                        _ => unreachable!("generated"),
-                    },
-                    amplitudes: Amplitudes::Exact,
-                    seed: self.seed.unwrap_or(1),
-                };
-                heights = Some(surfgen::generate(&spec)?.heights);
-            }
-            builder = builder.grid(n, ny, grid.length_x, grid.length_y);
-            size = (grid.length_x, grid.length_y);
         }
-        let surface_hash = heights.as_ref().map(fingerprint);
-        if let Some(h) = heights {
-            builder = builder.roughness(h, size.0, size.1);
+        let n = self.n.unwrap_or(256);
+        let ny = self.ny.unwrap_or(n);
+        let l = self
+            .length
+            .context("the grid needs its size: --length L [m] (and --n)")?;
+        for (key, points) in [("n", n), ("ny", ny)] {
+            if points < 2 {
+                bail!("--{key} must be at least 2 grid points, got {points}");
+            }
         }
-        builder = match (self.sphere_radius, self.wave_amplitude) {
+        if !(l > 0.0 && l <= surfgen::grid::MAX_LENGTH) {
+            bail!("--length must be > 0 m and at most 1e100 m, got {l:?}");
+        }
+        let ly = self.length_y.unwrap_or(l * ny as f64 / n as f64);
+        if !(ly > 0.0 && ly <= surfgen::grid::MAX_LENGTH) {
+            bail!("--length-y must be > 0 m and at most 1e100 m, got {ly:?}");
+        }
+        Ok(Grid::new(n, ny, l, ly)?)
+    }
+
+    /// The generated roughness on `grid`, if the case asks for one (`rms_height` or
+    /// `rms_gradient`).
+    fn generated(&self, grid: Grid) -> Result<Option<ndarray::Array2<f64>>> {
+        let normalization = match (self.rms_height, self.rms_gradient) {
+            (Some(rq), _) => Normalization::RmsHeight(rq),
+            (None, Some(g)) => Normalization::RmsGradient(g),
+            (None, None) => return Ok(None),
+        };
+        let spec = SurfaceSpec {
+            grid,
+            psd: Psd::self_affine(
+                self.hurst.unwrap_or(0.8),
+                self.rolloff_wavelength
+                    .unwrap_or(grid.length_x.max(grid.length_y) / 4.0),
+                self.cutoff_wavelength.unwrap_or(4.0 * grid.dx().max(grid.dy())),
+            ),
+            normalization,
+            amplitudes: Amplitudes::Exact,
+            seed: self.seed.unwrap_or(1),
+        };
+        Ok(Some(surfgen::generate(&spec)?.heights))
+    }
+
+    /// `builder` with the case's sphere or wave, if any.
+    fn shaped(&self, builder: ProblemBuilder) -> Result<ProblemBuilder> {
+        Ok(match (self.sphere_radius, self.wave_amplitude) {
             (Some(_), Some(_)) => bail!("give --sphere-radius or --wave-amplitude, not both"),
             (Some(radius), None) => builder.shape(Shape::Sphere {
                 radius,
@@ -282,12 +309,6 @@ impl Case {
                 builder.wave(amplitude)
             }
             (None, None) => builder,
-        };
-        let mut problem = builder.build()?;
-        problem.warnings.extend(filled);
-        Ok(Built {
-            problem,
-            surface_hash,
         })
     }
 }

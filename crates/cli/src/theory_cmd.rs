@@ -433,38 +433,7 @@ impl TheoryArgs {
 const POINT_BYTES: f64 = 256.0;
 
 pub fn theory(a: TheoryArgs) -> Result<()> {
-    // Refuse the shared flags a model does not use, rather than ignore them.
-    let curve = !matches!(a.model, Model::Sticky { .. });
-    let sampled = curve && !matches!(a.model, Model::Greenwood { .. });
-    let radius = matches!(a.model, Model::Maugis { .. } | Model::Jkr | Model::Dmt);
-    let summarised = !matches!(
-        a.model,
-        Model::Hertz { .. } | Model::Area { .. } | Model::Sticky { .. }
-    );
-    for (given, applies, flag) in [
-        (a.summary, summarised, "--summary"),
-        (a.points.is_some(), sampled, "--points"),
-        (a.max_radius.is_some(), radius, "--max-radius"),
-        (a.plot.is_some(), curve, "--plot"),
-    ] {
-        if given && !applies {
-            bail!("{flag} does not apply to `theory {}`", a.model.name());
-        }
-    }
-    if a.summary && (a.plot.is_some() || a.points.is_some() || a.max_radius.is_some()) {
-        bail!("--plot, --points and --max-radius shape the curve; --summary prints no curve");
-    }
-    if a.json && !a.summary && curve {
-        bail!("--json formats the summary: add --summary");
-    }
-    if a.points() < 2 {
-        bail!("--points must be at least 2");
-    }
-    // A curve is held (and plotted) whole: its points are bounded by memory before any is made.
-    case::memory::check(
-        &format!("a curve of {} points", a.points()),
-        a.points() as f64 * POINT_BYTES,
-    )?;
+    check_flags(&a)?;
     if let Model::Greenwood {
         tabor,
         max_approach,
@@ -505,30 +474,18 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
             rolloff_wavelength,
             short_wavelength,
         } => {
-            use std::f64::consts::PI;
-            let (w0, e, rq, long, short) = (
-                work_of_adhesion,
-                modulus,
-                rms_height,
-                long_wavelength,
-                short_wavelength,
-            );
-            let rolloff = rolloff_wavelength.unwrap_or(long);
-            let all = [w0, e, rq, long, rolloff, short];
-            if all.iter().any(|v| !(v.is_finite() && *v > 0.0))
-                || !(short < rolloff && rolloff <= long)
-                || !(hurst > 0.0 && hurst < 1.0)
-            {
-                bail!("need positive finite inputs, short < roll-off <= long wavelength and 0 < H < 1");
-            }
-            let spectrum = theory::rough::SelfAffineSpectrum {
+            return sticky_of(
+                &a,
+                [
+                    work_of_adhesion,
+                    modulus,
+                    rms_height,
+                    long_wavelength,
+                    short_wavelength,
+                ],
                 hurst,
-                q_long: 2.0 * PI / long,
-                q_rolloff: 2.0 * PI / rolloff,
-                q_short: 2.0 * PI / short,
-                rms_height: rq,
-            };
-            return sticky(&a, w0, e, long, &spectrum);
+                rolloff_wavelength,
+            );
         }
         _ => {}
     }
@@ -552,11 +509,76 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
             unreachable!("handled above")
         }
     };
+    maugis(&a, lambda, tabor)
+}
+
+/// Refuses the shared flags a model does not use, rather than ignore them.
+fn check_flags(a: &TheoryArgs) -> Result<()> {
+    let curve = !matches!(a.model, Model::Sticky { .. });
+    let sampled = curve && !matches!(a.model, Model::Greenwood { .. });
+    let radius = matches!(a.model, Model::Maugis { .. } | Model::Jkr | Model::Dmt);
+    let summarised = !matches!(
+        a.model,
+        Model::Hertz { .. } | Model::Area { .. } | Model::Sticky { .. }
+    );
+    for (given, applies, flag) in [
+        (a.summary, summarised, "--summary"),
+        (a.points.is_some(), sampled, "--points"),
+        (a.max_radius.is_some(), radius, "--max-radius"),
+        (a.plot.is_some(), curve, "--plot"),
+    ] {
+        if given && !applies {
+            bail!("{flag} does not apply to `theory {}`", a.model.name());
+        }
+    }
+    if a.summary && (a.plot.is_some() || a.points.is_some() || a.max_radius.is_some()) {
+        bail!("--plot, --points and --max-radius shape the curve; --summary prints no curve");
+    }
+    if a.json && !a.summary && curve {
+        bail!("--json formats the summary: add --summary");
+    }
+    if a.points() < 2 {
+        bail!("--points must be at least 2");
+    }
+    // A curve is held (and plotted) whole: its points are bounded by memory before any is made.
+    case::memory::check(
+        &format!("a curve of {} points", a.points()),
+        a.points() as f64 * POINT_BYTES,
+    )?;
+    Ok(())
+}
+
+/// Stickiness from plain numbers: `[w0 J/m^2, E* Pa, Rq m, long m, short m]`, the Hurst
+/// exponent and the roll-off [m] (default: the long wavelength).
+fn sticky_of(a: &TheoryArgs, numbers: [f64; 5], hurst: f64, rolloff_wavelength: Option<f64>) -> Result<()> {
+    use std::f64::consts::PI;
+    let [w0, e, rq, long, short] = numbers;
+    let rolloff = rolloff_wavelength.unwrap_or(long);
+    let all = [w0, e, rq, long, rolloff, short];
+    if all.iter().any(|v| !(v.is_finite() && *v > 0.0))
+        || !(short < rolloff && rolloff <= long)
+        || !(hurst > 0.0 && hurst < 1.0)
+    {
+        bail!("need positive finite inputs, short < roll-off <= long wavelength and 0 < H < 1");
+    }
+    let spectrum = theory::rough::SelfAffineSpectrum {
+        hurst,
+        q_long: 2.0 * PI / long,
+        q_rolloff: 2.0 * PI / rolloff,
+        q_short: 2.0 * PI / short,
+        rms_height: rq,
+    };
+    sticky(a, w0, e, long, &spectrum)
+}
+
+/// The Maugis-Dugdale sphere at `lambda` (of the Tabor parameter `tabor`, if given): its
+/// summary or its curve.
+fn maugis(a: &TheoryArgs, lambda: f64, tabor: Option<f64>) -> Result<()> {
     if !(lambda.is_finite() && lambda > 0.0) {
         bail!("the Maugis parameter must be finite and > 0, got {lambda}");
     }
     let model = MaugisDugdale::new(lambda);
-    let mut out = open(&a)?;
+    let mut out = open(a)?;
     if a.summary {
         let (lc, dc, fold) = (
             model.pull_off_load_control(),

@@ -143,23 +143,10 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     let total = controls.len() + search.map_or(0, |s| s.most_steps(last));
     let bar = progress_bar(total, done);
     let started = Instant::now();
-    let mut writer = StepWriter {
-        run: &run,
-        done,
-        steps: total,
-        save_states: args.save_states,
-        keep: (path.keep_steps.iter().flatten().copied())
-            .chain(search.map(|_| controls.len() - 1))
-            .collect(),
-        curve: run.curve_writer()?,
-        bar: &bar,
-        last: String::new(),
-        quiet_since: Instant::now(),
-        progress_since: Instant::now(),
-        error: None,
-        problem,
-        edge: None,
-    };
+    let keep = (path.keep_steps.iter().flatten().copied())
+        .chain(search.map(|_| controls.len() - 1))
+        .collect();
+    let mut writer = StepWriter::new(&run, (done, total), args.save_states, keep, &bar, problem)?;
     let mut points = if done < controls.len() {
         on_workers(|| problem.sweep(&controls[done..], max_step, &settings, start, &mut writer))?
     } else {
@@ -603,6 +590,35 @@ struct StepWriter<'a> {
     problem: &'a solver::ContactProblem,
     /// The first step whose contact reached a free grid's edge, as a warning.
     edge: Option<String>,
+}
+
+impl<'a> StepWriter<'a> {
+    /// A writer into `run` of the steps after `done` of `total`, keeping the fields of every
+    /// step (`save_states`) or of those in `keep`.
+    fn new(
+        run: &'a RunDir,
+        (done, total): (usize, usize),
+        save_states: bool,
+        keep: Vec<usize>,
+        bar: &'a ProgressBar,
+        problem: &'a solver::ContactProblem,
+    ) -> Result<Self> {
+        Ok(StepWriter {
+            run,
+            done,
+            steps: total,
+            save_states,
+            keep,
+            curve: run.curve_writer()?,
+            bar,
+            last: String::new(),
+            quiet_since: Instant::now(),
+            progress_since: Instant::now(),
+            error: None,
+            problem,
+            edge: None,
+        })
+    }
 }
 
 impl Observer for StepWriter<'_> {

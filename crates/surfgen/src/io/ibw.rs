@@ -31,39 +31,8 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
             ));
         }
     };
-    let u32_at = |o: usize| {
-        let b: [u8; 4] = bytes[o..o + 4].try_into().expect("4 bytes");
-        if little {
-            u32::from_le_bytes(b)
-        } else {
-            u32::from_be_bytes(b)
-        }
-    };
-    let i16_at = |o: usize| {
-        let b = [bytes[o], bytes[o + 1]];
-        if little {
-            i16::from_le_bytes(b)
-        } else {
-            i16::from_be_bytes(b)
-        }
-    };
-    let f64_at = |o: usize| {
-        let b: [u8; 8] = bytes[o..o + 8].try_into().expect("8 bytes");
-        if little {
-            f64::from_le_bytes(b)
-        } else {
-            f64::from_be_bytes(b)
-        }
-    };
-    let text = |b: &[u8]| -> String {
-        b.iter()
-            .take_while(|&&c| c != 0)
-            .map(|&c| c as char) // Latin-1
-            .collect::<String>()
-            .trim()
-            .to_string()
-    };
-    let size = |o: usize| u32_at(o) as usize;
+    let at = Bytes { bytes, little };
+    let size = |o: usize| at.u32_at(o) as usize;
     let (wave, formula, note, data_units_size) = (size(4), size(8), size(12), size(16));
     let dim_units_size: Vec<usize> = (0..4).map(|d| size(20 + 4 * d)).collect();
     let dim_labels_size: Vec<usize> = (0..4).map(|d| size(36 + 4 * d)).collect();
@@ -79,7 +48,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
             )));
         }
     };
-    let kind = i16_at(w + 16);
+    let kind = at.i16_at(w + 16);
     let width = match kind {
         0x10 => 2,
         2 | 0x20 => 4,
@@ -104,10 +73,10 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         })?;
     let image = image.expect("checked");
     // Units: the extended units after the data replace the 4-character ones when present.
-    let mut at = (BIN_HEADER + wave).saturating_add(formula).saturating_add(note);
+    let mut cursor = (BIN_HEADER + wave).saturating_add(formula).saturating_add(note);
     let mut section = |n: usize| {
-        let s = bytes.get(at..at.saturating_add(n)).unwrap_or(&[]);
-        at = at.saturating_add(n);
+        let s = bytes.get(cursor..cursor.saturating_add(n)).unwrap_or(&[]);
+        cursor = cursor.saturating_add(n);
         s
     };
     let data_unit = match section(data_units_size) {
@@ -131,7 +100,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
         * super::header(
             path,
             "x spacing (sfA[0])",
-            f64_at(w + 84).abs(),
+            at.f64_at(w + 84).abs(),
             super::Number::Size,
         )?
         * lateral(0)?;
@@ -142,7 +111,7 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
                 * super::header(
                     path,
                     "y spacing (sfA[1])",
-                    f64_at(w + 92).abs(),
+                    at.f64_at(w + 92).abs(),
                     super::Number::Size,
                 )?
                 * lateral(1)?,
@@ -187,6 +156,51 @@ pub(super) fn layers<'a>(bytes: &'a [u8], path: &Path) -> Result<Vec<Layer<'a>>>
             }
         })
         .collect())
+}
+
+/// A wave's bytes in the file's byte order.
+struct Bytes<'a> {
+    bytes: &'a [u8],
+    little: bool,
+}
+
+impl Bytes<'_> {
+    fn u32_at(&self, o: usize) -> u32 {
+        let b: [u8; 4] = self.bytes[o..o + 4].try_into().expect("4 bytes");
+        if self.little {
+            u32::from_le_bytes(b)
+        } else {
+            u32::from_be_bytes(b)
+        }
+    }
+
+    fn i16_at(&self, o: usize) -> i16 {
+        let b = [self.bytes[o], self.bytes[o + 1]];
+        if self.little {
+            i16::from_le_bytes(b)
+        } else {
+            i16::from_be_bytes(b)
+        }
+    }
+
+    fn f64_at(&self, o: usize) -> f64 {
+        let b: [u8; 8] = self.bytes[o..o + 8].try_into().expect("8 bytes");
+        if self.little {
+            f64::from_le_bytes(b)
+        } else {
+            f64::from_be_bytes(b)
+        }
+    }
+}
+
+/// A NUL-terminated Latin-1 string, trimmed.
+fn text(b: &[u8]) -> String {
+    b.iter()
+        .take_while(|&&c| c != 0)
+        .map(|&c| c as char)
+        .collect::<String>()
+        .trim()
+        .to_string()
 }
 
 /// One value of Igor type `kind` (checked: f32, f64, i16, i32) from its bytes.

@@ -145,38 +145,13 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
         .checked_mul(ny as u64)
         .and_then(|n| n.checked_mul(size))
         .ok_or_else(|| bad(format!("{nx} x {ny} points overflow")))?;
-    let mut entry = archive
-        .by_name(&link)
-        .map_err(|_| bad(format!("the archive has no {link}, which main.xml names")))?;
-    if entry.size() != expected || expected > MAX_RATIO * entry.compressed_size().max(1) {
-        return Err(bad(format!(
-            "{nx} x {ny} {kind} heights need {expected} bytes; {link} holds {} ({} compressed)",
-            entry.size(),
-            entry.compressed_size()
-        )));
-    }
-    let mut raw = Vec::with_capacity(expected as usize);
-    (&mut entry)
-        .take(expected)
-        .read_to_end(&mut raw)
-        .map_err(|e| bad(format!("reading {link}: {e}")))?;
-    if raw.len() as u64 != expected {
-        return Err(bad(format!(
-            "{link} ends after {} of {expected} bytes",
-            raw.len()
-        )));
-    }
-    // The data's checksum, where main.xml records it, must be the data's: a file changed or
-    // damaged after it was written is refused, not read silently.
-    if let Some(recorded) = get("Record3/DataLink/MD5ChecksumPointData") {
-        let actual = hex(&Md5::digest(&raw));
-        if !recorded.trim().eq_ignore_ascii_case(&actual) {
-            return Err(bad(format!(
-                "{link} does not match main.xml's MD5ChecksumPointData (recorded {recorded}, the data's \
-                 {actual}): the file was changed or damaged after it was written"
-            )));
-        }
-    }
+    let raw = data(
+        &mut archive,
+        (&link, &format!("{nx} x {ny} {kind} heights")),
+        expected,
+        get("Record3/DataLink/MD5ChecksumPointData"),
+        &bad,
+    )?;
     let values: Vec<f64> = raw
         .chunks_exact(size as usize)
         .map(|c| match kind {
@@ -203,6 +178,51 @@ pub(super) fn read(path: &Path, options: &ReadOptions) -> Result<Measurement> {
         )));
     }
     Measurement::new(heights, grid, options.periodic)
+}
+
+/// The data entry `link` (`what` it holds) of `expected` bytes, checked against its MD5 checksum where main.xml
+/// records one (`recorded`): a file changed or damaged after it was written is refused, not
+/// read silently.
+fn data(
+    archive: &mut zip::ZipArchive<std::fs::File>,
+    (link, what): (&str, &str),
+    expected: u64,
+    recorded: Option<&str>,
+    bad: &dyn Fn(String) -> SurfError,
+) -> Result<Vec<u8>> {
+    let mut entry = archive
+        .by_name(link)
+        .map_err(|_| bad(format!("the archive has no {link}, which main.xml names")))?;
+    if entry.size() != expected || expected > MAX_RATIO * entry.compressed_size().max(1) {
+        return Err(bad(format!(
+            "{what} need {expected} bytes; {link} holds {} ({} compressed)",
+            entry.size(),
+            entry.compressed_size()
+        )));
+    }
+    let mut raw = Vec::with_capacity(expected as usize);
+    (&mut entry)
+        .take(expected)
+        .read_to_end(&mut raw)
+        .map_err(|e| bad(format!("reading {link}: {e}")))?;
+    if raw.len() as u64 != expected {
+        return Err(bad(format!(
+            "{link} ends after {} of {expected} bytes",
+            raw.len()
+        )));
+    }
+    // The data's checksum, where main.xml records it, must be the data's: a file changed or
+    // damaged after it was written is refused, not read silently.
+    if let Some(recorded) = recorded {
+        let actual = hex(&Md5::digest(&raw));
+        if !recorded.trim().eq_ignore_ascii_case(&actual) {
+            return Err(bad(format!(
+                "{link} does not match main.xml's MD5ChecksumPointData (recorded {recorded}, the data's \
+                 {actual}): the file was changed or damaged after it was written"
+            )));
+        }
+    }
+    Ok(raw)
 }
 
 fn hex(digest: &[u8]) -> String {

@@ -19,10 +19,12 @@ use super::job::{AdhesiveMethod, Job, assemble, cells};
 use super::{AdhesiveReport, AdhesiveState, Iterations, Start};
 use crate::cg::{Scratch, solve_in};
 use crate::error::Result;
+use crate::method::Settings;
 use crate::options::{ContactOptions, Control};
 use crate::report::Termination;
 use crate::state::ContactState;
 use anderson::Anderson;
+use ljadhesion::{AdhesionLaw, Cells};
 use ndarray::{Array2, Zip};
 use std::time::Instant;
 
@@ -112,62 +114,32 @@ fn solve(
     let mut g_eff = Array2::<f64>::zeros(shape);
     let mut law_p = Array2::<f64>::zeros(shape);
     let mut residual_field = Array2::<f64>::zeros(shape);
-    let mut shifted = Array2::<f64>::zeros(shape);
-    let mut law_shifted = Array2::<f64>::zeros(shape);
     let mut cell_beta = Array2::<f64>::zeros(shape);
     let c_cell = domain.cell_compliance(op.e_star());
-    let probe = PROBE * law.range();
-    let mut beta = settings.mixing.relaxation.unwrap_or(1.0);
-    let beta_max = 1.0;
-    let beta_min = FLOOR * beta;
+    let mut relaxation = Relaxation::new(settings.mixing.relaxation.unwrap_or(1.0));
     let mut mixer = Anderson::new(if accelerated { settings.mixing.history } else { 0 });
     let (mut calls, mut inner_iterations, mut outer) = (0, 0, 0);
     let mut driver = Driver::new(settings, observer, started);
-    let mut falling = 0;
-    let mut stalls = 0;
     let mut approach = 0.0;
     loop {
         op.apply(p_a.view(), u_a.view_mut(), &mut scratch.ws)?;
         calls += 1;
         let adhesive_load = p_a.sum() * cell;
-        let (inner_control, shift) = match control {
-            Control::Approach(d) => (Control::Approach(0.0), d),
-            Control::CentralGap(gc) => (
-                Control::Approach(0.0),
-                g0[centre] + u_a[centre] + u_c[centre] - gc,
-            ),
-            Control::Force(w) | Control::MeanPressure(w) => {
-                let w = if let Control::MeanPressure(p) = control {
-                    p * n * cell
-                } else {
-                    w
-                };
-                let compressive = w - adhesive_load;
-                if compressive <= 0.0 {
-                    // No contact can carry a load this tensile against this attraction.
-                    driver.termination = Termination::PulledOff;
-                    break;
-                }
-                (Control::Force(compressive), 0.0)
-            }
+        let Some((inner_control, shift)) = inner_control(
+            control,
+            g0[centre] + u_a[centre] + u_c[centre],
+            adhesive_load,
+            n * cell,
+        ) else {
+            // No contact can carry a load this tensile against this attraction.
+            driver.termination = Termination::PulledOff;
+            break;
         };
         Zip::from(&mut g_eff)
             .and(&g0)
             .and(&u_a)
             .par_for_each(|g, &g0, &u| *g = g0 + u - shift);
-        // Inexact inner solves: the inner gap error need only be well below the outer one.
-        let inner_options = match driver.last() {
-            Some(r) => {
-                let mean = g_eff.mean().unwrap_or(0.0);
-                let rms = (g_eff.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / n).sqrt();
-                let wanted = INNER_FACTOR * r.min(1.0) * law.range() / rms.max(f64::MIN_POSITIVE);
-                ContactOptions {
-                    tolerance: wanted.clamp(settings.contact.tolerance, INNER_LOOSEST),
-                    ..settings.contact
-                }
-            }
-            None => settings.contact,
-        };
+        let inner_options = inner_options(driver.last(), &g_eff, settings, law.range());
         let report = solve_in(
             &mut scratch,
             g_eff.view(),
@@ -200,52 +172,16 @@ fn solve(
             break;
         }
         outer += 1;
-        // Adapt the relaxation: halve it (and forget the mixing history) when the residual
-        // grows, regrow it slowly while the residual falls.
-        // A jump into or out of contact makes the residual grow for a while by itself, so the
-        // factor has a floor.
-        if driver.since_progress(outer, residual) > STALL {
-            // Cycling between nearly equal states (a few cells at a contact edge, near a
-            // jump): Anderson mixing can orbit there for ever. Drop it for the damped plain
-            // relaxation, whose small steps settle on one state, with a lower floor.
-            stalls += 1;
-            driver.restart_stall_count(outer);
-            mixer = Anderson::new(0);
-            beta = (beta * STALL_CUT).max(beta_min * STALLED_FLOOR);
-            falling = 0;
-        } else if let Some(previous) = driver.previous()
-            && residual > previous
-        {
-            if residual > JUMP * previous || !accelerated {
-                beta = (beta * CUT).max(if stalls > 0 {
-                    beta_min * STALLED_FLOOR
-                } else {
-                    beta_min
-                });
-                mixer.reset();
-            }
-            falling = 0;
-        } else {
-            falling += 1;
-            if falling >= FALLING {
-                beta = (beta * GROWTH).min(beta_max);
-                falling = 0;
-            }
-        }
-        // A diagonal preconditioner: each cell relaxed by 1 / (1 + k c), with k its own
-        // attractive stiffness (from a probe of the law at slightly larger gaps) and c the
-        // cell's compliance, so that stiff cells at contact edges do not hold back the others.
-        Zip::from(&mut shifted)
-            .and(&contact.gap)
-            .par_for_each(|s, &g| *s = g + probe);
-        law.pressure_field(shifted.view(), &cells, law_shifted.view_mut())?;
-        Zip::from(&mut cell_beta)
-            .and(&law_shifted)
-            .and(&law_p)
-            .par_for_each(|b, &hi, &lo| {
-                let stiffness = ((lo - hi) / probe).max(0.0);
-                *b = beta / (1.0 + stiffness * c_cell);
-            });
+        relaxation.adapt(&mut driver, &mut mixer, outer, residual, accelerated);
+        cell_relaxation(
+            law,
+            &cells,
+            &contact.gap,
+            &law_p,
+            relaxation.beta,
+            c_cell,
+            &mut cell_beta,
+        )?;
         mixer.step(&mut p_a, residual_field.view(), cell_beta.view());
         // Attractive laws only: an extrapolated step must not push.
         p_a.par_mapv_inplace(|p| p.min(0.0));
@@ -259,7 +195,134 @@ fn solve(
     let iterations = Iterations::Loop {
         outer,
         inner: inner_iterations,
-        relaxation: beta,
+        relaxation: relaxation.beta,
     };
     Ok(assemble(job, contact, p_a, driver.finish(iterations, calls)))
+}
+
+/// The inner solve's control and the approach shift of the outer gap, under `control`: the
+/// approach itself; a central gap's, from the centre's undeformed gap plus its displacement
+/// `centre_gap`; under load control the compressive load left after the adhesive one
+/// (`None` when it is not positive: nothing can carry the load). `area` is the box's [m^2].
+fn inner_control(control: Control, centre_gap: f64, adhesive_load: f64, area: f64) -> Option<(Control, f64)> {
+    match control {
+        Control::Approach(d) => Some((Control::Approach(0.0), d)),
+        Control::CentralGap(gc) => Some((Control::Approach(0.0), centre_gap - gc)),
+        Control::Force(w) | Control::MeanPressure(w) => {
+            let w = if let Control::MeanPressure(p) = control {
+                p * area
+            } else {
+                w
+            };
+            let compressive = w - adhesive_load;
+            (compressive > 0.0).then_some((Control::Force(compressive), 0.0))
+        }
+    }
+}
+
+/// Inexact inner solves: the inner gap error need only be well below the outer one (`last`,
+/// in units of the law's `range`), relative to the RMS of the effective gap `g_eff`.
+fn inner_options(last: Option<f64>, g_eff: &Array2<f64>, settings: &Settings, range: f64) -> ContactOptions {
+    match last {
+        Some(r) => {
+            let n = g_eff.len() as f64;
+            let mean = g_eff.mean().unwrap_or(0.0);
+            let rms = (g_eff.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / n).sqrt();
+            let wanted = INNER_FACTOR * r.min(1.0) * range / rms.max(f64::MIN_POSITIVE);
+            ContactOptions {
+                tolerance: wanted.clamp(settings.contact.tolerance, INNER_LOOSEST),
+                ..settings.contact
+            }
+        }
+        None => settings.contact,
+    }
+}
+
+/// A diagonal preconditioner: each cell relaxed by `beta / (1 + k c)`, with `k` its own
+/// attractive stiffness (from a probe of the law at slightly larger gaps than `gap`, where it
+/// gives `law_p`) and `c` the cell's compliance, so that stiff cells at contact edges do not
+/// hold back the others.
+fn cell_relaxation(
+    law: &dyn AdhesionLaw,
+    cells: &Cells,
+    gap: &Array2<f64>,
+    law_p: &Array2<f64>,
+    beta: f64,
+    c_cell: f64,
+    cell_beta: &mut Array2<f64>,
+) -> Result<()> {
+    let probe = PROBE * law.range();
+    let shifted = gap.mapv(|g| g + probe);
+    let mut law_shifted = Array2::zeros(gap.dim());
+    law.pressure_field(shifted.view(), cells, law_shifted.view_mut())?;
+    Zip::from(cell_beta)
+        .and(&law_shifted)
+        .and(law_p)
+        .par_for_each(|b, &hi, &lo| {
+            let stiffness = ((lo - hi) / probe).max(0.0);
+            *b = beta / (1.0 + stiffness * c_cell);
+        });
+    Ok(())
+}
+
+/// The relaxation factor and its adaptation: halved (and the mixing history forgotten) when
+/// the residual grows, regrown slowly while it falls. A jump into or out of contact makes the
+/// residual grow for a while by itself, so the factor has a floor.
+struct Relaxation {
+    beta: f64,
+    floor: f64,
+    /// Outer iterations the residual has fallen in a row.
+    falling: usize,
+    stalls: usize,
+}
+
+impl Relaxation {
+    const MAX: f64 = 1.0;
+
+    fn new(beta: f64) -> Self {
+        Relaxation {
+            beta,
+            floor: FLOOR * beta,
+            falling: 0,
+            stalls: 0,
+        }
+    }
+
+    fn adapt(
+        &mut self,
+        driver: &mut Driver,
+        mixer: &mut Anderson,
+        outer: usize,
+        residual: f64,
+        accelerated: bool,
+    ) {
+        if driver.since_progress(outer, residual) > STALL {
+            // Cycling between nearly equal states (a few cells at a contact edge, near a
+            // jump): Anderson mixing can orbit there for ever. Drop it for the damped plain
+            // relaxation, whose small steps settle on one state, with a lower floor.
+            self.stalls += 1;
+            driver.restart_stall_count(outer);
+            *mixer = Anderson::new(0);
+            self.beta = (self.beta * STALL_CUT).max(self.floor * STALLED_FLOOR);
+            self.falling = 0;
+        } else if let Some(previous) = driver.previous()
+            && residual > previous
+        {
+            if residual > JUMP * previous || !accelerated {
+                self.beta = (self.beta * CUT).max(if self.stalls > 0 {
+                    self.floor * STALLED_FLOOR
+                } else {
+                    self.floor
+                });
+                mixer.reset();
+            }
+            self.falling = 0;
+        } else {
+            self.falling += 1;
+            if self.falling >= FALLING {
+                self.beta = (self.beta * GROWTH).min(Self::MAX);
+                self.falling = 0;
+            }
+        }
+    }
 }
