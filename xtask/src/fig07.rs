@@ -93,36 +93,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         let (p, c) = (total[(j, i)], compressive[(j, i)]);
         table.push(vec![x(i), p, c, p - c]);
     }
-    let profile =
-        |col: usize| -> Vec<(f64, f64)> { table.rows.iter().map(|r| (r[0], r[col] * 1e-6)).collect() };
-    let mut chart = Chart::new(
-        "Mid-plane cross-section (y = 0), smooth sphere, μ = 2, α = 1 z0",
-        "x/z0",
-        "pressure (MPa, compressive > 0)",
-    );
-    chart.x_range = Some((x(lo), x(hi - 1)));
-    chart
-        .curves
-        .push(Curve::new("total p_c + p_a", profile(1), Mark::Line, PALETTE[0]));
-    chart.curves.push(Curve::new(
-        "compressive p_c",
-        profile(2),
-        Mark::Dashed,
-        PALETTE[3],
-    ));
-    chart
-        .curves
-        .push(Curve::new("adhesive p_a", profile(3), Mark::Dashed, PALETTE[2]));
-    chart.curves.push(Curve::new(
-        "peak stress of the law",
-        vec![
-            (x(lo), -field.peak_adhesive_stress * 1e-6),
-            (x(hi - 1), -field.peak_adhesive_stress * 1e-6),
-        ],
-        Mark::Dashed,
-        GREY,
-    ));
-    chart.save(&ctx.options.out, "fig07_profile")?;
+    profile_chart(ctx, &table, (x(lo), x(hi - 1)), field.peak_adhesive_stress)?;
     report.images = vec!["fig07_map".into(), "fig07_profile".into()];
 
     let min = total.iter().copied().fold(f64::INFINITY, f64::min);
@@ -151,25 +122,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         field.peak_adhesive_stress * 1e-6,
         contact_radius / st.cell()
     ));
-    // The problem is symmetric about the apex, (n-1)/2: so should the pressure be.
-    let scale = total.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let asymmetry = total
-        .indexed_iter()
-        .map(|((j, i), &p)| (p - total[(n - 1 - j, n - 1 - i)]).abs())
-        .fold(0.0, f64::max)
-        / scale;
-    // Where the attraction sits: the centroid of the adhesive pressure, in cells from the apex.
-    let centre = (n - 1) as f64 / 2.0;
-    let (mut weight, mut sx, mut sy) = (0.0, 0.0, 0.0);
-    for ((j, i), &p) in total.indexed_iter() {
-        let w = (compressive[(j, i)] - p).max(0.0);
-        (weight, sx, sy) = (
-            weight + w,
-            sx + w * (i as f64 - centre),
-            sy + w * (j as f64 - centre),
-        );
-    }
-    let (lean_x, lean_y) = (sx / weight, sy / weight);
+    let (asymmetry, lean_x, lean_y) = symmetry(&total, &compressive);
     report.agreement.push(format!(
         "Symmetry about the apex: largest difference between mirror cells {:.1} % of the largest |pressure|; the \
          adhesive pressure's centroid lies {lean_x:+.3} cells along x and {lean_y:+.3} along y from the apex{}.",
@@ -193,4 +146,64 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         -min / field.peak_adhesive_stress
     );
     Ok(report)
+}
+
+/// The mid-plane section's chart: total, compressive and adhesive pressure from `table` over
+/// `x_range` [z0], beside the law's peak stress [Pa].
+fn profile_chart(ctx: &Context, table: &Table, x_range: (f64, f64), peak: f64) -> Result<()> {
+    let profile =
+        |col: usize| -> Vec<(f64, f64)> { table.rows.iter().map(|r| (r[0], r[col] * 1e-6)).collect() };
+    let mut chart = Chart::new(
+        "Mid-plane cross-section (y = 0), smooth sphere, μ = 2, α = 1 z0",
+        "x/z0",
+        "pressure (MPa, compressive > 0)",
+    );
+    chart.x_range = Some(x_range);
+    chart
+        .curves
+        .push(Curve::new("total p_c + p_a", profile(1), Mark::Line, PALETTE[0]));
+    chart.curves.push(Curve::new(
+        "compressive p_c",
+        profile(2),
+        Mark::Dashed,
+        PALETTE[3],
+    ));
+    chart
+        .curves
+        .push(Curve::new("adhesive p_a", profile(3), Mark::Dashed, PALETTE[2]));
+    chart.curves.push(Curve::new(
+        "peak stress of the law",
+        vec![(x_range.0, -peak * 1e-6), (x_range.1, -peak * 1e-6)],
+        Mark::Dashed,
+        GREY,
+    ));
+    chart.save(&ctx.options.out, "fig07_profile")?;
+    Ok(())
+}
+
+/// How far the pressure `total` is from mirror-symmetric about the apex (the largest
+/// difference of mirror cells over the largest |pressure|), and where the adhesive pressure's
+/// centroid lies from the apex [cells along x and y].
+fn symmetry(total: &Array2<f64>, compressive: &Array2<f64>) -> (f64, f64, f64) {
+    let n = total.nrows();
+    // The problem is symmetric about the apex, (n-1)/2: so should the pressure be.
+    let scale = total.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let asymmetry = total
+        .indexed_iter()
+        .map(|((j, i), &p)| (p - total[(n - 1 - j, n - 1 - i)]).abs())
+        .fold(0.0, f64::max)
+        / scale;
+    // Where the attraction sits: the centroid of the adhesive pressure, in cells from the apex.
+    let centre = (n - 1) as f64 / 2.0;
+    let (mut weight, mut sx, mut sy) = (0.0, 0.0, 0.0);
+    for ((j, i), &p) in total.indexed_iter() {
+        let w = (compressive[(j, i)] - p).max(0.0);
+        (weight, sx, sy) = (
+            weight + w,
+            sx + w * (i as f64 - centre),
+            sy + w * (j as f64 - centre),
+        );
+    }
+    let (lean_x, lean_y) = (sx / weight, sy / weight);
+    (asymmetry, lean_x, lean_y)
 }

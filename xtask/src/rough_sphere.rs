@@ -755,30 +755,42 @@ impl PullOffFigure<'_> {
                 ));
             }
         }
-        report.computed.push(format!(
-            "Rigid sphere R* = 100 µm with self-affine roughness (H = 0.8 unless said otherwise, Rq as on the axis) on \
-             a free grid, E* = 50 GPa, z0 = 0.3 nm, {}, tolerance {:e} z0; {} seeds per rough point (error bars: ± one \
-             standard error of the mean; each realisation's pull-off in fig{}_realisations.csv).",
-            match plan.law {
-                Law::Point => "Lennard-Jones point law solved by the energy descent (on cells of a process zone \
-                               within 2-3 % of its pull-off on cells half as wide, the paper's surface law 3-5 % \
-                               from its own, and that by the flow, `--rough-law surface`, 2.5 times as long: \
-                               docs/validation.md)",
-                _ => "the paper's Lennard-Jones surface law (Eq. 11) solved by the flow",
-            },
-            plan.tolerance,
-            plan.seeds.len(),
-            self.number,
-        ));
-        report.computed.push(format!(
-            "One roughness spectrum for every Tabor parameter (μ set by w0 alone): box {:.3} µm (3.5 zero-load JKR \
-             radii of μ = {}), roll-off at half the box, short cutoff {:.1} nm ({CUTOFF_CELLS} cells of the coarsest \
-             grid). Grids: {}.",
-            plan.length() * 1e6,
-            plan.all_mus().last().expect("the plan has Tabor parameters"),
-            plan.cutoff() * 1e9,
-            plan.resolution(&mus)
-        ));
+        report.computed.extend(self.described(ctx, &plan, points, &mus));
+        Ok(Drawn {
+            report,
+            curves,
+            other_spread,
+        })
+    }
+
+    /// What the figure computed, in words: the sphere, the law, the spectrum, the grids, what
+    /// was not run and the pull-off search.
+    fn described(&self, ctx: &crate::Context, plan: &Plan, points: &[Point], mus: &[u32]) -> Vec<String> {
+        let mut computed = Vec::new();
+        computed.push(format!(
+        "Rigid sphere R* = 100 µm with self-affine roughness (H = 0.8 unless said otherwise, Rq as on the axis) on \
+         a free grid, E* = 50 GPa, z0 = 0.3 nm, {}, tolerance {:e} z0; {} seeds per rough point (error bars: ± one \
+         standard error of the mean; each realisation's pull-off in fig{}_realisations.csv).",
+        match plan.law {
+            Law::Point => "Lennard-Jones point law solved by the energy descent (on cells of a process zone \
+                           within 2-3 % of its pull-off on cells half as wide, the paper's surface law 3-5 % \
+                           from its own, and that by the flow, `--rough-law surface`, 2.5 times as long: \
+                           docs/validation.md)",
+            _ => "the paper's Lennard-Jones surface law (Eq. 11) solved by the flow",
+        },
+        plan.tolerance,
+        plan.seeds.len(),
+        self.number,
+    ));
+        computed.push(format!(
+        "One roughness spectrum for every Tabor parameter (μ set by w0 alone): box {:.3} µm (3.5 zero-load JKR \
+         radii of μ = {}), roll-off at half the box, short cutoff {:.1} nm ({CUTOFF_CELLS} cells of the coarsest \
+         grid). Grids: {}.",
+        plan.length() * 1e6,
+        plan.all_mus().last().expect("the plan has Tabor parameters"),
+        plan.cutoff() * 1e9,
+        plan.resolution(mus)
+    ));
         let skipped: Vec<String> = plan
             .mus_of(self.number)
             .iter()
@@ -786,41 +798,37 @@ impl PullOffFigure<'_> {
             .map(|&mu| format!("μ = {mu} (needs {}² cells)", needed_n(mu, plan.length())))
             .collect();
         if !skipped.is_empty() {
-            report.computed.push(format!(
-                "Not run: {}, above this mode's cap of {}² cells; coarser cells trap the contact edge and overstate the pull-off by \
-                 more than the trends sought (μ = 7 on 256² cells, 1.7 process zones: 11-22 % above 384²).",
-                skipped.join(", "),
-                plan.max_n
-            ));
+            computed.push(format!(
+            "Not run: {}, above this mode's cap of {}² cells; coarser cells trap the contact edge and overstate the pull-off by \
+             more than the trends sought (μ = 7 on 256² cells, 1.7 process zones: 11-22 % above 384²).",
+            skipped.join(", "),
+            plan.max_n
+        ));
         }
         if ctx.quick() {
-            report.computed.push(
-                "Quick mode: Tabor parameter 2 only (the paper's μ = 5 and 7 need minutes per run); full mode runs \
-                 the paper's values."
-                    .into(),
-            );
-        }
-        report.computed.push(
-            "Pull-off: displacement-controlled cycle, preloaded to the smooth sphere's a0²/(2R) plus 3 Rq, unloaded \
-             in eighths of the preload until the load has risen back to half its minimum, then refined in \
-             fifths of a step around the minimum; pull-off force = - the most negative load."
+            computed.push(
+            "Quick mode: Tabor parameter 2 only (the paper's μ = 5 and 7 need minutes per run); full mode runs \
+             the paper's values."
                 .into(),
         );
+        }
+        computed.push(
+        "Pull-off: displacement-controlled cycle, preloaded to the smooth sphere's a0²/(2R) plus 3 Rq, unloaded \
+         in eighths of the preload until the load has risen back to half its minimum, then refined in \
+         fifths of a step around the minimum; pull-off force = - the most negative load."
+            .into(),
+    );
         let failed: usize = points
             .iter()
             .flat_map(|p| &p.outcomes)
             .filter(|o| !o.all_converged)
             .count();
         if failed > 0 {
-            report.computed.push(format!(
+            computed.push(format!(
                 "{failed} run(s) had a step that did not converge (see the CSV)."
             ));
         }
-        Ok(Drawn {
-            report,
-            curves,
-            other_spread,
-        })
+        computed
     }
 
     /// The tables `stem.csv` (a row a point) and `stem_realisations.csv` (a row a realisation)

@@ -408,14 +408,32 @@ fn challenge_mesh() -> Result<()> {
         }
     }
     let dirs = crate::series::run(&dir, &sweeps)?;
+    print_areas(&rows, &dirs, &loads, refine, (length, e_star, w0, z0))?;
+    eprintln!("runs in {} (resumable: the same command goes on)", dir.display());
+    Ok(())
+}
+
+/// The challenge-mesh study's table: each run's contact area at each of `loads` (every
+/// `refine`-th step), its cells in process zones, its solve time and whether it converged.
+fn print_areas(
+    rows: &[(String, usize)],
+    dirs: &[std::path::PathBuf],
+    loads: &[f64],
+    refine: usize,
+    (length, e_star, w0, z0): (f64, f64, f64, f64),
+) -> Result<()> {
     println!(
         "| law | n | cell / process zone | {} | solve [s] | all converged |",
-        loads.map(|p| format!("{p}")).join(" | ")
+        loads
+            .iter()
+            .map(|p| format!("{p}"))
+            .collect::<Vec<_>>()
+            .join(" | ")
     );
     println!("|---|---|---|{}---|---|", "---|".repeat(loads.len()));
     let lj = LennardJones::new(w0, z0)?;
     let zone = e_star * w0 / (lj.min_pressure() * lj.min_pressure());
-    for ((law, n), dir) in rows.iter().zip(&dirs) {
+    for ((law, n), dir) in rows.iter().zip(dirs) {
         let curve = crate::series::Curve::read(dir)?;
         let areas: Vec<String> = curve
             .numbers("contact_area_fraction")?
@@ -435,7 +453,6 @@ fn challenge_mesh() -> Result<()> {
             curve.converged()?.iter().all(|&c| c)
         );
     }
-    eprintln!("runs in {} (resumable: the same command goes on)", dir.display());
     Ok(())
 }
 
