@@ -285,24 +285,25 @@ pub fn describe(law: Law) -> &'static str {
 /// The adhesive process-zone length `E* w0 / sigma0^2` \[m\] of `law` with work `w0` (peak
 /// stress `sigma0`: `w0 / rho` for the exponential law, Lennard-Jones' largest tension).
 pub fn process_zone(w0: f64, law: Law) -> f64 {
-    let sigma0 = match law {
-        Law::Exponential => w0 / RANGE,
+    use ljadhesion::AdhesionLaw;
+    match law {
+        Law::Exponential => ljadhesion::ExponentialLaw::new(w0, RANGE).map(|l| l.process_zone(MODULUS)),
         Law::Surface | Law::Point => {
-            ljadhesion::LennardJones::new(w0, RANGE).map_or(f64::NAN, |lj| -lj.min_pressure())
+            ljadhesion::LennardJones::new(w0, RANGE).map(|lj| ljadhesion::PointLaw(lj).process_zone(MODULUS))
         }
-    };
-    MODULUS * w0 / (sigma0 * sigma0)
+    }
+    .unwrap_or(f64::NAN)
 }
 
 /// The Tabor parameter `(R w0^2 / (E*^2 rho^3))^(1/3)` (Müser's Tabor-like parameter for the
 /// exponential law; Tabor's with z0 for Lennard-Jones), with the local radius `R` \[m\].
 pub fn tabor(local_radius: f64, w0: f64) -> f64 {
-    (local_radius * w0 * w0 / (MODULUS * MODULUS * RANGE.powi(3))).cbrt()
+    theory::tabor_parameter(local_radius, w0, MODULUS, RANGE)
 }
 
 /// The work of adhesion [J/m^2] that gives Tabor parameter `mu` at local radius `R` \[m\].
 pub fn work_for_tabor(local_radius: f64, mu: f64) -> f64 {
-    (mu.powi(3) * MODULUS * MODULUS * RANGE.powi(3) / local_radius).sqrt()
+    theory::work_of_adhesion_of_tabor(mu, local_radius, MODULUS, RANGE)
 }
 
 /// The gap (m) along the middle column of the sweep in `dir` at step `k`: read from the kept

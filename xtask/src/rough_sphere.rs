@@ -35,13 +35,13 @@ pub fn tabor(mu: u32) -> f64 {
     theory::tabor_parameter(RADIUS, work_of_adhesion(mu), MODULUS, Z0)
 }
 
-/// The adhesive process-zone length `E* w0 / sigma0^2` \[m\] (sigma0 = 16 w0 / (9 sqrt 3 z0), the
-/// Lennard-Jones peak stress): the cell must not exceed it, or cells turn bistable and the
-/// solution is neither mesh-converged nor, often, found.
+/// The adhesive process-zone length \[m\] of the Lennard-Jones law at `mu`
+/// ([`ljadhesion::AdhesionLaw::process_zone`]): the cell must not exceed it, or cells turn
+/// bistable and the solution is neither mesh-converged nor, often, found.
 pub fn process_zone(mu: u32) -> f64 {
-    let w0 = work_of_adhesion(mu);
-    let sigma0 = 16.0 * w0 / (9.0 * 3f64.sqrt() * Z0);
-    MODULUS * w0 / (sigma0 * sigma0)
+    use ljadhesion::AdhesionLaw;
+    ljadhesion::LennardJones::new(work_of_adhesion(mu), Z0)
+        .map_or(f64::NAN, |lj| ljadhesion::PointLaw(lj).process_zone(MODULUS))
 }
 
 /// One rough sphere.

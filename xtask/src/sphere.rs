@@ -25,7 +25,7 @@ pub struct Setup {
 impl Setup {
     /// `mu^3 = R w0^2 / (E*^2 z0^3)` solved for w0 [J/m^2].
     pub fn work_of_adhesion(&self) -> f64 {
-        (self.mu.powi(3) * Z0.powi(3) * MODULUS * MODULUS / RADIUS).sqrt()
+        theory::work_of_adhesion_of_tabor(self.mu, RADIUS, MODULUS, Z0)
     }
 
     /// Cell size \[z0\].

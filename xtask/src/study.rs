@@ -431,8 +431,7 @@ fn print_areas(
             .join(" | ")
     );
     println!("|---|---|---|{}---|---|", "---|".repeat(loads.len()));
-    let lj = LennardJones::new(w0, z0)?;
-    let zone = e_star * w0 / (lj.min_pressure() * lj.min_pressure());
+    let zone = ljadhesion::PointLaw(LennardJones::new(w0, z0)?).process_zone(e_star);
     for ((law, n), dir) in rows.iter().zip(dirs) {
         let curve = crate::series::Curve::read(dir)?;
         let areas: Vec<String> = curve

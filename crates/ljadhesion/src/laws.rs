@@ -133,6 +133,43 @@ impl AdhesionLaw for LineLaw {
     }
 }
 
+/// Eq. 11 on one cell: the slopes `sx`, `sy` of the tilted cell from its node's separation to
+/// its +x and +y neighbours', its area factor `S`, and the mean Lennard-Jones pressure over
+/// the separations from the node to its +x neighbour; the cell's pressure is `S` times the
+/// mean. The pressure field and its stiffness rows both take it from here, so that they agree
+/// bit for bit.
+struct TiltedCell {
+    sx: f64,
+    sy: f64,
+    area: f64,
+    mean: f64,
+}
+
+impl TiltedCell {
+    /// The cell of gaps `[g1, g2, g3]` (node, +x, +y) \[m\], `(v1, v2)` the node's and the +x
+    /// neighbour's `z0 / z`, on cells of inverse spacings `(ix, iy)` \[1/m\].
+    fn of(lj: &LennardJones, (ix, iy): (f64, f64), [g1, g2, g3]: [f64; 3], (v1, v2): (f64, f64)) -> Self {
+        let (sx, sy, area) = tilt(
+            (ix, iy),
+            [lj.separation(g1), lj.separation(g2), lj.separation(g3)],
+        );
+        TiltedCell {
+            sx,
+            sy,
+            area,
+            mean: lj.mean_pressure_v(v1, v2),
+        }
+    }
+}
+
+/// The slopes `sx`, `sy` of a cell whose node, +x and +y neighbours sit at separations
+/// `[z1, z2, z3]` \[m\], on cells of inverse spacings `(ix, iy)` \[1/m\], and its area factor
+/// `S = sqrt(1 + sx^2 + sy^2)` (Eq. 11).
+fn tilt((ix, iy): (f64, f64), [z1, z2, z3]: [f64; 3]) -> (f64, f64, f64) {
+    let (sx, sy) = ((z2 - z1) * ix, (z3 - z1) * iy);
+    (sx, sy, (1.0 + sx * sx + sy * sy).sqrt())
+}
+
 impl AdhesionLaw for SurfaceLaw {
     fn pressure_field(&self, gap: ArrayView2<f64>, cells: &Cells, out: ArrayViewMut2<f64>) -> Result<()> {
         let lj = self.0;
@@ -144,9 +181,8 @@ impl AdhesionLaw for SurfaceLaw {
             out,
             |g| z0 / lj.separation(g),
             |g1, g2, g3, v1, v2| {
-                let (z1, z2, z3) = (lj.separation(g1), lj.separation(g2), lj.separation(g3));
-                let (sx, sy) = ((z2 - z1) * ix, (z3 - z1) * iy);
-                (1.0 + sx * sx + sy * sy).sqrt() * lj.mean_pressure_v(v1, v2)
+                let c = TiltedCell::of(&lj, (ix, iy), [g1, g2, g3], (v1, v2));
+                c.area * c.mean
             },
         )
     }
@@ -207,10 +243,7 @@ impl StiffnessRows for SurfaceLaw {
             out,
             |g| z0 / lj.separation(g),
             |g1, g2, g3, v1, v2| {
-                let (z1, z2, z3) = (lj.separation(g1), lj.separation(g2), lj.separation(g3));
-                let (sx, sy) = ((z2 - z1) * ix, (z3 - z1) * iy);
-                let area = (1.0 + sx * sx + sy * sy).sqrt();
-                let mean = lj.mean_pressure_v(v1, v2);
+                let TiltedCell { sx, sy, area, mean } = TiltedCell::of(&lj, (ix, iy), [g1, g2, g3], (v1, v2));
                 let (d1, d2) = lj.mean_pressure_slopes_v(v1, v2);
                 // The area factor's slopes by z1, z2 and z3, -(sx ix + sy iy) / S, sx ix / S and
                 // sy iy / S, times the mean (one division a cell: they were most of its time).
@@ -261,8 +294,7 @@ impl FieldPotential for SurfaceEnergyLaw {
             let (mz1, mz2) = (-v1 * v1 / z0 * m1, -v2 * v2 / z0 * m2);
             let mzz1 = v1 * v1 / (z0 * z0) * (2.0 * v1 * m1 + v1 * v1 * m11);
             let mzz2 = v2 * v2 / (z0 * z0) * (2.0 * v2 * m2 + v2 * v2 * m22);
-            let (sx, sy) = ((z2 - z1) * ix, (z3 - z1) * iy);
-            let area = (1.0 + sx * sx + sy * sy).sqrt();
+            let (sx, sy, area) = tilt((ix, iy), [z1, z2, z3]);
             let (a1, a2, a3) = (-(sx * ix + sy * iy) / area, sx * ix / area, sy * iy / area);
             let a11 = ((ix * ix + iy * iy) - a1 * a1) / area;
             let a22 = (ix * ix - a2 * a2) / area;

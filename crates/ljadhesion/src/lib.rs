@@ -114,6 +114,14 @@ pub trait AdhesionLaw: Sync + Send {
     /// Short name (`point`, `line`, `surface`, `exponential`, `dugdale`).
     fn name(&self) -> &'static str;
 
+    /// The adhesive process-zone length `E* w0 / sigma0^2` \[m\] on a half-space of composite
+    /// modulus `e_star` \[Pa\], `sigma0` the peak tension ([`AdhesionLaw::peak_pressure`]):
+    /// a cell wider than it holds on or lets go whole.
+    fn process_zone(&self, e_star: f64) -> f64 {
+        let sigma0 = -self.peak_pressure();
+        e_star * self.work_of_adhesion() / (sigma0 * sigma0)
+    }
+
     /// The Lennard-Jones law behind this one, if any: the point, line and surface laws' own,
     /// the Dugdale law's it was made equivalent to. Its `z0` is the length of the Tabor
     /// parameter.

@@ -161,10 +161,4 @@ impl LennardJones {
     pub fn stiffness_bound(&self) -> f64 {
         16.0 * self.w0 / (self.z0 * self.z0)
     }
-
-    /// Tabor parameter `mu = (R w0^2 / (E*^2 z0^3))^(1/3)` of a sphere of radius `radius` \[m\]
-    /// on a half-space of composite modulus `e_star` \[Pa\].
-    pub fn tabor_parameter(&self, radius: f64, e_star: f64) -> f64 {
-        (radius * self.w0 * self.w0 / (e_star * e_star * self.z0.powi(3))).cbrt()
-    }
 }

@@ -266,8 +266,7 @@ impl std::fmt::Debug for ContactProblem {
 /// `E* w0 / sigma0^2` must span at least one cell, or the adhesive zone at a contact edge
 /// falls inside one cell. Each message says how fine the grid should be.
 fn resolution_warnings(domain: &Domain, e_star: f64, law: &dyn AdhesionLaw) -> Vec<String> {
-    let sigma = -law.peak_pressure();
-    let process_zone = e_star * law.work_of_adhesion() / (sigma * sigma);
+    let process_zone = law.process_zone(e_star);
     let cell = domain.dx.max(domain.dy);
     let mut warnings = Vec::new();
     if cell > process_zone {

@@ -18,6 +18,13 @@ pub fn tabor_parameter(r: f64, w0: f64, e_star: f64, z0: f64) -> f64 {
     (r * w0 * w0 / (e_star * e_star * z0.powi(3))).cbrt()
 }
 
+/// The work of adhesion [J/m^2] that gives a sphere of radius `r` \[m\] the Tabor parameter
+/// `mu` ([`tabor_parameter`] solved for `w0`), with range `z0` \[m\] on a half-space of
+/// modulus `e_star` \[Pa\].
+pub fn work_of_adhesion_of_tabor(mu: f64, r: f64, e_star: f64, z0: f64) -> f64 {
+    (mu.powi(3) * z0.powi(3) * e_star * e_star / r).sqrt()
+}
+
 /// Maugis' parameter equivalent to a Lennard-Jones law of Tabor parameter `mu`: the Dugdale
 /// law with the same work of adhesion and peak stress gives `lambda = 1.157 mu`
 /// (docs/method.md section 8.3).

@@ -59,7 +59,7 @@ pub fn sphere_case(mu: f64, n: usize, half_width: f64) -> (Free, Array2<f64>, Su
     let op = Free::new(domain, E).unwrap();
     let g0 = sphere(&domain, R, SphereProfile::Paraboloid, None).unwrap();
     let law = SurfaceLaw(LennardJones::new(w0, Z0).unwrap());
-    assert!((law.0.tabor_parameter(R, E) / mu - 1.0).abs() < 1e-12);
+    assert!((theory::tabor_parameter(R, w0, E, Z0) / mu - 1.0).abs() < 1e-12);
     (op, g0, law, w0)
 }
 
