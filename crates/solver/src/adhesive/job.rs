@@ -41,8 +41,8 @@ impl Job<'_> {
     }
 }
 
-/// An adhesive method: a file or folder implementing this, a variant of [`Method`] (its name
-/// and description), and a line in the dispatch (`adhesive/mod.rs`).
+/// An adhesive method: a file or folder implementing this, and its entry in the table of
+/// methods (`method.rs`: the variant of [`Method`], its name, its implementation).
 pub(crate) trait AdhesiveMethod {
     /// Refuses, with the reason and a method that can, a problem this method cannot solve.
     fn check(&self, job: &Job) -> Result<()>;
