@@ -3,8 +3,8 @@
 //! warm-started from the last. Relative contact area against the reduced pressure
 //! p/(E* g_bar), and the gap along the mid cross-section.
 
-use crate::case::{Case, Law};
 use anyhow::{Context as _, Result, bail};
+use case::{Case, LawKind};
 use std::path::{Path, PathBuf};
 
 /// The challenge's box \[m\], modulus \[Pa\], and adhesion (work [J/m^2], and the range \[m\]:
@@ -21,7 +21,7 @@ const MAX_STEPS: usize = 200_000;
 /// whichever is longer (a coarser grid cannot carry shorter waves).
 pub fn case(n: usize, g_bar: f64, surface: Option<&PathBuf>) -> Case {
     let mut c = Case {
-        modulus: MODULUS,
+        modulus: Some(MODULUS),
         length: Some(LENGTH),
         ..Case::default()
     };
@@ -114,7 +114,7 @@ impl Run {
         let n = self.case.n.map_or("file".into(), |n| n.to_string());
         // The exponential law's runs keep their names from before the law was a choice.
         let name = match (self.case.law, self.case.work_of_adhesion) {
-            (Some(Law::Exponential), Some(w0)) => format!("n{n}_g{g:.6}_w0{w0:.6e}"),
+            (Some(LawKind::Exponential), Some(w0)) => format!("n{n}_g{g:.6}_w0{w0:.6e}"),
             (Some(law), Some(w0)) => format!("{}_n{n}_g{g:.6}_w0{w0:.6e}", law.name()),
             _ => format!("n{n}_g{g:.6}"),
         };
@@ -138,7 +138,7 @@ impl Run {
     /// What the sweep in `dir` found, from its curve (and the kept step's gap).
     fn outcome(&self, dir: &Path, stats: (f64, f64, f64, f64)) -> Result<Outcome> {
         let (_, local_radius, rms_height, cell) = stats;
-        let p = self.case.build()?;
+        let p = crate::problem(&self.case)?;
         let mean_g0 = p.initial_gap.mean().unwrap_or(0.0);
         let curve = crate::series::Curve::read(dir)?;
         let reduced: Vec<f64> = self.reduced.iter().chain(&self.unloading).copied().collect();
@@ -248,51 +248,49 @@ pub fn outcomes(ctx: &crate::Context, runs: &[Run]) -> Result<Vec<Outcome>> {
 }
 
 /// The challenge case with adhesion by `law` of work `w0` [J/m^2] and range [`RANGE`].
-pub fn adhesive(mut case: Case, w0: f64, law: Law) -> Case {
+pub fn adhesive(mut case: Case, w0: f64, law: LawKind) -> Case {
     case.law = Some(law);
     case.work_of_adhesion = Some(w0);
-    match law {
-        Law::Exponential => case.range = Some(RANGE),
-        Law::Surface | Law::Point => case.z0 = Some(RANGE),
+    if law.takes_z0() {
+        case.z0 = Some(RANGE);
+    } else {
+        case.range = Some(RANGE);
     }
     case
 }
 
 /// The law in a legend.
-pub fn label(law: Law) -> &'static str {
+pub fn label(law: LawKind) -> &'static str {
     match law {
-        Law::Exponential => "challenge's exponential law",
-        Law::Surface => "LJ surface law",
-        Law::Point => "LJ point law",
+        LawKind::Exponential => "challenge's exponential law",
+        LawKind::Surface => "LJ surface law",
+        LawKind::Point => "LJ point law",
+        other => other.name(),
     }
 }
 
 /// The law in a sentence of FIGURES.md.
-pub fn describe(law: Law) -> &'static str {
+pub fn describe(law: LawKind) -> &'static str {
     match law {
-        Law::Exponential => {
+        LawKind::Exponential => {
             "the challenge's own law, σ(g) = -(w0/ρ) exp(-g/ρ), ρ = 2.071 nm, with a hard wall (the paper \
              used its Lennard-Jones surface law: `--challenge-law surface`)"
         }
-        Law::Surface => {
+        LawKind::Surface => {
             "the paper's Lennard-Jones surface law (Eq. 11, each cell the mean of the law over its gaps), \
              z0 = 2.071 nm, solved by the flow"
         }
-        Law::Point => "Lennard-Jones at the nodes (the point law), z0 = 2.071 nm, with a hard wall at z0",
+        LawKind::Point => "Lennard-Jones at the nodes (the point law), z0 = 2.071 nm, with a hard wall at z0",
+        other => other.name(),
     }
 }
 
-/// The adhesive process-zone length `E* w0 / sigma0^2` \[m\] of `law` with work `w0` (peak
-/// stress `sigma0`: `w0 / rho` for the exponential law, Lennard-Jones' largest tension).
-pub fn process_zone(w0: f64, law: Law) -> f64 {
-    use ljadhesion::AdhesionLaw;
-    match law {
-        Law::Exponential => ljadhesion::ExponentialLaw::new(w0, RANGE).map(|l| l.process_zone(MODULUS)),
-        Law::Surface | Law::Point => {
-            ljadhesion::LennardJones::new(w0, RANGE).map(|lj| ljadhesion::PointLaw(lj).process_zone(MODULUS))
-        }
-    }
-    .unwrap_or(f64::NAN)
+/// The adhesive process-zone length \[m\] of `law` with work `w0` and range [`RANGE`]
+/// ([`ljadhesion::AdhesionLaw::process_zone`]).
+pub fn process_zone(w0: f64, law: LawKind) -> f64 {
+    adhesive(Case::default(), w0, law)
+        .law()
+        .map_or(f64::NAN, |l| l.process_zone(MODULUS))
 }
 
 /// The Tabor parameter `(R w0^2 / (E*^2 rho^3))^(1/3)` (Müser's Tabor-like parameter for the

@@ -262,7 +262,7 @@ pub fn run(ctx: &Context) -> Result<FigureReport> {
         small_load_slope(finest.plain),
         grid_name(ctx, finest.n),
         match law {
-            crate::case::Law::Surface => "the paper's law",
+            case::LawKind::Surface => "the paper's law",
             _ => "another law than the paper's",
         },
         finest.sticky.cell / zone,

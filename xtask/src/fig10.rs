@@ -228,7 +228,7 @@ fn gain_note(
             .collect::<Vec<_>>()
             .join("; "),
         match ctx.options.challenge_law {
-            crate::case::Law::Surface => "",
+            case::LawKind::Surface => "",
             _ => "The law is not the paper's (its Lennard-Jones surface law). ",
         },
         gradients

@@ -11,7 +11,6 @@
 //! this machine affords, stated in each figure's report.
 
 pub mod cache;
-pub mod case;
 pub mod challenge;
 pub mod fig05;
 pub mod fig06;
@@ -87,10 +86,10 @@ pub struct Options {
     pub progress: bool,
     /// The rough spheres' law (Figs. 11-14): the point law (the default, by the energy
     /// descent) or the paper's surface law (by the flow, 2.5 times the time).
-    pub rough_law: case::Law,
+    pub rough_law: case::LawKind,
     /// The adhesive law of the challenge's figures (Figs. 8-10): the paper's surface law (by
     /// the flow) or the challenge's exponential law.
-    pub challenge_law: case::Law,
+    pub challenge_law: case::LawKind,
 }
 
 pub const ALL: [u32; 10] = [5, 6, 7, 8, 9, 10, 11, 12, 13, 14];
@@ -246,11 +245,21 @@ pub fn figures(options: Options) -> Result<Vec<FigureReport>> {
 /// Statistics of the roughness behind `case` (its heights alone, periodic): RMS gradient
 /// [-], local radius (inverse RMS curvature) \[m\], Rq \[m\], cell \[m\].
 pub fn surface_statistics(case: &case::Case) -> Result<(f64, f64, f64, f64)> {
-    let (h, lx, ly) = case.heights()?.context("the case has no roughness")?;
-    let (ny, nx) = h.dim();
-    let grid = surfgen::Grid::new(nx, ny, lx, ly)?;
-    let s = gap_statistics(&h, &grid);
-    Ok((s.rms_gradient, s.local_radius, s.heights.rms_height, grid.dx()))
+    let surface = case.rough_surface()?.context("the case has no roughness")?;
+    let s = gap_statistics(&surface.heights, &surface.grid);
+    Ok((
+        s.rms_gradient,
+        s.local_radius,
+        s.heights.rms_height,
+        surface.grid.dx(),
+    ))
+}
+
+/// The library's problem of `case`, its defaults filled as the command line fills them.
+pub fn problem(case: &case::Case) -> Result<solver::ContactProblem> {
+    let mut case = case.clone();
+    case.fill_defaults("");
+    Ok(case.build()?.problem)
 }
 
 /// The statistics of the gap a flat leaves on periodic `heights`, as the problem sees it

@@ -123,12 +123,12 @@ fn run() -> Result<()> {
         fresh,
         progress: true,
         rough_law: match rough_law {
-            RoughLaw::Point => xtask::case::Law::Point,
-            RoughLaw::Surface => xtask::case::Law::Surface,
+            RoughLaw::Point => case::LawKind::Point,
+            RoughLaw::Surface => case::LawKind::Surface,
         },
         challenge_law: match challenge_law {
-            ChallengeLaw::Surface => xtask::case::Law::Surface,
-            ChallengeLaw::Exponential => xtask::case::Law::Exponential,
+            ChallengeLaw::Surface => case::LawKind::Surface,
+            ChallengeLaw::Exponential => case::LawKind::Exponential,
         },
     };
     if studies_only {

@@ -11,8 +11,8 @@
 //! displacement-controlled unloading from a fixed preload
 //! ([`solver::ContactProblem::pull_off`]).
 
-use crate::case::{Case, Law};
 use anyhow::{Context, Result};
+use case::{Case, LawKind};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -62,7 +62,7 @@ pub struct Job {
     /// Outer tolerance (mean gap error \[z0\]).
     pub tolerance: f64,
     /// The point law (by the energy descent) or the surface law (by the flow).
-    pub law: Law,
+    pub law: LawKind,
 }
 
 /// The roll-off wavelength [box sides]: half the box.
@@ -88,7 +88,7 @@ pub struct Outcome {
 
 impl Job {
     /// The smooth sphere of `mu` on an `n`^2 grid of side `length` \[m\].
-    pub fn smooth(mu: u32, n: usize, length: f64, tolerance: f64, law: Law) -> Job {
+    pub fn smooth(mu: u32, n: usize, length: f64, tolerance: f64, law: LawKind) -> Job {
         Job {
             mu,
             rq: 0.0,
@@ -120,7 +120,7 @@ impl Job {
         let l = self.length;
         let mut c = Case {
             sphere_radius: Some(RADIUS),
-            modulus: MODULUS,
+            modulus: Some(MODULUS),
             law: Some(self.law),
             work_of_adhesion: Some(self.w0()),
             z0: Some(Z0),
@@ -142,7 +142,7 @@ impl Job {
     fn name(&self) -> String {
         // The point law's runs keep the names they always had.
         let law = match self.law {
-            Law::Point => String::new(),
+            LawKind::Point => String::new(),
             _ => format!("{}_", self.law.name()),
         };
         format!(
@@ -219,8 +219,8 @@ impl Job {
     /// law (which has none).
     fn solver(&self) -> &'static str {
         match self.law {
-            Law::Point | Law::Exponential => "energy",
-            Law::Surface => "flow",
+            LawKind::Surface | LawKind::Line => "flow",
+            _ => "energy",
         }
     }
 
@@ -307,7 +307,7 @@ pub struct Plan {
     /// problems and moves the pull-off by less than 1e-4 relative where both converge).
     pub tolerance: f64,
     /// The law (`Options::rough_law`).
-    pub law: Law,
+    pub law: LawKind,
     /// The Tabor parameters of Figs. 11, 12 and 13-14: the paper's in full mode, mu = 2 only in
     /// quick mode. Those whose process zone `max_n` cannot resolve are not run
     /// ([`Plan::mus_run`]).
@@ -320,7 +320,7 @@ pub fn plan(ctx: &crate::Context) -> Plan {
 
 impl Plan {
     /// The plan of quick mode (`quick`) or of full mode, with `law`.
-    pub fn new(quick: bool, law: Law) -> Plan {
+    pub fn new(quick: bool, law: LawKind) -> Plan {
         Plan {
             max_n: if quick { 64 } else { 512 },
             seeds: if quick { vec![1, 2] } else { (1..=10).collect() },
@@ -537,10 +537,10 @@ pub fn points(ctx: &crate::Context, wanted: &[Spec]) -> Result<Vec<Point>> {
 
 /// The other law than the plan's: the surface law beside the point law, the point law beside
 /// the surface law.
-fn other(law: Law) -> Law {
+fn other(law: LawKind) -> LawKind {
     match law {
-        Law::Point => Law::Surface,
-        _ => Law::Point,
+        LawKind::Point => LawKind::Surface,
+        _ => LawKind::Point,
     }
 }
 
@@ -576,9 +576,9 @@ pub fn beside(ctx: &crate::Context, specs: &[Spec]) -> Result<Vec<Point>> {
 }
 
 /// The law and its method as the figures' legends and reports name them.
-fn law_words(law: Law) -> &'static str {
+fn law_words(law: LawKind) -> &'static str {
     match law {
-        Law::Point => "point law (by the energy descent)",
+        LawKind::Point => "point law (by the energy descent)",
         _ => "surface law (Eq. 11, by the flow)",
     }
 }
@@ -772,7 +772,7 @@ impl PullOffFigure<'_> {
          a free grid, E* = 50 GPa, z0 = 0.3 nm, {}, tolerance {:e} z0; {} seeds per rough point (error bars: ± one \
          standard error of the mean; each realisation's pull-off in fig{}_realisations.csv).",
         match plan.law {
-            Law::Point => "Lennard-Jones point law solved by the energy descent (on cells of a process zone \
+            LawKind::Point => "Lennard-Jones point law solved by the energy descent (on cells of a process zone \
                            within 2-3 % of its pull-off on cells half as wide, the paper's surface law 3-5 % \
                            from its own, and that by the flow, `--rough-law surface`, 2.5 times as long: \
                            docs/validation.md)",
@@ -902,7 +902,7 @@ impl PullOffFigure<'_> {
     /// The report's line on the other law's points beside the figure's own: per Tabor
     /// parameter, how many are whole and their pull-off over the figure's law's, realisation
     /// by realisation (the same surfaces).
-    fn compared(points: &[Point], beside: &[Point], own: Law, other: Law) -> String {
+    fn compared(points: &[Point], beside: &[Point], own: LawKind, other: LawKind) -> String {
         let mut mus: Vec<u32> = points.iter().map(|p| p.spec.mu).collect();
         mus.dedup();
         let parts: Vec<String> = mus
@@ -1032,7 +1032,7 @@ mod tests {
             rqs: vec![],
             hursts: vec![],
             tolerance: 1e-5,
-            law: Law::Point,
+            law: LawKind::Point,
             mus: [vec![2, 5], vec![5, 7], vec![2, 5, 7]],
         };
         // The box of the stickiest: mu = 7's contact is the widest.
@@ -1074,16 +1074,16 @@ mod tests {
 
     #[test]
     fn the_surface_law_runs_by_the_flow_under_a_name_of_its_own() {
-        let point = Job::smooth(5, 64, 1e-6, 1e-5, Law::Point);
+        let point = Job::smooth(5, 64, 1e-6, 1e-5, LawKind::Point);
         let surface = Job {
-            law: Law::Surface,
+            law: LawKind::Surface,
             ..point
         };
         let keys = |j: &Job| (j.keys(None)["law"].clone(), j.keys(None)["solver"].clone());
         assert_eq!(keys(&point), ("point".into(), "energy".into()));
         assert_eq!(keys(&surface), ("surface".into(), "flow".into()));
         assert_ne!(point.name(), surface.name());
-        assert_eq!(surface.case().law, Some(Law::Surface));
+        assert_eq!(surface.case().law, Some(LawKind::Surface));
     }
 
     #[test]

@@ -2,8 +2,8 @@
 //! paraboloid of radius R = 1000 z0 on a free grid, Tabor parameter set through w0. Loads in
 //! units of 2 pi R w0 and approaches in units of z0, as Greenwood (1997) plots them.
 
-use crate::case::{Case, Law};
 use anyhow::Result;
+use case::{Case, LawKind};
 use serde::{Deserialize, Serialize};
 use solver::{AdhesiveState, Control, PullOffSearch, Settings, SweepPoint};
 use std::f64::consts::PI;
@@ -57,8 +57,8 @@ impl Setup {
     pub fn case(&self) -> Case {
         Case {
             sphere_radius: Some(RADIUS),
-            modulus: MODULUS,
-            law: Some(Law::Surface),
+            modulus: Some(MODULUS),
+            law: Some(LawKind::Surface),
             work_of_adhesion: Some(self.work_of_adhesion()),
             z0: Some(Z0),
             n: Some(self.n),
@@ -120,7 +120,7 @@ impl Path {
 
     /// Solves the path with continuation; `on_state` sees every step's state.
     pub fn solve_with(&self, on_state: &mut dyn FnMut(usize, &AdhesiveState)) -> Result<Vec<Step>> {
-        let p = self.setup.case().build()?;
+        let p = crate::problem(&self.setup.case())?;
         let points = p.sweep(
             &self.controls(),
             None,
@@ -153,7 +153,7 @@ impl Path {
         let (By::Approach, Some(turn)) = (self.by, turn) else {
             return self.solve_with(&mut |_, _| {});
         };
-        let p = self.setup.case().build()?;
+        let p = crate::problem(&self.setup.case())?;
         let settings = Settings::default();
         let mut top = None;
         let loading = &self.controls()[..turn];

@@ -476,8 +476,8 @@ where
 /// spans five cells of 90^2, so every grid keeps the spectrum). Does the surface law's cell
 /// integral make the pull-off less dependent on the mesh than the point law, as the paper argues?
 fn rough_sphere_mesh() -> Result<()> {
-    use crate::case::Law;
     use crate::rough_sphere::{Job, Plan, process_zone};
+    use case::LawKind;
     let sizes: Vec<usize> = list("SIZES", "90,135,270,540")?;
     let laws: Vec<String> = list("LAWS", "point,surface")?;
     let seeds: Vec<u64> = list("SEEDS", "1")?;
@@ -486,7 +486,7 @@ fn rough_sphere_mesh() -> Result<()> {
         bail!("every size must divide the finest ({finest}); {n} does not");
     }
     let (mu, rq) = (5, 2.0);
-    let plan = Plan::new(false, Law::Point);
+    let plan = Plan::new(false, LawKind::Point);
     let dir = std::path::PathBuf::from("target/rough-sphere-mesh");
     let surfaces = dir.join("surfaces");
     std::fs::create_dir_all(&surfaces)?;
@@ -498,9 +498,9 @@ fn rough_sphere_mesh() -> Result<()> {
             cutoff: plan.cutoff(),
             seed,
             n: finest,
-            ..Job::smooth(mu, finest, plan.length(), plan.tolerance, Law::Point)
+            ..Job::smooth(mu, finest, plan.length(), plan.tolerance, LawKind::Point)
         };
-        let (heights, _, _) = fine.case().heights()?.context("the job is rough")?;
+        let heights = fine.case().rough_surface()?.context("the job is rough")?.heights;
         for &n in &sizes {
             let stride = finest / n;
             // Named by the grid it was sampled from too: a finished run is never redone.
@@ -510,8 +510,8 @@ fn rough_sphere_mesh() -> Result<()> {
             surfgen::io::write_npy(&sampled, &path)?;
             for law in &laws {
                 let law = match law.as_str() {
-                    "point" => Law::Point,
-                    "surface" => Law::Surface,
+                    "point" => LawKind::Point,
+                    "surface" => LawKind::Surface,
                     other => bail!("unknown law `{other}` (point, surface)"),
                 };
                 let job = Job { n, law, ..fine };
@@ -528,7 +528,7 @@ fn rough_sphere_mesh() -> Result<()> {
     let dirs = crate::series::run(&dir, &sweeps)?;
     println!("| law | n | cell / process zone | pull-off / (pi R w0), by seed | wall [s] | all converged |");
     println!("|---|---|---|---|---|---|");
-    for law in [Law::Point, Law::Surface] {
+    for law in [LawKind::Point, LawKind::Surface] {
         for &n in &sizes {
             let found: Vec<_> = jobs
                 .iter()

@@ -44,8 +44,8 @@ fn quick_mode_regenerates_every_figure() {
                 challenge_surface: None,
                 fresh: true,
                 progress: false,
-                rough_law: xtask::case::Law::Point,
-                challenge_law: xtask::case::Law::Surface,
+                rough_law: case::LawKind::Point,
+                challenge_law: case::LawKind::Surface,
             })
         })
         .unwrap();
@@ -95,8 +95,8 @@ fn quick_mode_regenerates_every_figure() {
         challenge_surface: None,
         fresh: false,
         progress: false,
-        rough_law: xtask::case::Law::Point,
-        challenge_law: xtask::case::Law::Surface,
+        rough_law: case::LawKind::Point,
+        challenge_law: case::LawKind::Surface,
     })
     .unwrap();
     let first = reports.iter().find(|r| r.number == 8).unwrap();

@@ -237,6 +237,19 @@ impl Case {
         })
     }
 
+    /// The roughness the case presses, read or generated, on its grid; `None` for a smooth
+    /// body.
+    pub fn rough_surface(&self) -> Result<Option<Surface>> {
+        if let (Some(surface), _) = self.roughness(None)? {
+            return Ok(Some(surface));
+        }
+        let grid = self.grid()?;
+        match self.generated(grid)? {
+            Some(heights) => Ok(Some(Surface::new(heights, grid, true)?)),
+            None => Ok(None),
+        }
+    }
+
     /// The grid of a case without a surface file: `n` (and `ny`) points over `length` (and
     /// `length_y`).
     fn grid(&self) -> Result<Grid> {

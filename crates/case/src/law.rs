@@ -9,21 +9,29 @@ use ljadhesion::{
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
-/// The laws, one entry each: the variant of [`LawKind`] with its doc (the help text; its name
-/// in case files is the variant's in snake_case, on the command line in kebab-case), whether
-/// the law takes `z0`, and how it is made from the keys. Adding a law is its type in
-/// `ljadhesion` and one entry here.
+/// The laws, one entry each: the variant of [`LawKind`] with its doc (the help text), its name
+/// in case files (on the command line the same in kebab-case), whether the law takes `z0`, and
+/// how it is made from the keys. Adding a law is its type in `ljadhesion` and one entry here.
 macro_rules! laws {
-    ($($(#[doc = $doc:literal])* $variant:ident (z0: $z0:literal) => $make:expr,)*) => {
+    ($($(#[doc = $doc:literal])* $variant:ident = $name:literal (z0: $z0:literal) => $make:expr,)*) => {
         /// An adhesive law by its name in case files and on the command line.
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
         #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
-        #[serde(rename_all = "snake_case")]
         pub enum LawKind {
-            $($(#[doc = $doc])* $variant,)*
+            $($(#[doc = $doc])* #[serde(rename = $name)] $variant,)*
         }
 
         impl LawKind {
+            /// Every law, in the table's order.
+            pub const ALL: &'static [LawKind] = &[$(LawKind::$variant),*];
+
+            /// The law's name in case files.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(LawKind::$variant => $name,)*
+                }
+            }
+
             /// Whether the law takes the key `z0` (the Lennard-Jones laws' equilibrium separation).
             pub fn takes_z0(self) -> bool {
                 match self {
@@ -46,23 +54,23 @@ macro_rules! laws {
 
 laws! {
     /// No adhesion.
-    None (z0: false) => |_| Ok(Arc::new(NoAdhesion)),
+    None = "none" (z0: false) => |_| Ok(Arc::new(NoAdhesion)),
     /// Lennard-Jones averaged over the tilted cell (the paper's Eq. 11).
-    Surface (z0: true) => |k| Ok(Arc::new(SurfaceLaw(k.lennard_jones()?))),
+    Surface = "surface" (z0: true) => |k| Ok(Arc::new(SurfaceLaw(k.lennard_jones()?))),
     /// Minus the gradient of the Lennard-Jones energy integrated over the tilted cells: Eq. 11's
     /// energy form, which the energy descent minimises.
-    SurfaceEnergy (z0: true) => |k| Ok(Arc::new(SurfaceEnergyLaw(k.lennard_jones()?))),
+    SurfaceEnergy = "surface_energy" (z0: true) => |k| Ok(Arc::new(SurfaceEnergyLaw(k.lennard_jones()?))),
     /// Lennard-Jones averaged along x (Medina & Dini 2014).
-    Line (z0: true) => |k| Ok(Arc::new(LineLaw(k.lennard_jones()?))),
+    Line = "line" (z0: true) => |k| Ok(Arc::new(LineLaw(k.lennard_jones()?))),
     /// Lennard-Jones at the node.
-    Point (z0: true) => |k| Ok(Arc::new(PointLaw(k.lennard_jones()?))),
+    Point = "point" (z0: true) => |k| Ok(Arc::new(PointLaw(k.lennard_jones()?))),
     /// -(w0/range) exp(-g/range), the contact-mechanics challenge's law.
-    Exponential (z0: false) => |k| Ok(Arc::new(ExponentialLaw::new(
+    Exponential = "exponential" (z0: false) => |k| Ok(Arc::new(ExponentialLaw::new(
         k.work_of_adhesion()?,
         k.range.context("the exponential law needs --range rho [m]")?,
     )?)),
     /// -w0/range for g < range (Maugis-Dugdale).
-    Dugdale (z0: true) => |k| k.dugdale(),
+    Dugdale = "dugdale" (z0: true) => |k| k.dugdale(),
 }
 
 /// The keys a law is made from.
@@ -111,7 +119,7 @@ impl LawKeys {
 
 impl Case {
     /// The case's adhesive law (none without one).
-    pub(crate) fn law(&self) -> Result<Arc<dyn AdhesionLaw>> {
+    pub fn law(&self) -> Result<Arc<dyn AdhesionLaw>> {
         self.law.unwrap_or(LawKind::None).make(&LawKeys {
             work_of_adhesion: self.work_of_adhesion,
             z0: self.z0,
