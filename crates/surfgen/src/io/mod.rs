@@ -55,7 +55,7 @@ mod options;
 mod text;
 
 pub use format::Format;
-pub use options::{ReadOptions, Unmeasured};
+pub use options::{MAX_FILLED_FRACTION, ReadOptions, Unmeasured};
 
 use crate::error::{Result, SurfError};
 use crate::generate::SurfaceSpec;

@@ -16,7 +16,7 @@ pub struct ReadOptions {
     /// Whether a file without metadata is periodic (an instrument's file is a measurement:
     /// never).
     pub periodic: bool,
-    /// Which channel of a multi-channel file to read, by its index in [`channels`]; `None`
+    /// Which channel of a multi-channel file to read, by its index in [`super::channels`]; `None`
     /// reads the first channel of heights.
     pub channel: Option<usize>,
     /// What to do with points the instrument marks as not measured.
@@ -30,7 +30,7 @@ pub enum Unmeasured {
     /// An error that counts them.
     #[default]
     Refuse,
-    /// Filled by harmonic interpolation from the measured points around them ([`fill_harmonic`]),
+    /// Filled by harmonic interpolation from the measured points around them ([`super::fill_harmonic`]),
     /// up to this fraction of the points, in [0, 1] (more is refused).
     FillUpTo(f64),
 }
