@@ -13,7 +13,8 @@ use ljadhesion::AdhesionLaw;
 /// The adhesive methods, one entry each: the variant of [`Method`] with its doc, its name on
 /// the command line and in case files, and its implementation (a type in `adhesive/` that
 /// implements `AdhesiveMethod`). `$then` is the macro that expands the table: [`Method`] here,
-/// the dispatch in `adhesive`. Adding a method is its folder and one entry.
+/// the dispatch in `adhesive`. Adding a method is its folder (declared by its `mod` line in
+/// `adhesive`) and one entry.
 macro_rules! adhesive_methods {
     ($then:ident) => {
         $then! {

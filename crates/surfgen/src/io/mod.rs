@@ -50,11 +50,9 @@ mod x3p;
 
 pub use fill::fill_harmonic;
 pub use npy::write_array as write_npy;
-mod format;
 mod options;
 mod text;
 
-pub use format::Format;
 pub use options::{MAX_FILLED_FRACTION, ReadOptions, Unmeasured};
 
 use crate::error::{Result, SurfError};
@@ -65,6 +63,119 @@ use crate::stats::Statistics;
 use ndarray::Array2;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
+
+/// A reader of a format of several channels: each channel and how to read it.
+type LayerReader = for<'a> fn(&'a [u8], &Path) -> Result<Vec<Layer<'a>>>;
+/// How a format is read.
+#[derive(Clone, Copy)]
+enum Reader {
+    /// One surface.
+    Surface(fn(&Path, &ReadOptions) -> Result<Measurement>),
+    /// A surface or a line scan (a text matrix).
+    Topography(fn(&Path, &ReadOptions) -> Result<Topography>),
+    /// Several channels ([`Layer`]s), each read when asked for.
+    Layers(LayerReader),
+}
+
+/// The file formats, one entry each: its variant of [`Format`], its extensions (lower case),
+/// how it is read, whether it is an instrument's measurement (never periodic, whatever the
+/// options assume), and its writer, if it has one. Adding a format is its file and one entry.
+macro_rules! formats {
+    ($($variant:ident [$($extension:literal),+] $reader:expr, instrument: $instrument:literal, write: $writer:expr;)*) => {
+        /// The file formats, chosen by extension.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum Format {
+            $($variant,)*
+        }
+
+        impl Format {
+            /// Every format, in the table's order.
+            const ALL: &'static [Format] = &[$(Format::$variant),*];
+
+            /// The format's extensions, lower case.
+            fn extensions(self) -> &'static [&'static str] {
+                match self {
+                    $(Format::$variant => &[$($extension),+],)*
+                }
+            }
+
+            fn reader(self) -> Reader {
+                match self {
+                    $(Format::$variant => $reader,)*
+                }
+            }
+
+            /// Whether a file of this format is an instrument's measurement.
+            fn instrument(self) -> bool {
+                match self {
+                    $(Format::$variant => $instrument,)*
+                }
+            }
+
+            fn writer(self) -> Option<fn(&Surface, &Path) -> Result<()>> {
+                match self {
+                    $(Format::$variant => $writer,)*
+                }
+            }
+        }
+    };
+}
+
+formats! {
+    Npy ["npy"] Reader::Surface(npy::read), instrument: false, write: None;
+    Matrix ["txt", "dat", "asc", "csv"] Reader::Topography(text::read_matrix), instrument: false, write: Some(text::write_matrix);
+    Xyh ["xyz", "xyh"] Reader::Surface(text::read_xyh), instrument: false, write: Some(text::write_xyh);
+    Gsf ["gsf"] Reader::Surface(gsf::read), instrument: false, write: Some(gsf::write);
+    X3p ["x3p"] Reader::Surface(x3p::read), instrument: false, write: Some(x3p::write);
+    Sdf ["sdf"] Reader::Surface(sdf::read), instrument: false, write: Some(sdf::write);
+    NetCdf ["nc"] Reader::Surface(netcdf::read), instrument: false, write: Some(netcdf::write);
+    Tmd ["tmd"] Reader::Surface(tmd::read), instrument: true, write: None;
+    Mi ["mi"] Reader::Layers(mi::layers), instrument: true, write: None;
+    Nid ["nid"] Reader::Layers(nid::layers), instrument: true, write: None;
+    Sur ["sur"] Reader::Surface(sur::read), instrument: true, write: None;
+    Opd ["opd"] Reader::Surface(opd::read), instrument: true, write: None;
+    Di ["di", "spm"] Reader::Layers(di::layers), instrument: true, write: None;
+    Ibw ["ibw"] Reader::Layers(ibw::layers), instrument: true, write: None;
+    Frt ["frt"] Reader::Surface(frt::read), instrument: true, write: None;
+    Gwy ["gwy"] Reader::Layers(gwy::layers), instrument: true, write: None;
+    Hdf5 ["h5", "hdf5", "hdf", "datx"] Reader::Layers(h5::layers), instrument: false, write: None;
+    Mnt ["mnt"] Reader::Layers(mnt::layers), instrument: true, write: None;
+}
+
+impl Format {
+    /// The format of `path`, from its extension.
+    pub fn of(path: &Path) -> Result<Format> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase())
+            .unwrap_or_default();
+        if let Some(&format) = Format::ALL
+            .iter()
+            .find(|f| f.extensions().contains(&ext.as_str()))
+        {
+            return Ok(format);
+        }
+        // Nanoscope's older files are numbered: .000, .001, ...
+        if ext.len() == 3 && ext.bytes().all(|b| b.is_ascii_digit()) {
+            return Ok(Format::Di);
+        }
+        let known = Format::ALL
+            .iter()
+            .map(|f| format!(".{}", f.extensions().join("/.")))
+            .collect::<Vec<_>>()
+            .join(", ");
+        Err(SurfError::parse(
+            path,
+            None,
+            if ext.is_empty() {
+                format!("the file name has no extension, which names the format: give one of {known}")
+            } else {
+                format!("unknown surface format '.{ext}' (known: {known})")
+            },
+        ))
+    }
+}
 
 /// A height map on its grid.
 #[derive(Clone, Debug, PartialEq)]
@@ -396,20 +507,7 @@ pub fn read_topography(path: &Path, options: &ReadOptions) -> Result<Topography>
         return Err(SurfError::parse(path, None, "is a directory, not a surface file"));
     }
     let format = Format::of(path)?;
-    // An instrument's file is a measurement, never periodic, whatever `options` assume.
-    let instrument = matches!(
-        format,
-        Format::Tmd
-            | Format::Mi
-            | Format::Nid
-            | Format::Sur
-            | Format::Opd
-            | Format::Frt
-            | Format::Di
-            | Format::Ibw
-            | Format::Gwy
-            | Format::Mnt
-    );
+    let instrument = format.instrument();
     let options = &ReadOptions {
         periodic: options.periodic && !instrument,
         ..*options
@@ -480,20 +578,11 @@ fn read_single(path: &Path, format: Format, options: &ReadOptions) -> Result<Top
             format!("no channel {c}: the file holds one surface (channel 0)"),
         ));
     }
-    Ok(Topography::Surface(match format {
-        Format::Npy => npy::read(path, options)?,
-        Format::Matrix => return text::read_matrix(path, options),
-        Format::Xyh => text::read_xyh(path, options)?,
-        Format::Gsf => gsf::read(path, options)?,
-        Format::X3p => x3p::read(path, options)?,
-        Format::Sdf => sdf::read(path, options)?,
-        Format::NetCdf => netcdf::read(path, options)?,
-        Format::Tmd => tmd::read(path, options)?,
-        Format::Sur => sur::read(path, options)?,
-        Format::Opd => opd::read(path, options)?,
-        Format::Frt => frt::read(path, options)?,
-        _ => unreachable!("formats of several channels are read above"),
-    }))
+    match format.reader() {
+        Reader::Surface(read) => Ok(Topography::Surface(read(path, options)?)),
+        Reader::Topography(read) => read(path, options),
+        Reader::Layers(_) => unreachable!("formats of several channels are read by their layers"),
+    }
 }
 
 /// What a number of a file's header is, and so what it must be.
@@ -596,21 +685,12 @@ pub fn channel_index(path: &Path, options: &ReadOptions, key: &str) -> Result<us
         })
 }
 
-/// A reader of a format of several channels: each channel and how to read it.
-type LayerReader = for<'a> fn(&'a [u8], &Path) -> Result<Vec<Layer<'a>>>;
-
 /// The reader of `format` if it holds several channels; `None` for a format of one surface.
 fn layer_reader(format: Format) -> Option<LayerReader> {
-    Some(match format {
-        Format::Mi => mi::layers,
-        Format::Nid => nid::layers,
-        Format::Di => di::layers,
-        Format::Ibw => ibw::layers,
-        Format::Gwy => gwy::layers,
-        Format::Hdf5 => h5::layers,
-        Format::Mnt => mnt::layers,
-        _ => return None,
-    })
+    match format.reader() {
+        Reader::Layers(reader) => Some(reader),
+        Reader::Surface(_) | Reader::Topography(_) => None,
+    }
 }
 
 fn read_bytes(path: &Path) -> Result<Vec<u8>> {
@@ -656,19 +736,14 @@ pub fn write(surface: &Surface, path: &Path, metadata: Option<&Metadata>) -> Res
         npy::write_array(&surface.heights, path)?;
         return write_metadata(path, metadata.unwrap_or(&Metadata::of(surface)));
     }
-    atomically(path, |p| match format {
-        Format::Matrix => text::write_matrix(surface, p),
-        Format::Xyh => text::write_xyh(surface, p),
-        Format::Gsf => gsf::write(surface, p),
-        Format::X3p => x3p::write(surface, p),
-        Format::Sdf => sdf::write(surface, p),
-        Format::NetCdf => netcdf::write(surface, p),
-        _ => Err(SurfError::parse(
+    let Some(writer) = format.writer() else {
+        return Err(SurfError::parse(
             path,
             None,
             "instruments' own formats are read, not written: write .x3p, .sdf or .nc for other tools",
-        )),
-    })
+        ));
+    };
+    atomically(path, |p| writer(surface, p))
 }
 
 /// Writes `path` whole or not at all: `write` writes a hidden sibling of the same extension
