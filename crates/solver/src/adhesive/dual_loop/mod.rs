@@ -114,8 +114,7 @@ fn solve(
     let mut g_eff = Array2::<f64>::zeros(shape);
     let mut law_p = Array2::<f64>::zeros(shape);
     let mut residual_field = Array2::<f64>::zeros(shape);
-    let mut cell_beta = Array2::<f64>::zeros(shape);
-    let c_cell = domain.cell_compliance(op.e_star());
+    let mut cell_beta = CellRelaxation::new(shape, domain.cell_compliance(op.e_star()), law.range());
     let mut relaxation = Relaxation::new(settings.mixing.relaxation.unwrap_or(1.0));
     let mut mixer = Anderson::new(if accelerated { settings.mixing.history } else { 0 });
     let (mut calls, mut inner_iterations, mut outer) = (0, 0, 0);
@@ -173,16 +172,8 @@ fn solve(
         }
         outer += 1;
         relaxation.adapt(&mut driver, &mut mixer, outer, residual, accelerated);
-        cell_relaxation(
-            law,
-            &cells,
-            &contact.gap,
-            &law_p,
-            relaxation.beta,
-            c_cell,
-            &mut cell_beta,
-        )?;
-        mixer.step(&mut p_a, residual_field.view(), cell_beta.view());
+        cell_beta.update(law, &cells, (&contact.gap, &law_p), relaxation.beta)?;
+        mixer.step(&mut p_a, residual_field.view(), cell_beta.beta.view());
         // Attractive laws only: an extrapolated step must not push.
         p_a.par_mapv_inplace(|p| p.min(0.0));
     }
@@ -239,30 +230,51 @@ fn inner_options(last: Option<f64>, g_eff: &Array2<f64>, settings: &Settings, ra
 }
 
 /// A diagonal preconditioner: each cell relaxed by `beta / (1 + k c)`, with `k` its own
-/// attractive stiffness (from a probe of the law at slightly larger gaps than `gap`, where it
-/// gives `law_p`) and `c` the cell's compliance, so that stiff cells at contact edges do not
-/// hold back the others.
-fn cell_relaxation(
-    law: &dyn AdhesionLaw,
-    cells: &Cells,
-    gap: &Array2<f64>,
-    law_p: &Array2<f64>,
-    beta: f64,
+/// attractive stiffness (from a probe of the law at gaps larger by `probe`) and `c` the cell's
+/// compliance, so that stiff cells at contact edges do not hold back the others. Its fields
+/// are kept between the outer iterations.
+struct CellRelaxation {
+    /// Each cell's relaxation factor.
+    beta: Array2<f64>,
+    shifted: Array2<f64>,
+    law_shifted: Array2<f64>,
     c_cell: f64,
-    cell_beta: &mut Array2<f64>,
-) -> Result<()> {
-    let probe = PROBE * law.range();
-    let shifted = gap.mapv(|g| g + probe);
-    let mut law_shifted = Array2::zeros(gap.dim());
-    law.pressure_field(shifted.view(), cells, law_shifted.view_mut())?;
-    Zip::from(cell_beta)
-        .and(&law_shifted)
-        .and(law_p)
-        .par_for_each(|b, &hi, &lo| {
-            let stiffness = ((lo - hi) / probe).max(0.0);
-            *b = beta / (1.0 + stiffness * c_cell);
-        });
-    Ok(())
+    probe: f64,
+}
+
+impl CellRelaxation {
+    fn new(shape: (usize, usize), c_cell: f64, range: f64) -> Self {
+        CellRelaxation {
+            beta: Array2::zeros(shape),
+            shifted: Array2::zeros(shape),
+            law_shifted: Array2::zeros(shape),
+            c_cell,
+            probe: PROBE * range,
+        }
+    }
+
+    /// The factors at the gaps `gap`, where the law gives `law_p`, for the relaxation `beta`.
+    fn update(
+        &mut self,
+        law: &dyn AdhesionLaw,
+        cells: &Cells,
+        (gap, law_p): (&Array2<f64>, &Array2<f64>),
+        beta: f64,
+    ) -> Result<()> {
+        let (probe, c_cell) = (self.probe, self.c_cell);
+        Zip::from(&mut self.shifted)
+            .and(gap)
+            .par_for_each(|s, &g| *s = g + probe);
+        law.pressure_field(self.shifted.view(), cells, self.law_shifted.view_mut())?;
+        Zip::from(&mut self.beta)
+            .and(&self.law_shifted)
+            .and(law_p)
+            .par_for_each(|b, &hi, &lo| {
+                let stiffness = ((lo - hi) / probe).max(0.0);
+                *b = beta / (1.0 + stiffness * c_cell);
+            });
+        Ok(())
+    }
 }
 
 /// The relaxation factor and its adaptation: halved (and the mixing history forgotten) when

@@ -50,15 +50,6 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
     let shape = domain.shape();
     let (ny, nx) = shape;
     let n = (nx * ny) as f64;
-    // The cells' energies of a field energy; a probe's buffers are made when first needed.
-    let probe = || {
-        let energies = if matches!(energy, Energy::Field(_)) {
-            shape
-        } else {
-            (0, 0)
-        };
-        (Array2::zeros(energies), Array2::zeros((0, 0)))
-    };
     let cells = cells(&domain);
     let (delta, load) = match control {
         Control::Approach(d) => (d, None),
@@ -74,6 +65,37 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
             "reaches the mean initial gap: a periodic surface is in full contact before that",
         ));
     }
+    // The problem on `stiffness` over the unknown whose undeformed value is `base` (the gap, or
+    // free, the padded displacement's base), its mean gap or load prescribed or not. The
+    // cells' energies of a field energy are kept; a probe's buffers are made when first needed.
+    let problem = |stiffness, ws, base: Array2<f64>, (mean_gap, load)| {
+        let energies = if matches!(energy, Energy::Field(_)) {
+            shape
+        } else {
+            (0, 0)
+        };
+        let (my, mx) = base.dim();
+        Problem {
+            ws,
+            stiffness,
+            energy,
+            law,
+            cells,
+            domain,
+            probe: (Array2::zeros(energies), Array2::zeros((0, 0))),
+            couple: false,
+            base,
+            mx,
+            my,
+            nx,
+            ny,
+            mean_gap,
+            load,
+            calls: 0,
+            diagonal: 0.0,
+            split: None,
+        }
+    };
     let (mut problem, first, hold) = if domain.periodic {
         let stiffness = PeriodicStiffness::new(domain, op.e_star())?;
         let first = match start {
@@ -94,26 +116,13 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
             Start::Unloading => Array2::zeros(shape),
             Start::Warm(s) => s.contact.gap.clone(),
         };
-        let problem = Problem {
-            ws: stiffness.make_workspace(),
-            stiffness: Stiffness::Periodic(stiffness),
-            energy,
-            law,
-            cells,
-            domain,
-            probe: probe(),
-            couple: false,
-            base: g0.to_owned(),
-            mx: nx,
-            my: ny,
-            nx,
-            ny,
-            mean_gap: load.is_none().then_some(mean_gap),
-            load,
-            calls: 0,
-            diagonal: 0.0,
-            split: None,
-        };
+        let ws = stiffness.make_workspace();
+        let problem = problem(
+            Stiffness::Periodic(stiffness),
+            ws,
+            g0.to_owned(),
+            (load.is_none().then_some(mean_gap), load),
+        );
         // A warm start keeps its attached cells (gap within the law's range) in place and
         // moves only the rest: a uniform shift would tear the attached rim off at once (or
         // press cells into attraction on loading), and the descent would settle in that
@@ -147,26 +156,7 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
                     });
             }
         }
-        let problem = Problem {
-            ws,
-            stiffness: Stiffness::Free(stiffness),
-            energy,
-            law,
-            cells,
-            domain,
-            probe: probe(),
-            couple: false,
-            base,
-            mx: padded.1,
-            my: padded.0,
-            nx,
-            ny,
-            mean_gap: None,
-            load: None,
-            calls: 0,
-            diagonal: 0.0,
-            split: None,
-        };
+        let problem = problem(Stiffness::Free(stiffness), ws, base, (None, None));
         (problem, first, None)
     };
     let unknown = first.dim();
