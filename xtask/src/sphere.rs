@@ -51,7 +51,13 @@ impl Setup {
         let law = ljadhesion::SurfaceLaw(
             ljadhesion::LennardJones::new(self.work_of_adhesion(), Z0).expect("w0 and z0 are positive"),
         );
-        solver::Method::Auto.resolve(&law, Control::Approach(0.0), &domain, MODULUS)
+        solver::Method::Auto.resolve(
+            &law,
+            Control::Approach(0.0),
+            &domain,
+            MODULUS,
+            &Default::default(),
+        )
     }
 
     pub fn case(&self) -> Case {

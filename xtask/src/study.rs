@@ -196,6 +196,7 @@ fn nested_start() -> Result<()> {
                 gap: Array2::zeros((n, n)),
                 displacement: Array2::zeros((n, n)),
                 approach: state.approach,
+                permanent_set: None,
             })
         } else {
             None

@@ -132,9 +132,15 @@ impl Case {
             };
             // Auto as under approach control: the larger of its choices.
             let method = (law.work_of_adhesion() > 0.0).then(|| {
-                self.settings()
-                    .method
-                    .resolve(law.as_ref(), solver::Control::Approach(0.0), &domain, e_star)
+                self.settings().method.resolve(
+                    law.as_ref(),
+                    solver::Control::Approach(0.0),
+                    &domain,
+                    e_star,
+                    &solver::Interface {
+                        hardness: self.hardness,
+                    },
+                )
             });
             crate::memory::check(
                 &format!("a {nx} x {ny} solve"),
@@ -145,6 +151,12 @@ impl Case {
             .modulus(e_star)
             .shared_law(law.clone())
             .periodic(periodic);
+        if let Some(h) = self.hardness {
+            if !(h.is_finite() && h > 0.0) {
+                bail!("--hardness must be a finite H > 0 Pa (omit it for an elastic surface), got {h}");
+            }
+            builder = builder.hardness(h);
+        }
         let (roughness, filled) = self.roughness(roughness)?;
         let (heights, size) = match roughness {
             Some(s) => {

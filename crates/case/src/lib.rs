@@ -109,6 +109,11 @@ pub struct Case {
     /// Composite modulus E* [Pa].
     #[cfg_attr(feature = "clap", arg(long))]
     pub modulus: Option<f64>,
+    /// Penetration hardness H [Pa] of an elastic-perfectly-plastic surface: the compressive
+    /// contact pressure never exceeds it, and where it would the surface yields and keeps the
+    /// overlap as permanent set (default: elastic).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub hardness: Option<f64>,
     /// Adhesive law (default: surface when --work-of-adhesion is given, none otherwise).
     #[cfg_attr(feature = "clap", arg(long, value_enum))]
     pub law: Option<LawKind>,

@@ -459,6 +459,7 @@ fn sweep<'py>(
                 controls[0],
                 &problem.domain(),
                 problem.e_star(),
+                &problem.interface,
             )
             .name()
     });

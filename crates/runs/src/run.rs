@@ -395,14 +395,17 @@ fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
 /// A saved state's manifest: its approach [m] and a fingerprint of each field.
 const MANIFEST: &str = "manifest.json";
 
-/// The fields a saved state holds, by file name.
-fn state_fields(state: &AdhesiveState) -> [(&'static str, &Array2<f64>); 4] {
-    [
+/// The fields a saved state holds, by file name: the permanent set (`plastic`) once the
+/// surface has a hardness.
+fn state_fields(state: &AdhesiveState) -> Vec<(&'static str, &Array2<f64>)> {
+    let mut fields = vec![
         ("compressive_pressure", &state.contact.pressure),
         ("adhesive_pressure", &state.adhesive_pressure),
         ("gap", &state.contact.gap),
         ("displacement", &state.contact.displacement),
-    ]
+    ];
+    fields.extend(state.contact.permanent_set.as_ref().map(|s| ("plastic", s)));
+    fields
 }
 
 /// A state saved by a sweep (`state/` or `states/step-NNNN/`, or the sweep's directory for
@@ -461,6 +464,10 @@ pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
             gap: read("gap")?,
             displacement: read("displacement")?,
             approach,
+            permanent_set: match manifest["fields"].get("plastic") {
+                Some(_) => Some(read("plastic")?),
+                None => None,
+            },
         },
         adhesive_pressure: read("adhesive_pressure")?,
     };

@@ -189,7 +189,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             .then(|| {
                 settings
                     .method
-                    .resolve(problem.law.as_ref(), controls[0], &domain, problem.e_star())
+                    .resolve(problem.law.as_ref(), controls[0], &domain, problem.e_star(), &problem.interface)
                     .name()
             }),
         "adhesive_range": problem.adhesive().then_some(range),

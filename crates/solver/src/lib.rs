@@ -46,6 +46,7 @@ pub mod cg;
 pub mod error;
 mod fields;
 pub mod geometry;
+pub mod interface;
 pub mod method;
 pub mod observer;
 pub mod options;
@@ -58,6 +59,7 @@ pub mod sweep;
 
 pub use adhesive::{AdhesiveReport, AdhesiveState, Iterations, Start};
 pub use error::{Result, SolverError};
+pub use interface::{Interface, Yield};
 pub use method::{Method, Mixing, Settings};
 pub use observer::{Branch, Observer, SweepPoint};
 pub use options::{ContactOptions, Control};

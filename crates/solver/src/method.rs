@@ -6,6 +6,7 @@
 //! the same method for the same problem.
 
 use crate::error::{Result, invalid};
+use crate::interface::Interface;
 use crate::options::{ContactOptions, Control};
 use elastic::Domain;
 use ljadhesion::AdhesionLaw;
@@ -86,7 +87,9 @@ impl Method {
     pub const FLOW_ABOVE: f64 = 8.0;
 
     /// The method for `law` under `control` on `domain`, over a half-space of composite modulus
-    /// `e_star` \[Pa\]: itself, or for [`Method::Auto`] the energy descent for the laws with an
+    /// `e_star` \[Pa\], across `interface`: itself, or for [`Method::Auto`] the accelerated loop
+    /// under a hardness (the only methods bounding the pressure above are the loops), else the
+    /// energy descent for the laws with an
     /// energy (local or of the field); for the line and surface laws under approach control
     /// Newton where the law's stiffness bound is at most [`Method::FLOW_ABOVE`] times a cell's
     /// own elastic stiffness, else the flow (on coarser cells, where each cell holds on or lets
@@ -95,9 +98,20 @@ impl Method {
     /// free domains). Near a fold the accelerated loop leaves a branch early, where the methods
     /// that relax from the last state hold on; under load control on coarse cells it circles
     /// with the line and surface laws, where the flow settles (`docs/solvers.md`).
-    pub fn resolve(self, law: &dyn AdhesionLaw, control: Control, domain: &Domain, e_star: f64) -> Method {
+    pub fn resolve(
+        self,
+        law: &dyn AdhesionLaw,
+        control: Control,
+        domain: &Domain,
+        e_star: f64,
+        interface: &Interface,
+    ) -> Method {
         if self != Method::Auto {
             return self;
+        }
+        if interface.hardness.is_some() {
+            // The loops' inner solves are the only ones bounded above.
+            return Method::Accelerated;
         }
         let approach = matches!(control, Control::Approach(_));
         let load = matches!(control, Control::Force(_) | Control::MeanPressure(_));

@@ -6,6 +6,7 @@
 use crate::adhesive::{AdhesiveReport, AdhesiveState, Start};
 use crate::error::{Result, SolverError, invalid};
 use crate::geometry::{SphereProfile, flat_on_rough, sphere, wave};
+use crate::interface::Interface;
 use crate::method::{Method, Settings};
 use crate::observer::Observer;
 use crate::options::{ContactOptions, Control};
@@ -48,6 +49,8 @@ pub struct ContactProblem {
     pub initial_gap: Array2<f64>,
     /// The adhesive law.
     pub law: Arc<dyn AdhesionLaw>,
+    /// The interface: elastic, or capped by a hardness.
+    pub interface: Interface,
     /// Things the user should know before trusting the result: a grid too coarse for the law,
     /// attraction cut off at a free grid's edge.
     pub warnings: Vec<String>,
@@ -92,6 +95,7 @@ impl ContactProblem {
             operator,
             initial_gap,
             law,
+            interface: Interface::default(),
             warnings: Vec::new(),
         };
         problem.warnings = problem.check();
@@ -103,6 +107,7 @@ impl ContactProblem {
         crate::adhesive::Parts {
             op: self.operator.as_ref(),
             law: self.law.as_ref(),
+            interface: self.interface,
             g0: self.initial_gap.view(),
         }
     }
@@ -143,10 +148,11 @@ impl ContactProblem {
     }
 
     /// Solves the contact as if the law were switched off, by the constrained conjugate
-    /// gradients of [`crate::cg`] (faster than an adhesive method with no adhesion).
+    /// gradients of [`crate::cg`] (faster than an adhesive method with no adhesion), across the
+    /// problem's interface.
     ///
     /// # Errors
-    /// As [`crate::cg::solve`].
+    /// As [`crate::cg::solve_with`].
     pub fn solve_without_adhesion(
         &self,
         control: Control,
@@ -154,9 +160,10 @@ impl ContactProblem {
         warm: Option<&ContactState>,
         observer: &mut dyn Observer,
     ) -> Result<(ContactState, ContactReport)> {
-        crate::cg::solve(
+        crate::cg::solve_with(
             self.operator.as_ref(),
             self.initial_gap.view(),
+            &self.interface,
             control,
             options,
             warm,
@@ -305,6 +312,7 @@ pub struct ProblemBuilder {
     shape: Shape,
     periodic: Option<bool>,
     law: Option<Arc<dyn AdhesionLaw>>,
+    interface: Interface,
 }
 
 impl ProblemBuilder {
@@ -362,6 +370,13 @@ impl ProblemBuilder {
         self
     }
 
+    /// A hardness `H` \[Pa\]: the surface yields where the compressive pressure would exceed
+    /// it ([`crate::interface`]); elastic by default.
+    pub fn hardness(mut self, hardness: f64) -> Self {
+        self.interface.hardness = Some(hardness);
+        self
+    }
+
     /// [`ProblemBuilder::law`] for a shared law.
     pub fn shared_law(mut self, law: Arc<dyn AdhesionLaw>) -> Self {
         self.law = Some(law);
@@ -372,7 +387,8 @@ impl ProblemBuilder {
     ///
     /// # Errors
     /// A missing modulus or grid, nothing to press (a flat with no roughness), heights whose
-    /// shape differs from the grid's, a wave on a free domain, and the geometry's and the
+    /// shape differs from the grid's, a wave on a free domain, a hardness that is not finite
+    /// and positive, and the geometry's and the
     /// operators' own checks.
     pub fn build(self) -> Result<ContactProblem> {
         let e_star = self
@@ -428,7 +444,10 @@ impl ProblemBuilder {
         } else {
             Arc::new(Free::new(domain, e_star)?)
         };
+        self.interface.validate()?;
         let law = self.law.unwrap_or_else(|| Arc::new(NoAdhesion));
-        ContactProblem::from_shared(operator, initial_gap, law)
+        let mut problem = ContactProblem::from_shared(operator, initial_gap, law)?;
+        problem.interface = self.interface;
+        Ok(problem)
     }
 }

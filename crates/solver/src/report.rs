@@ -49,6 +49,9 @@ pub struct ContactReport {
     pub max_pressure: f64,
     /// Elastic energy `(1/2) sum p u dA` \[J\].
     pub elastic_energy: f64,
+    /// What yielding did under a hardness (zeros when elastic).
+    #[serde(flatten)]
+    pub yielding: crate::interface::Yield,
     /// Iterations run.
     pub iterations: usize,
     /// Final residual: the RMS gap on the contact set (plus the RMS interpenetration outside

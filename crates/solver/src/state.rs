@@ -13,6 +13,10 @@ pub struct ContactState {
     pub displacement: Array2<f64>,
     /// Approach \[m\] from first touch (positive = pushed together).
     pub approach: f64,
+    /// Permanent set \[m\] (`>= 0`): how far the surface has yielded under a hardness
+    /// ([`crate::Interface`]), added to the initial gap of every solve started from this
+    /// state. `None` for a surface that never had a hardness.
+    pub permanent_set: Option<Array2<f64>>,
 }
 
 impl ContactState {
@@ -23,6 +27,7 @@ impl ContactState {
             gap: Array2::zeros(shape),
             displacement: Array2::zeros(shape),
             approach: 0.0,
+            permanent_set: None,
         }
     }
 }

@@ -110,21 +110,21 @@ fn auto_takes_the_tested_method_for_each_law_and_control() {
     );
     for (law, control, expected) in cases {
         assert_eq!(
-            Method::Auto.resolve(law, control, &fine, e_star),
+            Method::Auto.resolve(law, control, &fine, e_star, &Default::default()),
             expected,
             "{} {control:?}",
             law.name()
         );
         // A chosen method stays chosen.
         assert_eq!(
-            Method::DualLoop.resolve(law, control, &fine, e_star),
+            Method::DualLoop.resolve(law, control, &fine, e_star, &Default::default()),
             Method::DualLoop
         );
         // Loads on free domains: the flow takes the approach only there.
         if expected == Method::Flow {
             let free = grid(1e-9, false);
             assert_eq!(
-                Method::Auto.resolve(law, control, &free, e_star),
+                Method::Auto.resolve(law, control, &free, e_star, &Default::default()),
                 Method::Accelerated
             );
         }
@@ -133,7 +133,10 @@ fn auto_takes_the_tested_method_for_each_law_and_control() {
         if expected == Method::Newton {
             for periodic in [true, false] {
                 let coarse = grid(3e-8, periodic);
-                assert_eq!(Method::Auto.resolve(law, control, &coarse, e_star), Method::Flow);
+                assert_eq!(
+                    Method::Auto.resolve(law, control, &coarse, e_star, &Default::default()),
+                    Method::Flow
+                );
             }
         }
     }

@@ -36,6 +36,7 @@ pub(super) struct EnergyDescent;
 
 impl AdhesiveMethod for EnergyDescent {
     fn check(&self, job: &Job) -> Result<()> {
+        job.interface.refuse_in("energy")?;
         potential(job).map(|_| ())
     }
 

@@ -3,6 +3,7 @@
 
 use super::{AdhesiveReport, AdhesiveState, Iterations, Start};
 use crate::error::Result;
+use crate::interface::Interface;
 use crate::method::{Method, Settings};
 use crate::options::Control;
 use crate::report::{Termination, count_clusters};
@@ -22,11 +23,14 @@ pub(crate) fn cells(domain: &Domain) -> Cells {
 }
 
 /// One solve's input, checked: the problem's parts, the control, the settings, the resolved
-/// method and the start.
+/// method and the start. A method that cannot take the interface refuses it in its `check`
+/// ([`Interface::refuse_in`]).
 #[derive(Clone, Copy)]
 pub(crate) struct Job<'a> {
     pub op: &'a dyn Compliance,
     pub law: &'a dyn AdhesionLaw,
+    pub interface: Interface,
+    /// The initial gap, the start's permanent set included.
     pub g0: ArrayView2<'a, f64>,
     pub control: Control,
     pub settings: &'a Settings,
@@ -108,6 +112,7 @@ pub(crate) fn assemble(
         clusters: count_clusters(contact.pressure.view(), domain.periodic),
         max_pressure: max_p,
         min_pressure: min_p,
+        yielding: crate::interface::Yield::default(),
         method: job.method,
         iterations: outcome.iterations,
         operator_calls: outcome.operator_calls,

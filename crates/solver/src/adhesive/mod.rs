@@ -30,6 +30,7 @@ pub use report::{AdhesiveReport, Iterations};
 pub use state::{AdhesiveState, Start};
 
 use crate::error::{Result, SolverError, invalid};
+use crate::interface::Interface;
 use crate::method::{Method, Settings};
 use crate::options::Control;
 use elastic::Compliance;
@@ -66,6 +67,7 @@ pub(crate) fn peak_bytes(method: Method, cells: f64, periodic: bool) -> f64 {
 pub(crate) struct Parts<'a> {
     pub op: &'a dyn Compliance,
     pub law: &'a dyn AdhesionLaw,
+    pub interface: Interface,
     pub g0: ArrayView2<'a, f64>,
 }
 
@@ -77,7 +79,13 @@ pub(crate) fn solve(
     start: Start,
     observer: &mut dyn FnMut(usize, f64) -> bool,
 ) -> Result<(AdhesiveState, AdhesiveReport)> {
-    let Parts { op, law, g0 } = parts;
+    let Parts {
+        op,
+        law,
+        interface,
+        g0,
+    } = parts;
+    interface.validate()?;
     let shape = op.domain().shape();
     // The methods work on contiguous rows: any other layout is copied into one here.
     let g0 = g0.as_standard_layout();
@@ -127,10 +135,20 @@ pub(crate) fn solve(
         }
         other => other,
     };
-    let method = settings.method.resolve(law, control, op.domain(), op.e_star());
+    // The surface as the start left it: its permanent set joins the initial gap.
+    let before = match start {
+        Start::Warm(s) => s.contact.permanent_set.clone(),
+        _ => None,
+    };
+    let yielded = crate::interface::yielded_gap(g0, before.as_ref())?;
+    let g0 = yielded.as_ref().map_or(g0, |g| g.view());
+    let method = settings
+        .method
+        .resolve(law, control, op.domain(), op.e_star(), &interface);
     let job = Job {
         op,
         law,
+        interface,
         g0,
         control,
         settings,
@@ -140,7 +158,14 @@ pub(crate) fn solve(
     let imp = implementation(method);
     imp.check(&job)?;
     crate::error::finite("initial gap", g0)?;
-    let (state, report) = imp.solve(&job, observer)?;
+    let (mut state, mut report) = imp.solve(&job, observer)?;
+    report.yielding = crate::interface::settle(
+        &interface,
+        g0,
+        before,
+        &mut state.contact,
+        op.domain().cell_area(),
+    );
     crate::error::finite_result(
         &[
             ("compressive pressure", &state.contact.pressure),

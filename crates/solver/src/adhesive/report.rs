@@ -159,6 +159,9 @@ pub struct AdhesiveReport {
     pub max_pressure: f64,
     /// Most negative total pressure \[Pa\].
     pub min_pressure: f64,
+    /// What yielding did under a hardness (zeros when elastic).
+    #[serde(flatten)]
+    pub yielding: crate::interface::Yield,
     /// The method that solved it ([`Method::Auto`] resolved).
     pub method: Method,
     /// What the method counted.

@@ -41,6 +41,7 @@ impl AdhesiveState {
                 gap: standard(&self.contact.gap),
                 displacement: standard(&self.contact.displacement),
                 approach: self.contact.approach,
+                permanent_set: self.contact.permanent_set.as_ref().map(standard),
             },
             adhesive_pressure: standard(&self.adhesive_pressure),
         }

@@ -61,7 +61,7 @@ pub(super) struct DualLoop {
 
 impl AdhesiveMethod for DualLoop {
     fn check(&self, _job: &Job) -> Result<()> {
-        // Any law under any control.
+        // Any law under any control, any interface (the cap bounds the inner solves).
         Ok(())
     }
 
@@ -142,6 +142,7 @@ fn solve(
         let report = solve_in(
             &mut scratch,
             g_eff.view(),
+            job.interface.cap(),
             inner_control,
             &inner_options,
             &mut contact,

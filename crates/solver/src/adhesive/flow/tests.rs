@@ -35,6 +35,7 @@ fn the_far_field_keeps_the_flows_states() {
             let job = Job {
                 op: problem.operator.as_ref(),
                 law: problem.law.as_ref(),
+                interface: Default::default(),
                 g0: problem.initial_gap.view(),
                 control,
                 settings: &settings,
@@ -133,6 +134,7 @@ fn newton_takes_over_from_the_flow_at_the_flows_state() {
         let job = Job {
             op: problem.operator.as_ref(),
             law: problem.law.as_ref(),
+            interface: Default::default(),
             g0: problem.initial_gap.view(),
             control: Control::Approach(delta),
             settings: &settings,
@@ -320,6 +322,7 @@ fn the_far_fields_relaxation_solves_its_linear_model_in_a_few_iterations() {
     let job = |control| Job {
         op: contact.operator.as_ref(),
         law: contact.law.as_ref(),
+        interface: Default::default(),
         g0: contact.initial_gap.view(),
         control,
         settings: &settings,
@@ -506,6 +509,7 @@ fn on_coupled_problem(heights: Array2<f64>, length: f64, load: f64, test: impl F
     let job = Job {
         op: problem.operator.as_ref(),
         law: problem.law.as_ref(),
+        interface: Default::default(),
         g0: problem.initial_gap.view(),
         control: Control::MeanPressure(load),
         settings: &settings,

@@ -252,6 +252,7 @@ pub(in crate::adhesive) fn state(
         gap,
         displacement,
         approach,
+        permanent_set: None,
     };
     AdhesiveState {
         contact,

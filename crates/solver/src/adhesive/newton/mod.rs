@@ -284,6 +284,7 @@ pub(super) struct Newton;
 
 impl AdhesiveMethod for Newton {
     fn check(&self, job: &Job) -> Result<()> {
+        job.interface.refuse_in("newton")?;
         if !matches!(job.control, Control::Approach(_)) {
             return Err(SolverError::Unsupported(
                 "the Newton solver takes the approach only (use `accelerated` for loads and central \

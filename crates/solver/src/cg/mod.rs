@@ -12,9 +12,17 @@
 //! restricted to the contact set again and deflated of its mean there (Vollebregt's FFT
 //! preconditioner). One more FFT convolution an iteration; the iteration count grows far more
 //! slowly with the grid (`docs/performance.md`).
+//!
+//! Under a hardness `H` ([`Interface`]) the pressure is also bounded above, `p <= H`: the
+//! directions live on the elastic contact set `0 < p < H`, cells at `H` are held there while
+//! they overlap and released when their gap opens. The bound is a projection: no extra FFT an
+//! iteration. Under load control the approach is then found by a search ([`capped`]).
+
+mod capped;
 
 use crate::error::{Result, SolverError};
 use crate::fields::{flat, flat_mut};
+use crate::interface::{Interface, Yield};
 use crate::observer::Observer;
 use crate::options::{ContactOptions, Control};
 use crate::report::{ContactReport, Termination, count_clusters};
@@ -28,15 +36,11 @@ use std::time::Instant;
 /// whose projection onto `p >= 0` changed it by at most this share (in the 2-norm).
 const KEEP_DIRECTIONS: f64 = 0.3;
 
-/// Solves the normal contact of the half-space `op` with the initial gap `g0` \[m\] (minimum 0,
-/// see [`crate::geometry`]) under `control`, telling `observer` each iteration's residual.
-/// `warm` (a previous state on the same grid) seeds the pressure; otherwise the solve starts
-/// cold. Returns the new state and its report; a solve that reaches the iteration limit
-/// returns its last iterate with [`Termination::MaxIterations`].
+/// Solves the normal contact of the elastic half-space `op` with the initial gap `g0` \[m\]
+/// (minimum 0, see [`crate::geometry`]) under `control`: [`solve_with`] an elastic surface.
 ///
 /// # Errors
-/// Non-finite or negative-minimum `g0`, a field of the wrong shape, a negative load or
-/// approach, a tolerance below what f64 arithmetic can reach.
+/// As [`solve_with`].
 pub fn solve(
     op: &dyn Compliance,
     g0: ArrayView2<f64>,
@@ -45,20 +49,49 @@ pub fn solve(
     warm: Option<&ContactState>,
     observer: &mut dyn Observer,
 ) -> Result<(ContactState, ContactReport)> {
+    solve_with(op, g0, &Interface::default(), control, options, warm, observer)
+}
+
+/// Solves the normal contact of the half-space `op` with the initial gap `g0` \[m\] (minimum 0,
+/// see [`crate::geometry`]) across `interface` under `control`, telling `observer` each
+/// iteration's residual. `warm` (a previous state on the same grid) seeds the pressure and
+/// brings its permanent set; otherwise the solve starts cold. Returns the new state (its
+/// permanent set settled, [`crate::interface`]) and its report; a solve that reaches the
+/// iteration limit returns its last iterate with [`Termination::MaxIterations`].
+///
+/// # Errors
+/// Non-finite or negative-minimum `g0`, a field of the wrong shape, a negative load or
+/// approach, a load beyond the hardness times the area, a tolerance below what f64
+/// arithmetic can reach.
+pub fn solve_with(
+    op: &dyn Compliance,
+    g0: ArrayView2<f64>,
+    interface: &Interface,
+    control: Control,
+    options: &ContactOptions,
+    warm: Option<&ContactState>,
+    observer: &mut dyn Observer,
+) -> Result<(ContactState, ContactReport)> {
+    interface.validate()?;
     let mut state = match warm {
         Some(w) => w.clone(),
         None => ContactState::unloaded(op.domain().shape()),
     };
+    let before = state.permanent_set.take();
+    let yielded = crate::interface::yielded_gap(g0, before.as_ref())?;
+    let g0 = yielded.as_ref().map_or(g0, |g| g.view());
     let mut scratch = Scratch::new(op);
-    let report = solve_in(
+    let mut report = solve_in(
         &mut scratch,
         g0,
+        interface.cap(),
         control,
         options,
         &mut state,
         warm.is_some(),
         &mut |i, r| crate::observer::heard(observer, 0, i, r),
     )?;
+    report.yielding = crate::interface::settle(interface, g0, before, &mut state, op.domain().cell_area());
     crate::error::finite_result(
         &[
             ("pressure", &state.pressure),
@@ -145,11 +178,14 @@ impl Preconditioner {
     }
 }
 
-/// [`solve`] in place with the operator of `scratch`: `state` is the warm start when `warm`
-/// is true (its pressure seeds the solve) and receives the solution.
+/// [`solve`] in place with the operator of `scratch` and the pressure bounded by `cap` \[Pa\]
+/// (infinite: elastic): `state` is the warm start when `warm` is true (its pressure seeds the
+/// solve) and receives the solution, its permanent set left as it was.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_in(
     scratch: &mut Scratch,
     g0: ArrayView2<f64>,
+    cap: f64,
     control: Control,
     options: &ContactOptions,
     state: &mut ContactState,
@@ -162,6 +198,13 @@ pub(crate) fn solve_in(
     let shape = domain.shape();
     let (target_load, h_ref) = checked(&domain, g0, control, options)?;
     let cell = domain.cell_area();
+    if let (Some(w), true) = (target_load, cap.is_finite()) {
+        let area = cell * (domain.nx * domain.ny) as f64;
+        Interface { hardness: Some(cap) }.check_load(w, area)?;
+        // The load's multiplier, the approach, is not fixed by the elastic contact set once
+        // most cells are at the cap: the load is met by a search on the approach instead.
+        return capped::solve_load(scratch, g0, cap, w, options, state, warm, observer);
+    }
 
     let (warm, mut approach) = start(state, shape, warm, control);
     let ContactState {
@@ -169,8 +212,9 @@ pub(crate) fn solve_in(
         gap,
         displacement: u,
         approach: state_approach,
+        ..
     } = state;
-    initial_pressure(p, g0, control, target_load, warm, op);
+    initial_pressure(p, g0, control, target_load, warm, op, cap);
 
     let g0 = g0.as_standard_layout();
     let g0s = flat(&g0);
@@ -208,13 +252,13 @@ pub(crate) fn solve_in(
             }
             // Pass A: pending rescale, gap before the approach, contact count and gap sum.
             let s = std::mem::replace(&mut tally.pending, 1.0);
-            let [in_contact, gap_sum] = rescale_and_gap(p, u, gap, g0s, nx, s);
+            let [in_contact, gap_sum] = rescale_and_gap(p, u, gap, g0s, nx, s, cap);
             if target_load.is_some() {
                 approach = gap_sum / in_contact;
             }
             // Pass B: the approach, the residuals in and out of contact, and <g, t_old> on the
             // contact set for the step length.
-            let [g2_contact, g2_out, g_t_old] = residuals(gap, p, t, approach, nx);
+            let [g2_contact, g2_out, g_t_old] = residuals(gap, p, t, approach, nx, cap);
             // The KKT residual: p >= 0 holds by construction, so zero gap where p > 0 and no
             // interpenetration where p = 0 are all that is left to check.
             let residual = ((g2_contact + g2_out) / in_contact.max(1.0)).sqrt() / h_ref;
@@ -242,7 +286,7 @@ pub(crate) fn solve_in(
             let (z, shift, gz): (&Array2<f64>, f64, f64) = match preconditioner.as_deref_mut() {
                 None => (&*gap, 0.0, g2_contact),
                 Some(pre) => {
-                    let (shift, gz) = pre.apply(gap, p, in_contact);
+                    let (shift, gz) = pre.apply(gap, p, in_contact, cap);
                     (&pre.image, shift, gz)
                 }
             };
@@ -257,7 +301,7 @@ pub(crate) fn solve_in(
             };
             let load_control = target_load.map(|_| in_contact);
             let [p_sum, changed, released, moved, bent] =
-                along_direction(op, ws, (p, u, gap), (t, r), direction, load_control)?;
+                along_direction(op, ws, (p, u, gap), (t, r), direction, load_control, cap)?;
             tally.calls += 1;
             // Polonsky & Keer restart the conjugate directions on every release. Preconditioned and
             // cold, a few edge cells then flip in and out each iteration and the search zig-zags,
@@ -361,10 +405,11 @@ fn along_direction(
     (t, r): (&mut Array2<f64>, &mut Array2<f64>),
     d: Direction,
     load_control: Option<f64>,
+    cap: f64,
 ) -> Result<[f64; 5]> {
     let nx = p.ncols();
     // Pass C: conjugate direction on the contact set, and its sum there.
-    let t_sum = direction(t, p, d.z, d.shift, d.beta, nx);
+    let t_sum = direction(t, p, d.z, d.shift, d.beta, nx, cap);
     // Under load control the mean of K t over the contact set only moves the approach:
     // <K t - mean, t> = <K t, t - mean(t)>, so the mean of t is all that is needed.
     let t_mean = load_control.map_or(0.0, |in_contact| t_sum / in_contact);
@@ -372,14 +417,22 @@ fn along_direction(
     op.apply(t.view(), r.view_mut(), ws)?;
     // Pass D: curvature along t.
     let rt = crate::sum::rows3(p.view(), r.view(), t.view(), |p, r, t| {
-        if p > 0.0 { r * (t - t_mean) } else { 0.0 }
+        if p > 0.0 && p < cap { r * (t - t_mean) } else { 0.0 }
     });
-    let tau = if rt > 0.0 { gt / rt } else { 0.0 };
+    let tau = if rt > 0.0 {
+        gt / rt
+    } else if cap.is_finite() {
+        // No elastic contact set to give a step (every loaded cell at the cap): bounds are
+        // left at a lone cell's stiffness, or nothing would ever move.
+        1.0 / op.domain().cell_compliance(op.e_star())
+    } else {
+        0.0
+    };
     // Pass F: step, projection onto p >= 0, release of every interpenetrating cell at zero
     // pressure (free ones and those just clipped: releasing the clipped ones too saves about
     // a tenth of the iterations on rough surfaces), and the matching update of u while it
     // stays exact.
-    Ok(step(p, u, gap, t, r, tau, nx))
+    Ok(step(p, u, gap, (t, r), tau, nx, cap))
 }
 
 /// Where a solve starts: `state` itself when `warm` and on the grid of `shape`, else
@@ -446,6 +499,7 @@ fn initial_pressure(
     target_load: Option<f64>,
     warm: bool,
     op: &dyn Compliance,
+    cap: f64,
 ) {
     let domain = op.domain();
     let cell = domain.cell_area();
@@ -454,11 +508,12 @@ fn initial_pressure(
         (true, _, _) if p.iter().any(|&v| v > 0.0) => {}
         (_, Some(w), _) => p.fill(w / (n * cell)),
         (_, None, Control::Approach(d)) => {
-            // Overlap times a cell's stiffness: any positive guess on the overlap will do.
+            // Overlap times a cell's stiffness: any positive guess on the overlap will do, held
+            // below a cap so that the first step has an elastic contact set to move.
             let k = op.e_star() / domain.dx.min(domain.dy);
             Zip::from(&mut *p)
                 .and(&g0)
-                .par_for_each(|p, &g| *p = (d - g).max(0.0) * k);
+                .par_for_each(|p, &g| *p = ((d - g).max(0.0) * k).min(0.5 * cap));
         }
         _ => unreachable!("either a load or an approach is prescribed"),
     }
@@ -471,7 +526,7 @@ fn initial_pressure(
 }
 
 /// Pass A: the pending load rescale `s` of `p` and `u`, the gap before the approach, and the
-/// count of cells in contact and the sum of their gaps.
+/// count of cells in elastic contact (`0 < p < cap`) and the sum of their gaps.
 fn rescale_and_gap(
     p: &mut Array2<f64>,
     u: &mut Array2<f64>,
@@ -479,6 +534,7 @@ fn rescale_and_gap(
     g0s: &[f64],
     nx: usize,
     s: f64,
+    cap: f64,
 ) -> [f64; 2] {
     let sums: Vec<[f64; 2]> = flat_mut(p)
         .par_chunks_mut(nx)
@@ -491,7 +547,7 @@ fn rescale_and_gap(
                 p[i] *= s;
                 u[i] *= s;
                 g[i] = g0[i] + u[i];
-                if p[i] > 0.0 {
+                if p[i] > 0.0 && p[i] < cap {
                     acc[0] += 1.0;
                     acc[1] += g[i];
                 }
@@ -502,9 +558,17 @@ fn rescale_and_gap(
     sums.iter().fold([0.0; 2], |a, b| [a[0] + b[0], a[1] + b[1]])
 }
 
-/// Pass B: the approach taken off the gap; the squared residuals in and out of contact, and
-/// `<g, t>` on the contact set.
-fn residuals(gap: &mut Array2<f64>, p: &Array2<f64>, t: &Array2<f64>, approach: f64, nx: usize) -> [f64; 3] {
+/// Pass B: the approach taken off the gap; the squared residuals in and out of elastic
+/// contact (interpenetration where free, an open gap where held at the cap), and `<g, t>` on
+/// the elastic contact set.
+fn residuals(
+    gap: &mut Array2<f64>,
+    p: &Array2<f64>,
+    t: &Array2<f64>,
+    approach: f64,
+    nx: usize,
+    cap: f64,
+) -> [f64; 3] {
     let sums: Vec<[f64; 3]> = flat_mut(gap)
         .par_chunks_mut(nx)
         .zip(flat(p).par_chunks(nx))
@@ -513,7 +577,9 @@ fn residuals(gap: &mut Array2<f64>, p: &Array2<f64>, t: &Array2<f64>, approach: 
             let mut acc = [0.0; 3];
             for ((g, p), t) in g.iter_mut().zip(p).zip(t) {
                 *g -= approach;
-                if *p > 0.0 {
+                if *p >= cap {
+                    acc[1] += g.max(0.0).powi(2);
+                } else if *p > 0.0 {
                     acc[0] += *g * *g;
                     acc[2] += *g * *t;
                 } else {
@@ -531,12 +597,12 @@ impl Preconditioner {
     /// The residual `gap` on the contact set of `p` through the operator's inverse, into
     /// `image`; its mean there (`in_contact` cells) and its product with the residual, deflated
     /// of that mean (preconditioning is under load control only).
-    fn apply(&mut self, gap: &Array2<f64>, p: &Array2<f64>, in_contact: f64) -> (f64, f64) {
+    fn apply(&mut self, gap: &Array2<f64>, p: &Array2<f64>, in_contact: f64, cap: f64) -> (f64, f64) {
         let nx = p.ncols();
         Zip::from(&mut self.masked)
             .and(gap)
             .and(p)
-            .par_for_each(|m, &g, &p| *m = if p > 0.0 { g } else { 0.0 });
+            .par_for_each(|m, &g, &p| *m = if p > 0.0 && p < cap { g } else { 0.0 });
         self.fft.convolve(
             self.masked.view(),
             self.multiplier.view(),
@@ -547,7 +613,7 @@ impl Preconditioner {
         let [z_sum, zg, g_sum] = crate::sum::ordered(p.nrows(), |j| {
             let mut acc = [0.0; 3];
             for k in j * nx..(j + 1) * nx {
-                if ps[k] > 0.0 {
+                if ps[k] > 0.0 && ps[k] < cap {
                     acc[0] += zs[k];
                     acc[1] += zs[k] * gs[k];
                     acc[2] += gs[k];
@@ -560,9 +626,17 @@ impl Preconditioner {
     }
 }
 
-/// Pass C: the conjugate direction `t <- z - shift + beta t` on the contact set (zero off it),
-/// and its sum.
-fn direction(t: &mut Array2<f64>, p: &Array2<f64>, z: &Array2<f64>, shift: f64, beta: f64, nx: usize) -> f64 {
+/// Pass C: the conjugate direction `t <- z - shift + beta t` on the elastic contact set (zero
+/// off it), and its sum.
+fn direction(
+    t: &mut Array2<f64>,
+    p: &Array2<f64>,
+    z: &Array2<f64>,
+    shift: f64,
+    beta: f64,
+    nx: usize,
+    cap: f64,
+) -> f64 {
     let sums: Vec<f64> = flat_mut(t)
         .par_chunks_mut(nx)
         .zip(flat(p).par_chunks(nx))
@@ -570,7 +644,11 @@ fn direction(t: &mut Array2<f64>, p: &Array2<f64>, z: &Array2<f64>, shift: f64, 
         .map(|((t, p), z)| {
             let mut acc = 0.0;
             for ((t, p), z) in t.iter_mut().zip(p).zip(z) {
-                *t = if *p > 0.0 { z - shift + beta * *t } else { 0.0 };
+                *t = if *p > 0.0 && *p < cap {
+                    z - shift + beta * *t
+                } else {
+                    0.0
+                };
                 acc += *t;
             }
             acc
@@ -579,18 +657,18 @@ fn direction(t: &mut Array2<f64>, p: &Array2<f64>, z: &Array2<f64>, shift: f64, 
     sums.iter().sum::<f64>()
 }
 
-/// Pass F: the step `p - tau t` projected onto `p >= 0`, every interpenetrating cell at zero
-/// pressure released, and `u` updated to match. Returns the new load, the cells clipped or
-/// released, those released, and the squares of the step and of what the projection changed
-/// in it.
+/// Pass F: the step `p - tau t` projected onto `0 <= p <= cap`, every interpenetrating cell at
+/// zero pressure and every cell at the cap whose gap opened released, and `u` updated to match.
+/// Returns the new load, the cells clipped or released, those released, and the squares of the
+/// step and of what the projection changed in it.
 fn step(
     p: &mut Array2<f64>,
     u: &mut Array2<f64>,
     gap: &Array2<f64>,
-    t: &Array2<f64>,
-    r: &Array2<f64>,
+    (t, r): (&Array2<f64>, &Array2<f64>),
     tau: f64,
     nx: usize,
+    cap: f64,
 ) -> [f64; 5] {
     let rows: Vec<[f64; 5]> = flat_mut(p)
         .par_chunks_mut(nx)
@@ -610,10 +688,21 @@ fn step(
                     changed = true;
                 }
                 if new == 0.0 {
-                    new = if g[i] < 0.0 { -tau * g[i] } else { 0.0 };
+                    new = if g[i] < 0.0 { (-tau * g[i]).min(cap) } else { 0.0 };
                     if new > 0.0 {
                         changed = true;
                         acc[2] += 1.0;
+                    }
+                } else if new >= cap {
+                    // Held at the cap while it overlaps; back into elastic contact once open.
+                    new = if old >= cap && g[i] > 0.0 {
+                        (cap - tau * g[i]).max(0.0)
+                    } else {
+                        cap
+                    };
+                    if new != old {
+                        changed = true;
+                        acc[2] += f64::from(u8::from(old >= cap));
                     }
                 }
                 p[i] = new;
@@ -657,6 +746,7 @@ fn report(
         clusters: count_clusters(p.view(), domain.periodic),
         max_pressure: p.iter().cloned().fold(0.0, f64::max),
         elastic_energy: op.energy(p.view(), u.view()),
+        yielding: Yield::default(),
         iterations: 0,
         residual: 0.0,
         residual_history: Vec::new(),

@@ -1,0 +1,225 @@
+//! The hardness cap without adhesion: the sphere's exact onset of yield, the bearing-area limit,
+//! and a load-unload-reload cycle whose external work is the plastic work.
+
+use solver::{ContactOptions, ContactProblem, ContactState, Control, Interface};
+use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec, generate};
+
+const E: f64 = 1e9;
+
+/// A free-grid paraboloid of radius `r` \[m\] on `n`^2 cells `side` \[m\] across, hardness `h`.
+fn sphere(n: usize, side: f64, r: f64, h: Option<f64>) -> ContactProblem {
+    let mut builder = ContactProblem::builder()
+        .grid(n, n, side, side)
+        .sphere(r)
+        .modulus(E);
+    if let Some(h) = h {
+        builder = builder.hardness(h);
+    }
+    builder.build().unwrap()
+}
+
+/// A periodic self-affine surface (Hurst 0.8, RMS gradient 0.1) on `n`^2 cells.
+fn rough(n: usize, seed: u64, h: f64) -> ContactProblem {
+    let l = 1e-4;
+    let grid = Grid::square(n, l).unwrap();
+    let spec = SurfaceSpec {
+        grid,
+        psd: Psd::self_affine(0.8, l / 4.0, 4.0 * grid.dx()),
+        normalization: Normalization::RmsGradient(0.1),
+        amplitudes: Amplitudes::Exact,
+        seed,
+    };
+    let heights = generate(&spec).unwrap().heights;
+    ContactProblem::builder()
+        .roughness(heights, l, l)
+        .modulus(E)
+        .hardness(h)
+        .build()
+        .unwrap()
+}
+
+fn solve(
+    problem: &ContactProblem,
+    control: Control,
+    warm: Option<&ContactState>,
+) -> (ContactState, solver::ContactReport) {
+    let options = ContactOptions {
+        tolerance: 1e-10,
+        ..ContactOptions::default()
+    };
+    let (state, report) = problem
+        .solve_without_adhesion(control, &options, warm, &mut ())
+        .unwrap();
+    assert!(report.converged(), "{control:?}: {:?}", report.termination);
+    (state, report)
+}
+
+#[test]
+fn a_sphere_stays_hertzian_until_its_peak_reaches_the_hardness_then_caps_it() {
+    // At H = 0.1 E*: P = pi^3 R^2 H^3 / (6 E*^2) = 5.168e-3 E* R^2, a = pi R H / (2 E*) = 0.1571 R.
+    let (r, h) = (1e-6, 0.1 * E);
+    let p_cap = std::f64::consts::PI.powi(3) * r * r * h.powi(3) / (6.0 * E * E);
+    let a_cap = std::f64::consts::PI * r * h / (2.0 * E);
+    assert!((p_cap / (E * r * r) - 5.168e-3).abs() < 1e-6);
+    assert!((a_cap / r - 0.1571).abs() < 1e-4);
+    let (n, side) = (128, 0.8 * r);
+    let plastic = sphere(n, side, r, Some(h));
+    let elastic = sphere(n, side, r, None);
+    let cell = (side / n as f64).powi(2);
+
+    // Below the onset: the same solution as the elastic one, Hertz's peak, nothing at H.
+    let below = Control::Force(0.9 * p_cap);
+    let (s, rep) = solve(&plastic, below, None);
+    let (se, _) = solve(&elastic, below, None);
+    let a = theory::hertz::radius_of_load(0.9 * p_cap, r, E);
+    let p0 = 3.0 * 0.9 * p_cap / (2.0 * std::f64::consts::PI * a * a);
+    assert_eq!(rep.yielding.plastic_area_fraction, 0.0);
+    assert_eq!(rep.yielding.permanent_set_volume, 0.0);
+    assert!(
+        (rep.max_pressure / p0 - 1.0).abs() < 0.01,
+        "{} vs {p0}",
+        rep.max_pressure
+    );
+    let off = (&s.pressure - &se.pressure)
+        .mapv(f64::abs)
+        .fold(0.0f64, |m, &v| m.max(v));
+    assert!(off < 1e-6 * h, "{off}");
+    assert!(rep.max_pressure < h);
+
+    // Above it: the peak is H to round-off, the area at least P / H, and the set's overlap
+    // is where the pressure is H.
+    for factor in [2.0, 8.0] {
+        let load = factor * p_cap;
+        let (s, rep) = solve(&plastic, Control::Force(load), None);
+        assert_eq!(rep.max_pressure, h, "x{factor}");
+        let area = rep.contact_area_fraction * (n * n) as f64 * cell;
+        assert!(area >= load / h, "x{factor}: {area} < {}", load / h);
+        assert!(rep.yielding.plastic_area_fraction > 0.0);
+        let set = s.permanent_set.as_ref().unwrap();
+        let yielded = ndarray::Zip::from(set)
+            .and(&s.pressure)
+            .fold(true, |ok, &d, &p| ok && (d == 0.0 || p == h));
+        assert!(yielded, "a cell below H took permanent set");
+        assert!(
+            (rep.yielding.plastic_work - h * rep.yielding.permanent_set_volume).abs()
+                <= 1e-12 * rep.yielding.plastic_work
+        );
+        // The load balance holds under the cap.
+        assert!((rep.load / load - 1.0).abs() < 1e-9, "{} vs {load}", rep.load);
+    }
+}
+
+#[test]
+fn a_vanishing_hardness_gives_the_geometric_bearing_area() {
+    let n = 256;
+    let h = 1e-6 * E;
+    let problem = rough(n, 7, h);
+    let (s, rep) = solve(&problem, Control::MeanPressure(0.1 * h), None);
+    // The bearing set of the same area: the cells of smallest initial gap.
+    let in_contact = s.pressure.iter().filter(|&&p| p > 0.0).count();
+    assert!((in_contact as f64 / (n * n) as f64 - rep.contact_area_fraction).abs() < 1e-12);
+    let mut g0: Vec<f64> = problem.initial_gap.iter().copied().collect();
+    g0.sort_by(f64::total_cmp);
+    let level = g0[in_contact - 1];
+    let differ = ndarray::Zip::from(&s.pressure)
+        .and(&problem.initial_gap)
+        .fold(0usize, |k, &p, &g| k + usize::from((p > 0.0) != (g <= level)));
+    assert!(
+        differ <= 25,
+        "{differ} cells differ from the bearing set of {in_contact}"
+    );
+    // Almost all of it is held at H: the elastic deformation is negligible.
+    assert!(rep.yielding.plastic_area_fraction > 0.9 * rep.contact_area_fraction);
+}
+
+#[test]
+fn after_unloading_the_surface_keeps_its_set_reloading_is_elastic_and_the_cycle_work_is_the_plastic_work() {
+    let n = 128;
+    let h = 0.05 * E;
+    let problem = rough(n, 3, h);
+    let cell = problem.domain().cell_area();
+    let area = cell * (n * n) as f64;
+    // Load by approach steps to a mean pressure near 0.3 H, then unload to separation.
+    let top = {
+        let (s, _) = solve(&problem, Control::MeanPressure(0.3 * h), None);
+        s.approach
+    };
+    let steps = 60;
+    let path: Vec<f64> = (0..=steps)
+        .map(|k| top * k as f64 / steps as f64)
+        .chain((0..steps).rev().map(|k| top * k as f64 / steps as f64))
+        .collect();
+    let mut state: Option<ContactState> = None;
+    let (mut work, mut plastic, mut last) = (0.0, 0.0, (0.0, 0.0));
+    let mut loaded = None;
+    for (k, &d) in path.iter().enumerate() {
+        let (s, rep) = solve(&problem, Control::Approach(d), state.as_ref());
+        // External work by the trapezoid rule: the load times the approach's step.
+        if k > 0 {
+            work += 0.5 * (rep.load + last.1) * (d - last.0);
+        }
+        last = (d, rep.load);
+        plastic += rep.yielding.plastic_work;
+        if k == steps {
+            loaded = Some((s.clone(), rep.load));
+        }
+        state = Some(s);
+    }
+    let unloaded = state.unwrap();
+    let set = unloaded.permanent_set.clone().unwrap();
+    assert!(set.sum() > 0.0);
+    // Separated: no pressure, no elastic displacement; the surface is its original shape less
+    // the set, so the first touch is now deeper.
+    assert!(unloaded.pressure.iter().all(|&p| p == 0.0));
+    assert!(unloaded.displacement.iter().all(|&u| u == 0.0));
+    let volume = set.sum() * cell;
+    assert!((plastic - h * volume).abs() < 1e-9 * plastic);
+    // The work around the cycle is dissipated by yielding alone (the trapezoid rule's error
+    // over 60 steps a leg is well below a percent).
+    assert!(
+        (work / plastic - 1.0).abs() < 0.02,
+        "cycle work {work:e} J, plastic {plastic:e} J"
+    );
+
+    // Reloading to the same load yields nothing more and finds the same contact set.
+    let (loaded, load) = loaded.unwrap();
+    let (s, rep) = solve(&problem, Control::Force(load), Some(&unloaded));
+    assert!(
+        rep.yielding.plastic_work < 1e-6 * plastic,
+        "{:e}",
+        rep.yielding.plastic_work
+    );
+    let differ = ndarray::Zip::from(&s.pressure)
+        .and(&loaded.pressure)
+        .fold(0usize, |k, &a, &b| k + usize::from((a > 0.0) != (b > 0.0)));
+    assert!(differ <= 2, "{differ} cells differ");
+    assert!(load / area < h);
+}
+
+#[test]
+fn bad_hardness_and_loads_beyond_it_are_refused_by_name() {
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let err = ContactProblem::builder()
+            .grid(16, 16, 1e-6, 1e-6)
+            .sphere(1e-6)
+            .modulus(E)
+            .hardness(bad)
+            .build()
+            .unwrap_err();
+        assert!(err.to_string().contains("hardness"), "{err}");
+        assert!(Interface::with_hardness(bad).is_err());
+    }
+    let problem = rough(32, 1, 0.01 * E);
+    let err = problem
+        .solve_without_adhesion(
+            Control::MeanPressure(0.02 * E),
+            &ContactOptions::default(),
+            None,
+            &mut (),
+        )
+        .unwrap_err();
+    assert!(
+        err.to_string().contains("hardness times the nominal area"),
+        "{err}"
+    );
+}
