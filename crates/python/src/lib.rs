@@ -322,11 +322,12 @@ fn solve<'py>(
                     problem.solve_without_adhesion(control, &options, None, &mut observer)?;
                 let edge = problem.edge_warning(&state.gap, &state.pressure);
                 let head = (report.converged(), report.termination);
-                let fields = vec![
+                let mut fields = vec![
                     ("pressure", state.pressure),
                     ("gap", state.gap),
                     ("displacement", state.displacement),
                 ];
+                fields.extend(state.permanent_set.map(|s| ("plastic", s)));
                 (summary(problem, head, &report, edge)?, fields)
             })
         })
@@ -362,13 +363,15 @@ fn summary(
 
 /// An adhesive state's fields, named as the command line's files.
 fn adhesive_fields(state: AdhesiveState) -> Vec<(&'static str, Array2<f64>)> {
-    vec![
+    let mut fields = vec![
         ("pressure", state.total_pressure()),
         ("compressive_pressure", state.contact.pressure),
         ("adhesive_pressure", state.adhesive_pressure),
         ("gap", state.contact.gap),
         ("displacement", state.contact.displacement),
-    ]
+    ];
+    fields.extend(state.contact.permanent_set.map(|s| ("plastic", s)));
+    fields
 }
 
 /// Follows a sweep's path. Returns the summary and the steps as JSON, and the last state's

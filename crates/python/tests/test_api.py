@@ -207,3 +207,25 @@ def test_unmeasured_points_are_refused_or_filled():
         rc.read(SAMPLES / "sur-2.sur")
     filled = rc.read(SAMPLES / "sur-2.sur", fill_unmeasured=True)
     assert filled.heights.shape == (484, 563) and np.isfinite(filled.heights).all()
+
+
+def test_a_hardness_caps_the_pressure_and_leaves_a_permanent_set():
+    rough = dict(rms_gradient=0.1, n=64, length=1e-4, modulus=1e9, seed=3)
+    s = rc.solve(**rough, hardness=5e7, mean_pressure=1e7)
+    assert s.converged and s.report["max_pressure"] == 5e7
+    assert 0 < s.plastic_area_fraction < s.contact_area_fraction
+    cell = (1e-4 / 64) ** 2
+    assert s.plastic.shape == (64, 64) and np.all(s.plastic >= 0)
+    assert abs(s.plastic.sum() * cell / s.permanent_set_volume - 1) < 1e-12
+    assert abs(s.plastic_work - 5e7 * s.permanent_set_volume) <= 1e-12 * s.plastic_work
+    elastic = rc.solve(**rough, mean_pressure=1e7)
+    assert "plastic" not in elastic.fields and elastic.plastic_work == 0
+    # A load-unload sweep keeps the set and reports the work dissipated by yielding.
+    sw = rc.sweep(**SPHERE, hardness=2e7, from_=-3e-9, to=3e-9, steps=4)
+    assert sw.all_converged and sw.plastic_work > 0 and sw.state["plastic"].max() > 0
+    assert abs(sw.curve["plastic_work"].sum() - sw.plastic_work) <= 1e-12 * sw.plastic_work
+    for bad in (0.0, -1.0):
+        with pytest.raises(ValueError, match="hardness must be a finite H > 0 Pa"):
+            rc.solve(**rough, hardness=bad, mean_pressure=1e7)
+    with pytest.raises(ValueError, match="cannot take a hardness"):
+        rc.solve(**SPHERE, hardness=2e7, approach=1e-9, solver="energy")

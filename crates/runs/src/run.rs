@@ -32,11 +32,11 @@ pub fn read_progress(dir: &Path) -> Option<String> {
 /// The columns of `curve.csv`.
 const HEADER: &str = "step,approach,load,mean_pressure,contact_area_fraction,attractive_area_fraction,\
 attached_area_fraction,central_gap,branch,iterations,inner_iterations,converged,residual,wall_time_s,\
-retries";
+retries,plastic_area_fraction,permanent_set_volume,plastic_work";
 
 /// The files and directories a run writes: what makes a directory "another run's", and what
 /// `--overwrite` removes (nothing else in the directory is touched).
-const RUN_FILES: [&str; 15] = [
+const RUN_FILES: [&str; 16] = [
     "case.toml",
     "summary.json",
     "curve.csv",
@@ -47,6 +47,7 @@ const RUN_FILES: [&str; 15] = [
     "adhesive_pressure.npy",
     "gap.npy",
     "displacement.npy",
+    "plastic.npy",
     "state",
     "state.new",
     "state.old",
@@ -193,7 +194,16 @@ impl RunDir {
         self.write_field("compressive_pressure", &state.contact.pressure)?;
         self.write_field("adhesive_pressure", &state.adhesive_pressure)?;
         self.write_field("gap", &state.contact.gap)?;
-        self.write_field("displacement", &state.contact.displacement)
+        self.write_field("displacement", &state.contact.displacement)?;
+        self.write_plastic(&state.contact)
+    }
+
+    /// Writes the permanent set as `plastic.npy` \[m\], once the surface has a hardness.
+    pub fn write_plastic(&self, state: &solver::ContactState) -> Result<()> {
+        match &state.permanent_set {
+            Some(set) => self.write_field("plastic", set),
+            None => Ok(()),
+        }
     }
 
     /// Writes `summary.json`: the version, the case, the surface's hash, the grid, and the
@@ -302,7 +312,7 @@ impl CurveWriter {
     pub fn append(&mut self, k: usize, p: &SweepPoint) -> Result<()> {
         let r = &p.report;
         let line = format!(
-            "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3},{}\n",
+            "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3},{},{},{:e},{:e}\n",
             k,
             r.approach,
             r.load,
@@ -317,7 +327,10 @@ impl CurveWriter {
             r.converged(),
             r.residual,
             r.wall_time_s,
-            p.retries
+            p.retries,
+            r.yielding.plastic_area_fraction,
+            r.yielding.permanent_set_volume,
+            r.yielding.plastic_work,
         );
         self.0.write_all(line.as_bytes())?;
         self.0.flush()?;
@@ -347,6 +360,7 @@ fn parse_curve(text: &str) -> Result<Vec<CyclePoint>> {
                 Branch::Loading
             },
             converged: f[11] == "true",
+            plastic_work: num(17)?,
         });
     }
     Ok(rows)

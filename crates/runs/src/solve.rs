@@ -97,12 +97,14 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     run.write_field("pressure", &state.pressure)?;
     run.write_field("gap", &state.gap)?;
     run.write_field("displacement", &state.displacement)?;
+    run.write_plastic(&state)?;
     let summary = results(
         json!({
             "units": {
                 "load": "N", "mean_pressure": "Pa", "approach": "m", "max_pressure": "Pa",
                 "elastic_energy": "J", "lengths": "m", "modulus": "Pa", "wall_time_s": "s",
-                "pressure.npy": "Pa", "gap.npy": "m", "displacement.npy": "m"
+                "permanent_set_volume": "m^3", "plastic_work": "J",
+                "pressure.npy": "Pa", "gap.npy": "m", "displacement.npy": "m", "plastic.npy": "m"
             },
             "converged": report.converged(),
             "warnings": problem.warnings.iter().chain(&edge).collect::<Vec<_>>(),
@@ -119,7 +121,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
             report.contact_area_fraction,
         )?;
     }
-    print_summary(out, &report)?;
+    print_summary(out, &report, problem.interface.hardness.is_some())?;
     finish(
         report.converged(),
         format!(
@@ -236,8 +238,9 @@ fn solve_adhesive(
             "units": {
                 "load": "N", "mean_pressure": "Pa", "approach": "m", "pressures": "Pa",
                 "lengths": "m", "modulus": "Pa", "work_of_adhesion": "J/m^2", "wall_time_s": "s",
+                "permanent_set_volume": "m^3", "plastic_work": "J",
                 "pressure.npy": "Pa (total)", "compressive_pressure.npy": "Pa", "adhesive_pressure.npy": "Pa",
-                "gap.npy": "m", "displacement.npy": "m"
+                "gap.npy": "m", "displacement.npy": "m", "plastic.npy": "m"
             },
             "law": problem.law.name(),
             "warnings": problem.warnings.iter().chain(&edge).collect::<Vec<_>>(),
@@ -261,6 +264,9 @@ fn solve_adhesive(
     say!("contact area fraction    {:.6}", report.contact_area_fraction);
     say!("attractive area fraction {:.6}", report.attractive_area_fraction);
     say!("attached area fraction   {:.6}", report.attached_area_fraction);
+    if problem.interface.hardness.is_some() {
+        say_yield(&report.yielding, 25)?;
+    }
     say!(
         "iterations               {} ({}), residual {:.2e}, {}",
         report.iterations,
@@ -282,13 +288,28 @@ fn solve_adhesive(
     )
 }
 
-fn print_summary(out: &Path, r: &solver::ContactReport) -> Result<()> {
+/// The lines on yielding, for a surface with a hardness.
+fn say_yield(y: &solver::Yield, width: usize) -> Result<()> {
+    say!("{:width$}{:.6}", "plastic area fraction", y.plastic_area_fraction);
+    say!(
+        "{:width$}{:.6e} m^3",
+        "permanent set volume",
+        y.permanent_set_volume
+    );
+    say!("{:width$}{:.6e} J", "plastic work", y.plastic_work);
+    Ok(())
+}
+
+fn print_summary(out: &Path, r: &solver::ContactReport, hardness: bool) -> Result<()> {
     say!("load                   {:.6e} N", r.load);
     say!("mean pressure          {:.6e} Pa", r.mean_pressure);
     say!("approach               {:.6e} m", r.approach);
     say!("contact area fraction  {:.6}", r.contact_area_fraction);
     say!("contact clusters       {}", r.clusters);
     say!("max pressure           {:.6e} Pa", r.max_pressure);
+    if hardness {
+        say_yield(&r.yielding, 23)?;
+    }
     say!(
         "iterations             {} ({} operator calls), residual {:.2e}, {}",
         r.iterations,
@@ -298,8 +319,9 @@ fn print_summary(out: &Path, r: &solver::ContactReport) -> Result<()> {
     );
     say!("wall time              {:.3} s", r.wall_time_s);
     say!(
-        "wrote {}/summary.json, pressure.npy, gap.npy, displacement.npy",
-        out.display()
+        "wrote {}/summary.json, pressure.npy, gap.npy, displacement.npy{}",
+        out.display(),
+        if hardness { ", plastic.npy" } else { "" }
     );
     Ok(())
 }

@@ -180,8 +180,10 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         "path": path,
         "units": {
             "pull_off_force": "N", "pull_off_approach": "m", "jump_in_approach": "m",
-            "jump_out_approach": "m", "hysteresis_energy": "J", "lengths": "m", "pressures": "Pa",
-            "curve.csv": "approach m, load N, mean_pressure Pa, central_gap m, wall_time_s s"
+            "jump_out_approach": "m", "hysteresis_energy": "J", "plastic_work": "J", "lengths": "m",
+            "pressures": "Pa", "plastic.npy": "m (the permanent set after the last step)",
+            "curve.csv": "approach m, load N, mean_pressure Pa, central_gap m, wall_time_s s, \
+                          permanent_set_volume m^3, plastic_work J"
         },
         "law": problem.law.name(),
         "method": problem
@@ -447,6 +449,12 @@ fn print_cycle(
     if let Some(w) = summary.hysteresis_energy {
         say!("hysteresis energy     {w:.6e} J (lost around the closed part of the cycle)");
     }
+    if problem.interface.hardness.is_some() {
+        say!(
+            "plastic work          {:.6e} J (dissipated by yielding; the permanent set in plastic.npy)",
+            summary.plastic_work
+        );
+    }
     if let Some(mu) = theory.tabor {
         say!("Tabor parameter       {mu:.4}");
     }
@@ -666,6 +674,7 @@ impl Observer for StepWriter<'_> {
         let saved = self
             .run
             .save_state(k, state, self.save_states || self.keep.contains(&k))
+            .and_then(|_| self.run.write_plastic(&state.contact))
             .and_then(|_| self.curve.append(k, p));
         let message = format!("last: approach {:.4e} m, load {:.4e} N", r.approach, r.load);
         if self.bar.is_hidden() {

@@ -289,6 +289,9 @@ pub struct CycleSummary {
     /// cycle. `None` when the path never turns back. A leg's work beyond the other's range is
     /// no loss, and is left out (see [`closed_loop_work`]).
     pub hysteresis_energy: Option<f64>,
+    /// Energy dissipated by yielding over the sweep \[J\]: the steps' plastic work, `H` times
+    /// the permanent set's added volume (0 for an elastic surface).
+    pub plastic_work: f64,
     /// Whether every step converged (`converged` when serialised).
     #[serde(rename = "converged")]
     pub all_converged: bool,
@@ -310,6 +313,8 @@ pub struct CyclePoint {
     pub branch: Branch,
     /// Whether the step converged.
     pub converged: bool,
+    /// Energy dissipated by yielding in the step \[J\].
+    pub plastic_work: f64,
 }
 
 impl From<&SweepPoint> for CyclePoint {
@@ -321,6 +326,7 @@ impl From<&SweepPoint> for CyclePoint {
             attached_area_fraction: p.report.attached_area_fraction,
             branch: p.branch,
             converged: p.report.converged(),
+            plastic_work: p.report.yielding.plastic_work,
         }
     }
 }
@@ -361,6 +367,7 @@ pub fn summarize(points: &[CyclePoint]) -> CycleSummary {
         jump_in_approach: jump_in.filter(|_| hysteresis),
         jump_out_approach: jump_out.filter(|_| hysteresis),
         hysteresis_energy: closed_loop_work(points),
+        plastic_work: points.iter().map(|p| p.plastic_work).sum(),
         all_converged: points.iter().all(|p| p.converged),
     }
 }
@@ -416,6 +423,7 @@ mod tests {
             attached_area_fraction: attached,
             branch,
             converged: true,
+            plastic_work: 0.0,
         }
     }
 

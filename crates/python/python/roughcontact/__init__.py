@@ -315,9 +315,11 @@ def _case(case: Union[None, PathLike, Mapping[str, Any]], keys: Dict[str, Any]):
 
 class Solution:
     """One solved contact. Fields (numpy arrays, shape ``(ny, nx)``): ``pressure`` [Pa]
-    (total, compressive positive), ``gap`` [m], ``displacement`` [m], and with adhesion
-    ``compressive_pressure`` and ``adhesive_pressure`` [Pa]. Numbers: ``load`` [N],
-    ``mean_pressure`` [Pa], ``approach`` [m], ``contact_area_fraction`` [-], ``converged``,
+    (total, compressive positive), ``gap`` [m], ``displacement`` [m], with adhesion
+    ``compressive_pressure`` and ``adhesive_pressure`` [Pa], with a ``hardness`` the permanent
+    set ``plastic`` [m]. Numbers: ``load`` [N], ``mean_pressure`` [Pa], ``approach`` [m],
+    ``contact_area_fraction`` [-], with a ``hardness`` ``plastic_area_fraction`` [-],
+    ``permanent_set_volume`` [m^3] and ``plastic_work`` [J] (0 when elastic), ``converged``,
     ``termination``, ``residual``, ``wall_time_s`` [s]; every number of the solver's report
     is in ``report``, the resolved case in ``case``."""
 
@@ -333,6 +335,9 @@ class Solution:
         self.mean_pressure: float = r["mean_pressure"]
         self.approach: float = r["approach"]
         self.contact_area_fraction: float = r["contact_area_fraction"]
+        self.plastic_area_fraction: float = r["plastic_area_fraction"]
+        self.permanent_set_volume: float = r["permanent_set_volume"]
+        self.plastic_work: float = r["plastic_work"]
         self.termination: str = summary["termination"]
         self.converged: bool = summary["converged"]
         self.residual: float = r["residual"]
@@ -362,6 +367,9 @@ _CURVE = (
     "attractive_area_fraction",
     "attached_area_fraction",
     "central_gap",
+    "plastic_area_fraction",
+    "permanent_set_volume",
+    "plastic_work",
     "residual",
     "wall_time_s",
 )
@@ -370,12 +378,14 @@ _CURVE = (
 class Sweep:
     """A quasi-static path of solves. ``curve`` holds one array a column, one row a step
     (ready for ``pandas.DataFrame(sweep.curve)``): ``approach`` [m], ``load`` [N],
-    ``mean_pressure`` [Pa], area fractions [-], ``central_gap`` [m], ``branch``
-    ('loading' or 'unloading'), ``iterations``, ``converged``, ``residual``,
-    ``wall_time_s`` [s], ``retries``, ``termination`` (in words). The cycle's ``pull_off_force`` [N] and its
+    ``mean_pressure`` [Pa], area fractions [-] (the plastic one too), ``central_gap`` [m],
+    ``permanent_set_volume`` [m^3], ``plastic_work`` [J], ``branch`` ('loading' or
+    'unloading'), ``iterations``, ``converged``, ``residual``, ``wall_time_s`` [s],
+    ``retries``, ``termination`` (in words). The cycle's ``pull_off_force`` [N] and its
     ``pull_off_approach``, ``jump_in_approach``, ``jump_out_approach`` [m],
-    ``hysteresis_energy`` [J] and ``all_converged``; the last state's fields in ``state``;
-    every step's full report in ``steps``."""
+    ``hysteresis_energy`` [J], ``plastic_work`` [J] (dissipated by yielding) and
+    ``all_converged``; the last state's fields in ``state`` (the permanent set ``plastic``
+    [m] with a ``hardness``); every step's full report in ``steps``."""
 
     def __init__(self, summary: Dict[str, Any], fields: Dict[str, np.ndarray]) -> None:
         self.steps = summary["steps"]
@@ -393,6 +403,7 @@ class Sweep:
         self.jump_in_approach: Optional[float] = cycle["jump_in_approach"]
         self.jump_out_approach: Optional[float] = cycle["jump_out_approach"]
         self.hysteresis_energy: Optional[float] = cycle["hysteresis_energy"]
+        self.plastic_work: float = cycle["plastic_work"]
         reports = [s["report"] for s in self.steps]
         curve: Dict[str, np.ndarray] = {"step": np.arange(len(reports))}
         for k in _CURVE:
