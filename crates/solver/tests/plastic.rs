@@ -223,3 +223,50 @@ fn bad_hardness_and_loads_beyond_it_are_refused_by_name() {
         "{err}"
     );
 }
+
+/// The pull-off of a Lennard-Jones sphere (surface law, Tabor parameter 1) loaded to the
+/// approach `deepest` \[m\] and unloaded, with hardness `h` \[Pa\].
+fn adhesive_pull_off(h: Option<f64>, deepest: f64) -> f64 {
+    use ljadhesion::{LennardJones, SurfaceLaw};
+    let (r, z0): (f64, f64) = (1e-6, 1e-9);
+    // mu^3 = R w0^2 / (E*^2 z0^3) = 1.
+    let w0 = (E * E * z0.powi(3) / r).sqrt();
+    let mut builder = ContactProblem::builder()
+        .grid(64, 64, 3e-7, 3e-7)
+        .sphere(r)
+        .modulus(E)
+        .law(SurfaceLaw(LennardJones::new(w0, z0).unwrap()));
+    if let Some(h) = h {
+        builder = builder.hardness(h);
+    }
+    let problem = builder.build().unwrap();
+    let steps = ((deepest + 3.0 * z0) / (0.5 * z0)).round() as usize;
+    let path = solver::approach_cycle(-3.0 * z0, deepest, steps);
+    // The method a hardness takes, for the elastic sphere too: the same fixed point.
+    let settings = solver::Settings::with_method(solver::Method::Accelerated);
+    let points = problem
+        .sweep(&path, Some(0.25 * z0), &settings, None, &mut ())
+        .unwrap();
+    let cycle: Vec<solver::CyclePoint> = points.iter().map(solver::CyclePoint::from).collect();
+    let summary = solver::summarize(&cycle);
+    assert!(summary.all_converged, "{h:?} {deepest:e}");
+    if h.is_none() {
+        assert_eq!(summary.plastic_work, 0.0);
+    }
+    -summary.pull_off_force.unwrap()
+}
+
+#[test]
+fn an_adhesive_sphere_pulls_off_harder_the_more_it_yielded_and_as_an_elastic_one_when_hard() {
+    let (shallow, deep) = (3e-9, 6e-9);
+    let elastic = adhesive_pull_off(None, deep);
+    // A hardness far above every pressure reached: nothing yields, the same pull-off.
+    let hard = adhesive_pull_off(Some(1e3 * E), deep);
+    assert!((hard / elastic - 1.0).abs() < 1e-9, "{hard:e} vs {elastic:e}");
+    // At 30 MPa (Hertz's peak at the deeper approach is 68 MPa, the law's peak attraction
+    // 32 MPa) the flattened tip holds a larger contact, the more so the deeper it went.
+    let soft_shallow = adhesive_pull_off(Some(3e7), shallow);
+    let soft_deep = adhesive_pull_off(Some(3e7), deep);
+    assert!(soft_shallow > 1.02 * elastic, "{soft_shallow:e} vs {elastic:e}");
+    assert!(soft_deep > 1.05 * soft_shallow, "{soft_deep:e} vs {soft_shallow:e}");
+}
