@@ -23,6 +23,7 @@ pub mod fig12;
 pub mod fig13;
 pub mod fig14;
 pub use plot;
+pub mod plastic;
 pub mod report;
 pub mod rough_sphere;
 

@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 /// The studies, by name, with what each shows.
-pub const STUDIES: [(&str, &str); 5] = [
+pub const STUDIES: [(&str, &str); 6] = [
     (
         "pull-off-mesh",
         "a sphere's pull-off at mu = 1 against the cell size, point, line, surface and surface-energy laws (minutes)",
@@ -39,6 +39,11 @@ pub const STUDIES: [(&str, &str); 5] = [
          surface laws, one surface sampled on every grid (SIZES=90,135,270,540; LAWS=point,surface; SEEDS=1; \
          an hour or more)",
     ),
+    (
+        "plastic-rough",
+        "elastic and plastic areas of a self-affine surface under a hardness against load, beside Persson's \
+         elastoplastic theory, with the iterations against the elastic solve's (N=1024; minutes)",
+    ),
 ];
 
 /// Runs the study `name`.
@@ -49,6 +54,7 @@ pub fn run(name: &str) -> Result<()> {
         "nested-start" => nested_start(),
         "challenge-mesh" => challenge_mesh(),
         "rough-sphere-mesh" => rough_sphere_mesh(),
+        "plastic-rough" => crate::plastic::plastic_rough(),
         _ => {
             let names: Vec<_> = STUDIES.iter().map(|(n, _)| *n).collect();
             bail!("unknown study `{name}`; the studies are {}", names.join(", "))

@@ -45,16 +45,29 @@ fn contact_and_plastic_areas_match_contactmechanics() {
                 &mut (),
             )
             .unwrap();
-            assert!(report.converged(), "H {hardness} p {mean_pressure}: {:?}", report.termination);
+            assert!(
+                report.converged(),
+                "H {hardness} p {mean_pressure}: {:?}",
+                report.termination
+            );
             let theirs: Array2<f64> =
-                ndarray_npy::read_npy(data(&format!("cm_pressure_H{hardness}_p{mean_pressure}.npy"))).unwrap();
+                ndarray_npy::read_npy(data(&format!("cm_pressure_H{hardness}_p{mean_pressure}.npy")))
+                    .unwrap();
             let area = |p: &Array2<f64>| p.iter().filter(|&&v| v > 0.0).count() as f64;
             let at_h = |p: &Array2<f64>| p.iter().filter(|&&v| v >= hardness * (1.0 - 1e-9)).count() as f64;
             let (a, b) = (area(&state.pressure), area(&theirs));
             let (pa, pb) = (at_h(&state.pressure), at_h(&theirs));
-            eprintln!("H {hardness} p {mean_pressure}: area {} vs {} ({:+.3} %), at H {pa} vs {pb}, {} iterations",
-                a / cells, b / cells, 100.0 * (a / b - 1.0), report.iterations);
-            assert!((a / b - 1.0).abs() < 0.005, "H {hardness} p {mean_pressure}: area {a} vs {b}");
+            eprintln!(
+                "H {hardness} p {mean_pressure}: area {} vs {} ({:+.3} %), at H {pa} vs {pb}, {} iterations",
+                a / cells,
+                b / cells,
+                100.0 * (a / b - 1.0),
+                report.iterations
+            );
+            assert!(
+                (a / b - 1.0).abs() < 0.005,
+                "H {hardness} p {mean_pressure}: area {a} vs {b}"
+            );
             assert!(
                 (pa - pb).abs() <= (0.01 * pb).max(3.0),
                 "H {hardness} p {mean_pressure}: cells at H {pa} vs {pb}"

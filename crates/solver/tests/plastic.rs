@@ -268,5 +268,8 @@ fn an_adhesive_sphere_pulls_off_harder_the_more_it_yielded_and_as_an_elastic_one
     let soft_shallow = adhesive_pull_off(Some(3e7), shallow);
     let soft_deep = adhesive_pull_off(Some(3e7), deep);
     assert!(soft_shallow > 1.02 * elastic, "{soft_shallow:e} vs {elastic:e}");
-    assert!(soft_deep > 1.05 * soft_shallow, "{soft_deep:e} vs {soft_shallow:e}");
+    assert!(
+        soft_deep > 1.05 * soft_shallow,
+        "{soft_deep:e} vs {soft_shallow:e}"
+    );
 }

@@ -8,6 +8,43 @@ pub fn persson_area(reduced: f64) -> f64 {
     erf(2f64.sqrt() * reduced)
 }
 
+/// Persson's (2001) elastoplastic contact: the elastic and the plastic relative contact areas
+/// `(a_el, a_pl)` at the reduced pressure `reduced = p / (E* g_bar)` and reduced hardness
+/// `hardness = H / (E* g_bar)`. The pressure distribution diffuses from `p` with absorbing walls
+/// at 0 and `H`, over the variance `G = E*^2 g_bar^2 / 8`:
+/// `a_el = sum_(n odd) 4/(n pi) sin(n pi p/H) exp(-s_n^2 G)`, `s_n = n pi / H`, and the plastic
+/// area carries the rest of the load at `H`, `a_pl = (p - integral s P(s) ds) / H`. Without a
+/// hardness (large `hardness`) `a_el` is [`persson_area`]; as `hardness -> 0`, `a_pl -> p / H`,
+/// the bearing area. Closed forms after Xu, Li & Mulvihill (arXiv 2208.02665).
+pub fn persson_elastoplastic(reduced: f64, hardness: f64) -> (f64, f64) {
+    if reduced <= 0.0 {
+        return (0.0, 0.0);
+    }
+    if reduced >= hardness {
+        // The whole surface at the hardness carries the load.
+        return (0.0, 1.0);
+    }
+    let variance = 1.0 / 8.0;
+    // Terms until the exponential is below 1e-17: n pi / H > sqrt(40 / G).
+    let terms = ((40.0f64 / variance).sqrt() * hardness / PI).ceil() as usize + 1;
+    if terms > 1_000_000 {
+        // The walls are too far apart to matter: the elastic theory.
+        return (persson_area(reduced), 0.0);
+    }
+    let (mut elastic, mut carried) = (0.0, 0.0);
+    for n in 1..=terms {
+        let s = n as f64 * PI / hardness;
+        let weight = (s * reduced).sin() * (-s * s * variance).exp();
+        if n % 2 == 1 {
+            elastic += 4.0 / (n as f64 * PI) * weight;
+            carried += 2.0 * hardness / (n as f64 * PI) * weight;
+        } else {
+            carried -= 2.0 * hardness / (n as f64 * PI) * weight;
+        }
+    }
+    (elastic.max(0.0), ((reduced - carried) / hardness).clamp(0.0, 1.0))
+}
+
 /// Müser's relative contact area (the paper's Eq. 14 with its bracket corrected) of a
 /// nominally flat surface at reduced pressure `reduced = p / (E* g_bar)`:
 /// `a_r = (1 - 1/(2x^2)) erf(x) + exp(-x^2)/(sqrt(pi) x)`, `x = k (3 sqrt(pi)/4) reduced`.

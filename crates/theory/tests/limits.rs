@@ -176,3 +176,35 @@ fn self_affine_moments_and_persson_tosatti() {
     let w = persson_tosatti_work(0.05, 25e6, smooth.moment(1.0), smooth.moment(2.0).sqrt());
     assert!(w > 0.0 && w < 0.05 * 1.01);
 }
+
+#[test]
+fn persson_elastoplastic_tends_to_the_elastic_theory_and_to_the_bearing_area() {
+    // A hardness far above every pressure reached: the elastic theory, nothing plastic.
+    for x in [0.01, 0.1, 0.5, 1.0] {
+        let (elastic, plastic) = persson_elastoplastic(x, 1e3);
+        assert!(
+            (elastic - persson_area(x)).abs() < 1e-12,
+            "{x}: {elastic} vs {}",
+            persson_area(x)
+        );
+        assert!(plastic < 1e-12, "{x}: {plastic}");
+    }
+    // A vanishing hardness: the bearing area p / H, all of it plastic.
+    let (elastic, plastic) = persson_elastoplastic(5e-4, 1e-3);
+    assert!(
+        elastic < 1e-12 && (plastic - 0.5).abs() < 1e-12,
+        "{elastic} {plastic}"
+    );
+    // Between: both areas grow with the load, the load is carried, and at p = H all is plastic.
+    let h = 0.5;
+    let mut last = (0.0, 0.0);
+    for k in 1..50 {
+        let x = h * k as f64 / 50.0;
+        let (e, p) = persson_elastoplastic(x, h);
+        assert!(p >= last.1 && e + p <= 1.0 + 1e-12, "{x}: {e} {p}");
+        // The elastic contact carries less than H a cell.
+        assert!(x - p * h <= e * h + 1e-12, "{x}: {e} {p}");
+        last = (e, p);
+    }
+    assert_eq!(persson_elastoplastic(h, h), (0.0, 1.0));
+}

@@ -2,8 +2,10 @@
 //! contact set no longer fixes the load's multiplier, the approach (a sphere at eight times
 //! the load of first yield left no cell between 0 and H and cycled, measured), so the load is
 //! met by a search on the approach instead: the load grows monotonically with it, each trial
-//! an approach-controlled solve warm-started from the last, bracketed and then refined by the
-//! Illinois variant of regula falsi.
+//! an approach-controlled solve warm-started from the last, on the logarithm of the load by
+//! secants, bracketed and then refined by the Illinois variant of regula falsi, until the load
+//! is met or the bracket is narrower than the approach the solves resolve (their gap tolerance
+//! times the RMS initial gap).
 
 use super::{Scratch, solve_in};
 use crate::error::Result;
@@ -35,6 +37,10 @@ pub(super) fn solve_load(
     let cell = domain.cell_area();
     let first_touch = g0.iter().copied().fold(f64::INFINITY, f64::min);
     let tolerance = options.tolerance * load;
+    // The approach the solves resolve: their gap tolerance, relative to the RMS initial gap.
+    let n = g0.len() as f64;
+    let mean = g0.sum() / n;
+    let resolution = options.tolerance * (g0.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / n).sqrt();
     let mut search = Search {
         trials: 0,
         iterations: 0,
@@ -42,9 +48,12 @@ pub(super) fn solve_load(
         history: Vec::new(),
         warm,
     };
+    // The search is on the logarithm of the load, nearly linear in the approach on rough
+    // surfaces (exponential at small loads): `(approach, ln(P / load))`, -inf without contact.
     // Below first touch nothing is carried.
-    let mut lo = (first_touch, -load);
+    let mut lo = (first_touch, f64::NEG_INFINITY);
     let mut hi: Option<(f64, f64)> = None;
+    let mut last: Option<(f64, f64)> = None;
     // A first trial: the warm state's approach, or the bearing area's for this load (the
     // approach at which the cells overlapping would carry it all at the cap).
     let mut trial = if warm && state.approach > first_touch {
@@ -69,34 +78,26 @@ pub(super) fn solve_load(
             };
             break;
         }
+        let point = (trial, (report.load / load).ln());
+        // Illinois: an end kept twice in a row has its miss halved.
         if miss < 0.0 {
-            lo = (trial, miss);
+            lo = point;
             if side == -1 {
                 hi = hi.map(|(d, m)| (d, 0.5 * m));
             }
             side = -1;
         } else {
-            hi = Some((trial, miss));
-            if side == 1 {
+            hi = Some(point);
+            if side == 1 && lo.1.is_finite() {
                 lo.1 *= 0.5;
             }
             side = 1;
         }
-        trial = match hi {
-            // Not bracketed yet: twice as deep from first touch.
-            None => first_touch + 2.0 * (trial - first_touch).max(f64::MIN_POSITIVE),
-            Some((d, m)) => {
-                let next = lo.0 - lo.1 * (d - lo.0) / (m - lo.1);
-                if next > lo.0 && next < d {
-                    next
-                } else {
-                    0.5 * (lo.0 + d)
-                }
-            }
-        };
-        if hi.is_some_and(|(d, _)| (d - lo.0).abs() <= 1e-15 * d.abs()) {
-            // The bracket is as narrow as the arithmetic allows: the load jumps across it.
-            report.termination = Termination::MaxIterations;
+        trial = next_trial(lo, hi, last, point, first_touch);
+        last = Some(point).filter(|p| p.1.is_finite());
+        if hi.is_some_and(|(d, _)| d - lo.0 <= resolution) {
+            // The bracket is narrower than the approach the solves resolve: the load is as
+            // close as they can tell.
             break;
         }
     }
@@ -157,6 +158,44 @@ impl Search {
         self.calls += report.operator_calls;
         self.history.extend(&report.residual_history);
         Ok(report)
+    }
+}
+
+/// The next approach to try, from the bracket `lo` (load short) and `hi` (load beyond; none
+/// yet) and the last two trials `last` and `point`, each `(approach, ln(P / load))`: the
+/// regula falsi inside a bracket whose ends both carry load, else the secant through the last
+/// two trials where it falls inside the bracket, else its middle, or twice as deep from first
+/// touch while nothing is beyond.
+fn next_trial(
+    lo: (f64, f64),
+    hi: Option<(f64, f64)>,
+    last: Option<(f64, f64)>,
+    point: (f64, f64),
+    first_touch: f64,
+) -> f64 {
+    let inside = |d: f64| d > lo.0 && hi.is_none_or(|(h, _)| d < h);
+    let secant = |(a, fa): (f64, f64), (b, fb): (f64, f64)| a - fa * (b - a) / (fb - fa);
+    if let Some(h) = hi
+        && lo.1.is_finite()
+    {
+        let d = secant(lo, h);
+        if inside(d) {
+            return d;
+        }
+    }
+    if let Some(prev) = last
+        && point.1.is_finite()
+        && point.1 != prev.1
+    {
+        let d = secant(prev, point);
+        // Beyond the bracket's top, at most four times as deep from first touch.
+        if inside(d) && d - first_touch <= 4.0 * (point.0.max(prev.0) - first_touch) {
+            return d;
+        }
+    }
+    match hi {
+        Some((h, _)) => 0.5 * (lo.0 + h),
+        None => first_touch + 2.0 * (point.0 - first_touch).max(f64::MIN_POSITIVE),
     }
 }
 
