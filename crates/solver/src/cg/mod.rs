@@ -16,7 +16,7 @@
 //! Under a hardness `H` ([`Interface`]) the pressure is also bounded above, `p <= H`: the
 //! directions live on the elastic contact set `0 < p < H`, cells at `H` are held there while
 //! they overlap and released when their gap opens. The bound is a projection: no extra FFT an
-//! iteration. Under load control the approach is then found by a search ([`capped`]).
+//! iteration. Under load control the approach is then found by a search (`capped.rs`).
 
 mod capped;
 
