@@ -144,3 +144,24 @@ fn bad_hardness_and_methods_without_a_cap_are_refused_by_name() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("the energy method cannot take a hardness"), "{err}");
 }
+
+#[test]
+fn a_curve_written_before_the_plastic_columns_resumes_with_them() {
+    let d = dir("old-curve");
+    let out = d.join("old");
+    let mut a = args(&out);
+    // The Hertz example as it is, elastic.
+    a.drain(3..7);
+    let o = run(&a);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(out.join("curve.csv")).unwrap();
+    let old: String = text
+        .lines()
+        .map(|l| l.rsplitn(4, ',').last().unwrap().to_string() + "\n")
+        .collect();
+    std::fs::write(out.join("curve.csv"), &old).unwrap();
+    a.push("--resume".into());
+    let o = run(&a);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read_to_string(out.join("curve.csv")).unwrap(), text);
+}
