@@ -249,13 +249,15 @@ impl RunDir {
     pub fn read_curve(&self) -> Result<Vec<CyclePoint>> {
         let path = self.curve_path();
         let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
-        let rows = parse_curve(&text)?;
         let columns = text.lines().next().map_or(0, |h| h.split(',').count());
         if columns == HEADER.split(',').count() - 3 {
             let body: String = text.lines().skip(1).map(|l| format!("{l},0,0e0,0e0\n")).collect();
-            crate::output::text(&path, &format!("{HEADER}\n{body}"))?;
+            let upgraded = format!("{HEADER}\n{body}");
+            let rows = parse_curve(&upgraded)?;
+            crate::output::text(&path, &upgraded)?;
+            return Ok(rows);
         }
-        Ok(rows)
+        parse_curve(&text)
     }
 
     /// `curve.csv` opened to append rows.
@@ -346,18 +348,11 @@ impl CurveWriter {
     }
 }
 
-/// The rows of `curve.csv`: of [`HEADER`], or of the header before the plastic columns (a
-/// sweep written by an earlier version, resumed elastic).
 fn parse_curve(text: &str) -> Result<Vec<CyclePoint>> {
-    let columns = HEADER.split(',').count();
-    let plastic = text
-        .lines()
-        .next()
-        .is_none_or(|h| h.split(',').count() == columns);
     let mut rows = Vec::new();
     for (k, line) in text.lines().skip(1).enumerate() {
         let f: Vec<&str> = line.split(',').collect();
-        if f.len() != if plastic { columns } else { columns - 3 } {
+        if f.len() != HEADER.split(',').count() {
             bail!("curve.csv line {} is incomplete: {line}", k + 2);
         }
         let num = |i: usize| -> Result<f64> {
@@ -375,7 +370,7 @@ fn parse_curve(text: &str) -> Result<Vec<CyclePoint>> {
                 Branch::Loading
             },
             converged: f[11] == "true",
-            plastic_work: if plastic { num(17)? } else { 0.0 },
+            plastic_work: num(17)?,
         });
     }
     Ok(rows)

@@ -72,26 +72,6 @@ impl Interface {
             None => Ok(()),
         }
     }
-
-    /// Refuses a compressive load that no contact can carry under the cap: more than `H` times
-    /// the nominal area `area` \[m^2\] (the dual loops ask their inner solves for the load plus
-    /// the attraction's).
-    pub(crate) fn check_load(&self, load: f64, area: f64) -> Result<()> {
-        match self.hardness {
-            Some(h) if load > h * area => Err(invalid(
-                "load",
-                load,
-                format!(
-                    "exceeds the hardness times the nominal area, {:.4e} N: a plastic surface \
-                     cannot carry it (with adhesion, the compressive load that balances the \
-                     attraction: a law whose attraction in contact exceeds the hardness \
-                     outpulls it)",
-                    h * area
-                ),
-            )),
-            _ => Ok(()),
-        }
-    }
 }
 
 /// The initial gap a solve sees: `g0` plus the permanent set the surface has taken.

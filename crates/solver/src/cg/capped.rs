@@ -8,7 +8,7 @@
 //! times the RMS initial gap).
 
 use super::{Scratch, solve_in};
-use crate::error::Result;
+use crate::error::{Result, invalid};
 use crate::options::{ContactOptions, Control};
 use crate::report::{ContactReport, Termination};
 use crate::state::ContactState;
@@ -35,6 +35,21 @@ pub(super) fn solve_load(
     let started = Instant::now();
     let domain = *scratch.op.domain();
     let cell = domain.cell_area();
+    // The dual loops ask for the load plus the attraction's: a law whose attraction in contact
+    // exceeds the hardness outpulls it.
+    let area = cell * (domain.nx * domain.ny) as f64;
+    if load > cap * area {
+        return Err(invalid(
+            "load",
+            load,
+            format!(
+                "exceeds the hardness times the nominal area, {:.4e} N: a plastic surface cannot \
+                 carry it (with adhesion, the compressive load that balances the attraction: a \
+                 law whose attraction in contact exceeds the hardness outpulls it)",
+                cap * area
+            ),
+        ));
+    }
     let first_touch = g0.iter().copied().fold(f64::INFINITY, f64::min);
     let tolerance = options.tolerance * load;
     // The approach the solves resolve: their gap tolerance, relative to the RMS initial gap.

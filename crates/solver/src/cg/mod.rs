@@ -199,10 +199,9 @@ pub(crate) fn solve_in(
     let (target_load, h_ref) = checked(&domain, g0, control, options)?;
     let cell = domain.cell_area();
     if let (Some(w), true) = (target_load, cap.is_finite()) {
-        let area = cell * (domain.nx * domain.ny) as f64;
-        Interface { hardness: Some(cap) }.check_load(w, area)?;
         // The load's multiplier, the approach, is not fixed by the elastic contact set once
-        // most cells are at the cap: the load is met by a search on the approach instead.
+        // most cells are at the cap: the load is met by a search on the approach instead (and
+        // the preconditioner, a load control's, is never used under a cap).
         return capped::solve_load(scratch, g0, cap, w, options, state, warm, observer);
     }
 
@@ -286,7 +285,7 @@ pub(crate) fn solve_in(
             let (z, shift, gz): (&Array2<f64>, f64, f64) = match preconditioner.as_deref_mut() {
                 None => (&*gap, 0.0, g2_contact),
                 Some(pre) => {
-                    let (shift, gz) = pre.apply(gap, p, in_contact, cap);
+                    let (shift, gz) = pre.apply(gap, p, in_contact);
                     (&pre.image, shift, gz)
                 }
             };
@@ -597,12 +596,12 @@ impl Preconditioner {
     /// The residual `gap` on the contact set of `p` through the operator's inverse, into
     /// `image`; its mean there (`in_contact` cells) and its product with the residual, deflated
     /// of that mean (preconditioning is under load control only).
-    fn apply(&mut self, gap: &Array2<f64>, p: &Array2<f64>, in_contact: f64, cap: f64) -> (f64, f64) {
+    fn apply(&mut self, gap: &Array2<f64>, p: &Array2<f64>, in_contact: f64) -> (f64, f64) {
         let nx = p.ncols();
         Zip::from(&mut self.masked)
             .and(gap)
             .and(p)
-            .par_for_each(|m, &g, &p| *m = if p > 0.0 && p < cap { g } else { 0.0 });
+            .par_for_each(|m, &g, &p| *m = if p > 0.0 { g } else { 0.0 });
         self.fft.convolve(
             self.masked.view(),
             self.multiplier.view(),
@@ -613,7 +612,7 @@ impl Preconditioner {
         let [z_sum, zg, g_sum] = crate::sum::ordered(p.nrows(), |j| {
             let mut acc = [0.0; 3];
             for k in j * nx..(j + 1) * nx {
-                if ps[k] > 0.0 && ps[k] < cap {
+                if ps[k] > 0.0 {
                     acc[0] += zs[k];
                     acc[1] += zs[k] * gs[k];
                     acc[2] += gs[k];
