@@ -17,7 +17,13 @@ use std::f64::consts::PI;
 /// Complete elliptic integrals `K(k)` and `E(k)` of modulus `0 <= k < 1`, by the
 /// arithmetic-geometric mean (to round-off).
 pub fn elliptic_ke(k: f64) -> (f64, f64) {
-    let (mut a, mut b) = (1.0, (1.0 - k * k).sqrt());
+    elliptic_ke_complementary(k, ((1.0 - k) * (1.0 + k)).sqrt())
+}
+
+/// [`elliptic_ke`] given the complementary modulus `kp = sqrt(1 - k^2)` as well, which keeps
+/// its precision where `k` rounds to 1 (`K` grows as `ln(4 / kp)`).
+pub fn elliptic_ke_complementary(k: f64, kp: f64) -> (f64, f64) {
+    let (mut a, mut b) = (1.0, kp);
     let mut c = k;
     let mut sum = 0.5 * c * c;
     let mut power = 0.5;

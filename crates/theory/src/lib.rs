@@ -5,6 +5,7 @@
 //! `P > 0` compressive, approach `delta > 0` pushing the bodies together (docs/method.md
 //! sections 6 and 8).
 
+pub mod flattened;
 pub mod greenwood;
 pub mod hertz;
 pub mod jkr_dmt;

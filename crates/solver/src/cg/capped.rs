@@ -1,18 +1,27 @@
-//! Load control under a hardness. Once most of the contact is held at the cap the elastic
-//! contact set no longer fixes the load's multiplier, the approach (a sphere at eight times
-//! the load of first yield left no cell between 0 and H and cycled, measured), so the load is
-//! met by a search on the approach instead: the load grows monotonically with it, each trial
-//! an approach-controlled solve warm-started from the last, on the logarithm of the load by
-//! secants, bracketed and then refined by the Illinois variant of regula falsi, until the load
-//! is met or the bracket is narrower than the approach the solves resolve (their gap tolerance
-//! times the RMS initial gap).
+//! Load control under a hardness. Projecting onto the cap inside the load-controlled iteration
+//! cycles: once most of the contact is held at the cap the elastic contact set no longer fixes
+//! the load's multiplier, the approach (a sphere at eight times the load of first yield,
+//! measured). Two outer loops meet the load instead:
+//!
+//! - An active set of the cells held at the cap (first): each round holds them at H and solves
+//!   the elastic, preconditioned, load-controlled problem for the rest of the load on the other
+//!   cells; cells whose pressure passes H join, held cells whose gap opens leave. The rounds
+//!   start loose and tighten as the set settles (an inner tolerance the square of the share of
+//!   the contact that changed), from the bearing set of nine tenths of the load.
+//! - A search on the approach (where the active set cannot finish): the load grows
+//!   monotonically with it, each trial an approach-controlled solve warm-started from the last,
+//!   on the logarithm of the load by secants, bracketed and then refined by the Illinois
+//!   variant of regula falsi, until the load is met or the bracket is narrower than the
+//!   approach the solves resolve (their gap tolerance times the RMS initial gap).
+//!
+//! The choice and its measurements are in `docs/decisions.md`.
 
 use super::{Scratch, solve_in};
 use crate::error::{Result, invalid};
 use crate::options::{ContactOptions, Control};
 use crate::report::{ContactReport, Termination};
 use crate::state::ContactState;
-use ndarray::ArrayView2;
+use ndarray::{Array2, ArrayView2, Zip};
 use std::time::Instant;
 
 /// Trials allowed to bracket and to refine the approach.
@@ -49,6 +58,12 @@ pub(super) fn solve_load(
                 cap * area
             ),
         ));
+    }
+    if let Some(report) = active_set(scratch, g0, cap, load, options, state, warm, observer)? {
+        return Ok(ContactReport {
+            wall_time_s: started.elapsed().as_secs_f64(),
+            ..report
+        });
     }
     let first_touch = g0.iter().copied().fold(f64::INFINITY, f64::min);
     let tolerance = options.tolerance * load;
@@ -220,4 +235,213 @@ fn bearing_approach(g0: ArrayView2<f64>, cells: f64) -> f64 {
     let k = (cells.ceil() as usize).clamp(1, gaps.len()) - 1;
     let (_, kth, _) = gaps.select_nth_unstable_by(k, f64::total_cmp);
     *kth
+}
+
+/// Rounds of the active set before the search takes over.
+const MAX_ROUNDS: usize = 40;
+
+/// Rounds at the requested tolerance that still change the set before the search takes over.
+const SETTLING_ROUNDS: usize = 6;
+
+/// The share of the load a cold active set starts with on the bearing set: most of the answer
+/// where the contact is mostly plastic, released in the first round where it is not.
+const BEARING_SHARE: f64 = 0.9;
+
+/// The inner tolerance of the first round.
+const LOOSE: f64 = 1e-2;
+
+/// A gap no displacement closes: it takes a held cell out of the elastic problem.
+const OUT: f64 = 1e300;
+
+/// Load control with the cells at the cap as an outer active set (the module's first loop).
+/// None when it cannot finish: a warm set that carries the whole load, or no settled set
+/// within [`MAX_ROUNDS`].
+#[allow(clippy::too_many_arguments)]
+fn active_set(
+    scratch: &mut Scratch,
+    g0: ArrayView2<f64>,
+    cap: f64,
+    load: f64,
+    options: &ContactOptions,
+    state: &mut ContactState,
+    warm: bool,
+    observer: &mut dyn FnMut(usize, f64) -> bool,
+) -> Result<Option<ContactReport>> {
+    let op = scratch.op;
+    let domain = *op.domain();
+    let shape = domain.shape();
+    let cell = domain.cell_area();
+    let n = g0.len() as f64;
+    let mean = g0.sum() / n;
+    // The gap scale the residuals are measured against: the problem's, not the held cells'.
+    let scale = (g0.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / n)
+        .sqrt()
+        .max(f64::MIN_POSITIVE);
+    let held_load = |held: &Array2<bool>| cap * cell * held.iter().filter(|&&h| h).count() as f64;
+    // The start: a warm state's held cells and pressure while they leave load to the others,
+    // else the bearing set's cells and the rest of the load spread evenly.
+    let warm = warm && state.pressure.dim() == shape;
+    if !warm {
+        state.pressure = Array2::zeros(shape);
+        state.displacement = Array2::zeros(shape);
+        state.gap = Array2::zeros(shape);
+    }
+    let mut held = state.pressure.mapv(|p| p >= cap);
+    let mut inner = ContactState::unloaded(shape);
+    if warm && held_load(&held) < BEARING_SHARE * load {
+        Zip::from(&mut inner.pressure)
+            .and(&state.pressure)
+            .and(&held)
+            .for_each(|e, &p, &h| *e = if h { 0.0 } else { p });
+    } else {
+        let depth = bearing_approach(g0, BEARING_SHARE * load / (cap * cell));
+        held = g0.mapv(|g| g < depth);
+    }
+    let mut p_held = Array2::<f64>::zeros(shape);
+    let mut u_held = Array2::<f64>::zeros(shape);
+    let mut g_eff = Array2::<f64>::zeros(shape);
+    let (mut iterations, mut calls, mut history) = (0, 0, Vec::new());
+    let mut tolerance = options.tolerance.max(LOOSE);
+    let mut last_changed = usize::MAX;
+    let mut settling = 0;
+    for _ in 0..MAX_ROUNDS {
+        let rest = load - held_load(&held);
+        if rest <= 0.0 {
+            return Ok(None);
+        }
+        if inner.pressure.iter().all(|&p| p == 0.0) {
+            // Every elastic cell joined (or a cold start): the rest spread over the others.
+            let free = held.iter().filter(|&&h| !h).count().max(1) as f64;
+            let spread = rest / (free * cell);
+            Zip::from(&mut inner.pressure)
+                .and(&held)
+                .par_for_each(|p, &h| *p = if h { 0.0 } else { spread });
+        }
+        Zip::from(&mut p_held)
+            .and(&held)
+            .par_for_each(|p, &h| *p = if h { cap } else { 0.0 });
+        op.apply(p_held.view(), u_held.view_mut(), &mut scratch.ws)?;
+        calls += 1;
+        Zip::from(&mut g_eff)
+            .and(g0)
+            .and(&u_held)
+            .and(&held)
+            .par_for_each(|e, &g, &u, &h| *e = if h { OUT } else { g + u });
+        let round = ContactOptions {
+            max_iterations: options.max_iterations.saturating_sub(iterations),
+            tolerance,
+            ..*options
+        };
+        let offset = iterations;
+        let report = super::solve_scaled(
+            scratch,
+            g_eff.view(),
+            f64::INFINITY,
+            Some(scale),
+            Control::Force(rest),
+            &round,
+            &mut inner,
+            true,
+            &mut |i, r| observer(offset + i, r),
+        )?;
+        iterations += report.iterations;
+        calls += report.operator_calls;
+        history.extend(&report.residual_history);
+        let approach = report.approach;
+        if !approach.is_finite() {
+            // An elastic set of a cell or two that the step emptied: the search takes over.
+            return Ok(None);
+        }
+        let mut changed = 0usize;
+        if report.converged() {
+            // A held cell leaves once its gap opens beyond what the round resolves; a cell
+            // joins once its pressure passes H beyond the tolerance (it is clipped to H at the
+            // end), so that a cell on the edge of both cannot flip from round to round.
+            let opening = tolerance * scale;
+            let limit = cap * (1.0 + options.tolerance);
+            let mut flips = held.clone();
+            Zip::from(&mut flips)
+                .and(&inner.pressure)
+                .and(&inner.displacement)
+                .and(&u_held)
+                .and(g0)
+                .for_each(|f, &p, &u, &uh, &g| {
+                    *f = if *f {
+                        g + u + uh - approach > opening
+                    } else {
+                        p > limit
+                    };
+                });
+            changed = flips.iter().filter(|&&f| f).count();
+            if changed > 0 {
+                Zip::from(&mut held)
+                    .and(&mut inner.pressure)
+                    .and(&flips)
+                    .for_each(|h, p, &f| {
+                        if f {
+                            *h = !*h;
+                            // A cell released starts at H, one that joins leaves the problem.
+                            *p = if *h { 0.0 } else { cap };
+                        }
+                    });
+            }
+        }
+        if !report.converged() || (changed == 0 && tolerance <= options.tolerance) {
+            assemble(state, (&inner, &p_held, &u_held), g0, cap, approach);
+            let summary = super::report(op, &state.pressure, &state.displacement, &mut state.gap, approach);
+            return Ok(Some(ContactReport {
+                iterations,
+                residual: report.residual,
+                residual_history: history,
+                termination: report.termination,
+                operator_calls: calls,
+                ..summary
+            }));
+        }
+        // The next round's tolerance: the square of the share of the contact that changed,
+        // a hundred times tighter when the changes stop shrinking, the requested one once
+        // nothing changes.
+        let contact =
+            inner.pressure.iter().filter(|&&p| p > 0.0).count() + held.iter().filter(|&&h| h).count();
+        let share = changed as f64 / contact.max(1) as f64;
+        let mut next = (share * share).min(tolerance);
+        if changed >= last_changed {
+            next = next.min(1e-2 * tolerance);
+        }
+        tolerance = next.max(options.tolerance);
+        last_changed = changed;
+        if tolerance <= options.tolerance {
+            settling += 1;
+            if settling > SETTLING_ROUNDS {
+                // A few cells a round at full cost (an elastic set of a few cells): the
+                // search takes over.
+                return Ok(None);
+            }
+        }
+    }
+    Ok(None)
+}
+
+/// The whole solution into `state`: the pressures and displacements of the elastic cells
+/// (`inner`) and of the held ones, the gap at `approach`.
+fn assemble(
+    state: &mut ContactState,
+    (inner, p_held, u_held): (&ContactState, &Array2<f64>, &Array2<f64>),
+    g0: ArrayView2<f64>,
+    cap: f64,
+    approach: f64,
+) {
+    Zip::from(&mut state.pressure)
+        .and(&inner.pressure)
+        .and(p_held)
+        .par_for_each(|p, &e, &h| *p = e.min(cap) + h);
+    Zip::from(&mut state.displacement)
+        .and(&inner.displacement)
+        .and(u_held)
+        .par_for_each(|u, &e, &h| *u = e + h);
+    Zip::from(&mut state.gap)
+        .and(g0)
+        .and(&state.displacement)
+        .par_for_each(|gap, &g, &u| *gap = g + u - approach);
+    state.approach = approach;
 }

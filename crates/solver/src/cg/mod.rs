@@ -192,11 +192,29 @@ pub(crate) fn solve_in(
     warm: bool,
     observer: &mut dyn FnMut(usize, f64) -> bool,
 ) -> Result<ContactReport> {
+    solve_scaled(scratch, g0, cap, None, control, options, state, warm, observer)
+}
+
+/// [`solve_in`] with the residual measured against the gap scale `scale` \[m\] when given
+/// (else the RMS of `g0`).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn solve_scaled(
+    scratch: &mut Scratch,
+    g0: ArrayView2<f64>,
+    cap: f64,
+    scale: Option<f64>,
+    control: Control,
+    options: &ContactOptions,
+    state: &mut ContactState,
+    warm: bool,
+    observer: &mut dyn FnMut(usize, f64) -> bool,
+) -> Result<ContactReport> {
     let op = scratch.op;
     let started = Instant::now();
     let domain = *op.domain();
     let shape = domain.shape();
     let (target_load, h_ref) = checked(&domain, g0, control, options)?;
+    let h_ref = scale.unwrap_or(h_ref);
     let cell = domain.cell_area();
     if let (Some(w), true) = (target_load, cap.is_finite()) {
         // The load's multiplier, the approach, is not fixed by the elastic contact set once
@@ -289,7 +307,11 @@ pub(crate) fn solve_in(
                     (&pre.image, shift, gz)
                 }
             };
-            let beta = if conjugate { gz / g_norm_old } else { 0.0 };
+            let beta = if conjugate && g_norm_old > 0.0 {
+                gz / g_norm_old
+            } else {
+                0.0
+            };
             g_norm_old = gz;
             let direction = Direction {
                 z,
@@ -420,12 +442,11 @@ fn along_direction(
     });
     let tau = if rt > 0.0 {
         gt / rt
-    } else if cap.is_finite() {
-        // No elastic contact set to give a step (every loaded cell at the cap): bounds are
-        // left at a lone cell's stiffness, or nothing would ever move.
-        1.0 / op.domain().cell_compliance(op.e_star())
     } else {
-        0.0
+        // No direction to give a step (every loaded cell at the cap, or a lone cell under load
+        // control): interpenetrating cells enter at a lone cell's stiffness, or nothing would
+        // ever move.
+        1.0 / op.domain().cell_compliance(op.e_star())
     };
     // Pass F: step, projection onto p >= 0, release of every interpenetrating cell at zero
     // pressure (free ones and those just clipped: releasing the clipped ones too saves about
