@@ -16,7 +16,7 @@
 //!
 //! The choice and its measurements are in `docs/decisions.md`.
 
-use super::{Scratch, solve_in};
+use super::{Scratch, gap_scale, solve_in};
 use crate::error::{Result, invalid};
 use crate::options::{ContactOptions, Control};
 use crate::report::{ContactReport, Termination};
@@ -68,9 +68,7 @@ pub(super) fn solve_load(
     let first_touch = g0.iter().copied().fold(f64::INFINITY, f64::min);
     let tolerance = options.tolerance * load;
     // The approach the solves resolve: their gap tolerance, relative to the RMS initial gap.
-    let n = g0.len() as f64;
-    let mean = g0.sum() / n;
-    let resolution = options.tolerance * (g0.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / n).sqrt();
+    let resolution = options.tolerance * gap_scale(g0);
     let mut search = Search {
         trials: 0,
         iterations: 0,
@@ -271,12 +269,8 @@ fn active_set(
     let domain = *op.domain();
     let shape = domain.shape();
     let cell = domain.cell_area();
-    let n = g0.len() as f64;
-    let mean = g0.sum() / n;
     // The gap scale the residuals are measured against: the problem's, not the held cells'.
-    let scale = (g0.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / n)
-        .sqrt()
-        .max(f64::MIN_POSITIVE);
+    let scale = gap_scale(g0);
     let held_load = |held: &Array2<bool>| cap * cell * held.iter().filter(|&&h| h).count() as f64;
     // The start: a warm state's held cells and pressure while they leave load to the others,
     // else the bearing set's cells and the rest of the load spread evenly.

@@ -16,7 +16,7 @@
 //! Under a hardness `H` ([`Interface`]) the pressure is also bounded above, `p <= H`: the
 //! directions live on the elastic contact set `0 < p < H`, cells at `H` are held there while
 //! they overlap and released when their gap opens. The bound is a projection: no extra FFT an
-//! iteration. Under load control the approach is then found by a search (`capped.rs`).
+//! iteration. Under load control the cells at H are an outer active set (`capped.rs`).
 
 mod capped;
 
@@ -218,8 +218,8 @@ pub(crate) fn solve_scaled(
     let cell = domain.cell_area();
     if let (Some(w), true) = (target_load, cap.is_finite()) {
         // The load's multiplier, the approach, is not fixed by the elastic contact set once
-        // most cells are at the cap: the load is met by a search on the approach instead (and
-        // the preconditioner, a load control's, is never used under a cap).
+        // most cells are at the cap: the load is met by an outer loop whose rounds are elastic
+        // (the preconditioner never sees a cap).
         return capped::solve_load(scratch, g0, cap, w, options, state, warm, observer);
     }
 
@@ -496,11 +496,17 @@ fn checked(
         Control::Force(w) => Some(w),
         Control::Approach(_) | Control::CentralGap(_) => None,
     };
-    let g0_mean = g0.mean().unwrap_or(0.0);
-    let h_ref = (g0.iter().map(|v| (v - g0_mean).powi(2)).sum::<f64>() / n)
+    Ok((target_load, gap_scale(g0)))
+}
+
+/// The scale of the gap residual: the RMS of `g0` about its mean \[m\] (at least the least
+/// positive number).
+fn gap_scale(g0: ArrayView2<f64>) -> f64 {
+    let n = g0.len() as f64;
+    let mean = g0.sum() / n;
+    (g0.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n)
         .sqrt()
-        .max(f64::MIN_POSITIVE);
-    Ok((target_load, h_ref))
+        .max(f64::MIN_POSITIVE)
 }
 
 /// No contact: no displacement, the gap the undeformed one less the approach.
