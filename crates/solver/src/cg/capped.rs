@@ -252,8 +252,8 @@ const LOOSE: f64 = 1e-2;
 const OUT: f64 = 1e300;
 
 /// Load control with the cells at the cap as an outer active set (the module's first loop).
-/// None when it cannot finish: a warm set that carries the whole load, or no settled set
-/// within [`MAX_ROUNDS`].
+/// None when it cannot finish: no settled set within [`MAX_ROUNDS`] (or [`SETTLING_ROUNDS`] at
+/// the requested tolerance), a round whose elastic set empties, or no load left for one.
 #[allow(clippy::too_many_arguments)]
 fn active_set(
     scratch: &mut Scratch,
