@@ -5,7 +5,7 @@ use clap::Args;
 use elastic::{Domain, Periodic};
 use serde_json::json;
 use solver::geometry::flat_on_rough;
-use solver::{ContactOptions, Control};
+use solver::{ContactOptions, Control, Interface};
 use std::path::PathBuf;
 use std::time::Instant;
 use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec};
@@ -18,6 +18,10 @@ pub struct BenchArgs {
     /// Mean pressure in units of E* [-].
     #[arg(long, default_value_t = 0.04)]
     pressure: f64,
+    /// Hardness in units of E* [-]: the pressure cap of an elastic-perfectly-plastic surface
+    /// (absent: elastic). The check then also counts the cells at H that differ.
+    #[arg(long, value_name = "H")]
+    hardness: Option<f64>,
     /// Convergence tolerance of the timed solve.
     #[arg(long, default_value_t = 1e-8)]
     tolerance: f64,
@@ -63,6 +67,15 @@ pub fn bench(a: BenchArgs) -> Result<()> {
             a.pressure
         );
     }
+    let interface = match a.hardness {
+        None => Interface::default(),
+        Some(h) if h.is_finite() && h > a.pressure => Interface::with_hardness(h)?,
+        Some(h) => bail!(
+            "--hardness must be a finite H in units of E* above the mean pressure {} (a plastic \
+             surface carries at most H over the whole area), got {h}",
+            a.pressure
+        ),
+    };
     // Every size is checked before the first is solved: one the machine cannot hold is refused
     // with its estimate, not found out after the others have run.
     for &n in &a.sizes {
@@ -72,8 +85,9 @@ pub fn bench(a: BenchArgs) -> Result<()> {
         )?;
     }
     crate::outln!(
-        "Self-affine surface, H = 0.8, RMS gradient 1, short cut-off 8 cells, no roll-off; E* = 1, p = {} E*, tolerance {:e}, {} threads",
+        "Self-affine surface, Hurst 0.8, RMS gradient 1, short cut-off 8 cells, no roll-off; E* = 1, p = {} E*{}, tolerance {:e}, {} threads",
         a.pressure,
+        a.hardness.map_or(String::new(), |h| format!(", hardness {h} E*")),
         a.tolerance,
         rayon::current_num_threads()
     );
@@ -91,10 +105,10 @@ pub fn bench(a: BenchArgs) -> Result<()> {
         "time [s]",
         "peak [MB]",
         "area",
-        if a.check {
-            "  contact diff  mean-gap rel. diff"
-        } else {
-            ""
+        match (a.check, a.hardness.is_some()) {
+            (false, _) => "",
+            (true, false) => "  contact diff  mean-gap rel. diff",
+            (true, true) => "  contact diff  mean-gap rel. diff  at-H diff",
         }
     );
     let mut rows = Vec::new();
@@ -119,7 +133,7 @@ pub fn bench(a: BenchArgs) -> Result<()> {
         };
         let op = Periodic::new(dom, 1.0)?;
         for &preconditioned in solvers {
-            rows.push(time_one(&a, n, &op, g0.view(), preconditioned)?);
+            rows.push(time_one(&a, n, &op, g0.view(), &interface, preconditioned)?);
         }
     }
     if let Some(path) = a.json {
@@ -134,6 +148,7 @@ fn time_one(
     n: usize,
     op: &Periodic,
     g0: ndarray::ArrayView2<f64>,
+    interface: &Interface,
     preconditioned: bool,
 ) -> Result<serde_json::Value> {
     let opts = ContactOptions {
@@ -143,12 +158,14 @@ fn time_one(
     };
     let solver = if preconditioned { "preconditioned" } else { "plain" };
     let t = Instant::now();
-    let (state, rep) = solver::cg::solve(op, g0, Control::MeanPressure(a.pressure), &opts, None, &mut ())?;
+    let control = Control::MeanPressure(a.pressure);
+    let (state, rep) = solver::cg::solve_with(op, g0, interface, control, &opts, None, &mut ())?;
     let time = t.elapsed().as_secs_f64();
     let peak = peak_rss().map(|b| b as f64 / 1e6);
     let mut row = json!({
         "n": n, "solver": solver, "iterations": rep.iterations, "operator_calls": rep.operator_calls, "wall_time_s": time,
         "peak_rss_mb": peak, "contact_area_fraction": rep.contact_area_fraction, "converged": rep.converged(),
+        "hardness": a.hardness, "plastic_area_fraction": rep.yielding.plastic_area_fraction,
     });
     let mut extra = String::new();
     if a.check {
@@ -156,14 +173,14 @@ fn time_one(
             tolerance: 1e-12,
             ..Default::default()
         };
-        let (reference, _) = solver::cg::solve(
-            op,
-            g0,
-            Control::MeanPressure(a.pressure),
-            &tight,
-            Some(&state),
-            &mut (),
-        )?;
+        // From the timed solve's pressure, without the set it settled (the reference yields
+        // from the same undeformed surface).
+        let warm = solver::ContactState {
+            permanent_set: None,
+            ..state.clone()
+        };
+        let (reference, _) =
+            solver::cg::solve_with(op, g0, interface, control, &tight, Some(&warm), &mut ())?;
         let differ = state
             .pressure
             .iter()
@@ -175,6 +192,16 @@ fn time_one(
         extra = format!("  {differ:>12}  {gap_diff:>18.2e}");
         row["contact_cells_differing"] = json!(differ);
         row["mean_gap_relative_difference"] = json!(gap_diff);
+        if let Some(h) = a.hardness {
+            let at_h = state
+                .pressure
+                .iter()
+                .zip(reference.pressure.iter())
+                .filter(|(x, y)| (**x >= h) != (**y >= h))
+                .count();
+            extra += &format!("  {at_h:>9}");
+            row["cells_at_hardness_differing"] = json!(at_h);
+        }
     }
     crate::outln!(
         "{n:>6} {solver:>15} {:>7} {:>10} {time:>10.3} {:>12} {:>10.5}{extra}",

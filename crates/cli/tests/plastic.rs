@@ -165,3 +165,43 @@ fn a_curve_written_before_the_plastic_columns_resumes_with_them() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(std::fs::read_to_string(out.join("curve.csv")).unwrap(), text);
 }
+
+#[test]
+fn the_bench_caps_at_a_hardness_meets_its_tight_solve_and_refuses_one_below_the_load() {
+    let d = dir("bench");
+    let json = d.join("bench.json");
+    let o = run(&[
+        "bench",
+        "--sizes",
+        "64",
+        "--hardness",
+        "0.1",
+        "--pressure",
+        "0.03",
+        "--check",
+        "--solver",
+        "preconditioned",
+        "--json",
+        json.to_str().unwrap(),
+    ]
+    .map(String::from));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rows: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let row = &rows[0];
+    assert_eq!(row["converged"], true);
+    assert_eq!(row["hardness"], 0.1);
+    // Most of the contact is held at H on this steep surface.
+    let (area, plastic) = (
+        row["contact_area_fraction"].as_f64().unwrap(),
+        row["plastic_area_fraction"].as_f64().unwrap(),
+    );
+    assert!(plastic > 0.9 * area && plastic <= area, "{plastic} of {area}");
+    assert_eq!(row["contact_cells_differing"], 0);
+    assert_eq!(row["cells_at_hardness_differing"], 0);
+    for bad in ["0.01", "nan"] {
+        let o = run(&["bench", "--sizes", "64", "--pressure", "0.03", "--hardness", bad].map(String::from));
+        assert!(!o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("--hardness must be a finite H"), "{bad}: {err}");
+    }
+}

@@ -6,8 +6,8 @@
 //! - An active set of the cells held at the cap (first): each round holds them at H and solves
 //!   the elastic, preconditioned, load-controlled problem for the rest of the load on the other
 //!   cells; cells whose pressure passes H join, held cells whose gap opens leave. The rounds
-//!   start loose and tighten as the set settles (an inner tolerance the square of the share of
-//!   the contact that changed), from the bearing set of nine tenths of the load.
+//!   start loose and tighten as the set settles (an inner tolerance the share of the contact
+//!   that changed to the power 1.5), from the bearing set of nine tenths of the load.
 //! - A search on the approach (where the active set cannot finish): the load grows
 //!   monotonically with it, each trial an approach-controlled solve warm-started from the last,
 //!   on the logarithm of the load by secants, bracketed and then refined by the Illinois
@@ -392,13 +392,13 @@ fn active_set(
                 ..summary
             }));
         }
-        // The next round's tolerance: the square of the share of the contact that changed,
+        // The next round's tolerance: the share of the contact that changed to the power 1.5,
         // a hundred times tighter when the changes stop shrinking, the requested one once
         // nothing changes.
         let contact =
             inner.pressure.iter().filter(|&&p| p > 0.0).count() + held.iter().filter(|&&h| h).count();
         let share = changed as f64 / contact.max(1) as f64;
-        let mut next = (share * share).min(tolerance);
+        let mut next = share.powf(1.5).min(tolerance);
         if changed >= last_changed {
             next = next.min(1e-2 * tolerance);
         }
