@@ -59,7 +59,15 @@ pub(super) fn solve_load(
             ),
         ));
     }
-    if let Some(report) = active_set(scratch, g0, cap, load, options, state, warm, observer)? {
+    // The work of both loops is counted together, within one iteration limit.
+    let mut search = Search {
+        trials: 0,
+        iterations: 0,
+        calls: 0,
+        history: Vec::new(),
+        warm,
+    };
+    if let Some(report) = active_set(scratch, g0, cap, load, options, state, &mut search, observer)? {
         return Ok(ContactReport {
             wall_time_s: started.elapsed().as_secs_f64(),
             ..report
@@ -69,13 +77,6 @@ pub(super) fn solve_load(
     let tolerance = options.tolerance * load;
     // The approach the solves resolve: their gap tolerance, relative to the RMS initial gap.
     let resolution = options.tolerance * gap_scale(g0);
-    let mut search = Search {
-        trials: 0,
-        iterations: 0,
-        calls: 0,
-        history: Vec::new(),
-        warm,
-    };
     // The search is on the logarithm of the load, nearly linear in the approach on rough
     // surfaces (exponential at small loads): `(approach, ln(P / load))`, -inf without contact.
     // Below first touch nothing is carried.
@@ -262,9 +263,10 @@ fn active_set(
     load: f64,
     options: &ContactOptions,
     state: &mut ContactState,
-    warm: bool,
+    tally: &mut Search,
     observer: &mut dyn FnMut(usize, f64) -> bool,
 ) -> Result<Option<ContactReport>> {
+    let warm = tally.warm;
     let op = scratch.op;
     let domain = *op.domain();
     let shape = domain.shape();
@@ -294,7 +296,6 @@ fn active_set(
     let mut p_held = Array2::<f64>::zeros(shape);
     let mut u_held = Array2::<f64>::zeros(shape);
     let mut g_eff = Array2::<f64>::zeros(shape);
-    let (mut iterations, mut calls, mut history) = (0, 0, Vec::new());
     let mut tolerance = options.tolerance.max(LOOSE);
     let mut last_changed = usize::MAX;
     let mut settling = 0;
@@ -315,18 +316,18 @@ fn active_set(
             .and(&held)
             .par_for_each(|p, &h| *p = if h { cap } else { 0.0 });
         op.apply(p_held.view(), u_held.view_mut(), &mut scratch.ws)?;
-        calls += 1;
+        tally.calls += 1;
         Zip::from(&mut g_eff)
             .and(g0)
             .and(&u_held)
             .and(&held)
             .par_for_each(|e, &g, &u, &h| *e = if h { OUT } else { g + u });
         let round = ContactOptions {
-            max_iterations: options.max_iterations.saturating_sub(iterations),
+            max_iterations: options.max_iterations.saturating_sub(tally.iterations),
             tolerance,
             ..*options
         };
-        let offset = iterations;
+        let offset = tally.iterations;
         let report = super::solve_scaled(
             scratch,
             g_eff.view(),
@@ -338,9 +339,9 @@ fn active_set(
             true,
             &mut |i, r| observer(offset + i, r),
         )?;
-        iterations += report.iterations;
-        calls += report.operator_calls;
-        history.extend(&report.residual_history);
+        tally.iterations += report.iterations;
+        tally.calls += report.operator_calls;
+        tally.history.extend(&report.residual_history);
         let approach = report.approach;
         if !approach.is_finite() {
             // An elastic set of a cell or two that the step emptied: the search takes over.
@@ -384,11 +385,11 @@ fn active_set(
             assemble(state, (&inner, &p_held, &u_held), g0, cap, approach);
             let summary = super::report(op, &state.pressure, &state.displacement, &mut state.gap, approach);
             return Ok(Some(ContactReport {
-                iterations,
+                iterations: tally.iterations,
                 residual: report.residual,
-                residual_history: history,
+                residual_history: std::mem::take(&mut tally.history),
                 termination: report.termination,
-                operator_calls: calls,
+                operator_calls: tally.calls,
                 ..summary
             }));
         }
