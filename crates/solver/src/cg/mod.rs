@@ -213,8 +213,7 @@ pub(crate) fn solve_scaled(
     let started = Instant::now();
     let domain = *op.domain();
     let shape = domain.shape();
-    let (target_load, h_ref) = checked(&domain, g0, control, options)?;
-    let h_ref = scale.unwrap_or(h_ref);
+    let target_load = checked(&domain, g0, control, options)?;
     let cell = domain.cell_area();
     if let (Some(w), true) = (target_load, cap.is_finite()) {
         // The load's multiplier, the approach, is not fixed by the elastic contact set once
@@ -222,6 +221,7 @@ pub(crate) fn solve_scaled(
         // (the preconditioner never sees a cap).
         return capped::solve_load(scratch, g0, cap, w, options, state, warm, observer);
     }
+    let h_ref = scale.unwrap_or_else(|| gap_scale(g0));
 
     let (warm, mut approach) = start(state, shape, warm, control);
     let ContactState {
@@ -470,14 +470,14 @@ fn start(state: &mut ContactState, shape: (usize, usize), warm: bool, control: C
     (warm, approach)
 }
 
-/// Checks the input of a solve on `domain`; returns the load the control prescribes [N] (none
-/// under approach control) and the scale of the gap residual, the RMS of `g0` [m].
+/// Checks the input of a solve on `domain`; returns the load the control prescribes \[N\] (none
+/// under approach control).
 fn checked(
     domain: &elastic::Domain,
     g0: ArrayView2<f64>,
     control: Control,
     options: &ContactOptions,
-) -> Result<(Option<f64>, f64)> {
+) -> Result<Option<f64>> {
     let shape = domain.shape();
     if g0.dim() != shape {
         return Err(SolverError::ShapeMismatch {
@@ -496,7 +496,7 @@ fn checked(
         Control::Force(w) => Some(w),
         Control::Approach(_) | Control::CentralGap(_) => None,
     };
-    Ok((target_load, gap_scale(g0)))
+    Ok(target_load)
 }
 
 /// The scale of the gap residual: the RMS of `g0` about its mean \[m\] (at least the least
