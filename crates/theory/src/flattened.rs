@@ -49,11 +49,12 @@ impl Flattened {
     }
 
     /// The slope `f'(s)` of the unloaded gap at `s = a sin(t)` \[m\]: `-u_H'(s)` inside
-    /// `a_max`, `s / R` outside. `to_edge` is `asin(a_max / a) - t` when `a > a_max`, which
+    /// `a_max`, `s / R` outside. `to_edge` is `asin(a_max / a) - t` when `a >= a_max`, which
     /// gives `1 - (s / a_max)^2` to full precision where the slope's logarithm diverges.
     fn slope(&self, a: f64, t: f64, to_edge: Option<f64>) -> f64 {
         let s = a * t.sin();
-        if s >= self.a_max {
+        // Short of the edge by `to_edge` (s itself may round onto a_max there).
+        if to_edge.is_none_or(|d| d <= 0.0) && s >= self.a_max {
             return s / self.r;
         }
         let k = s / self.a_max;
@@ -72,32 +73,21 @@ impl Flattened {
     /// Sneddon's load \[N\] at contact radius `a` \[m\] without adhesion.
     pub fn elastic_load(&self, a: f64) -> f64 {
         // s = a sin(t): P1 = 2 E* a^2 int_0^{pi/2} f'(a sin t) sin^2 t dt, split where the
-        // slope's logarithmic singularity sits (s = a_max). At a = a_max it sits at pi/2, where
-        // 1 - k^2 = cos^2 t.
-        let integral = if a > self.a_max {
+        // slope's logarithmic singularity sits (s = a_max).
+        let integral = if a >= self.a_max {
+            // Up to the edge, 1 - k^2 from the distance to it; at a = a_max the edge is pi/2.
             let edge = (self.a_max / a).asin();
-            tanh_sinh(
+            let inside = tanh_sinh(
                 &|t, _, to_b| self.slope(a, t, Some(to_b)) * t.sin().powi(2),
                 0.0,
                 edge,
-            ) + tanh_sinh(
-                &|t, _, _| self.slope(a, t, None) * t.sin().powi(2),
-                edge,
-                0.5 * PI,
-            )
-        } else if a == self.a_max {
-            tanh_sinh(
-                &|t, _, to_b| {
-                    let k = t.sin();
-                    if k == 0.0 {
-                        return 0.0;
-                    }
-                    let (kk, ee) = elliptic_ke_complementary(k, to_b.sin());
-                    4.0 * self.hardness / (PI * self.e_star) * (kk - ee) / k * k * k
-                },
-                0.0,
-                0.5 * PI,
-            )
+            );
+            inside
+                + tanh_sinh(
+                    &|t, _, _| self.slope(a, t, None) * t.sin().powi(2),
+                    edge,
+                    0.5 * PI,
+                )
         } else {
             tanh_sinh(&|t, _, _| self.slope(a, t, None) * t.sin().powi(2), 0.0, 0.5 * PI)
         };

@@ -275,23 +275,30 @@ fn active_set(
     let scale = gap_scale(g0);
     let held_load = |held: &Array2<bool>| cap * cell * held.iter().filter(|&&h| h).count() as f64;
     // The start: a warm state's held cells and pressure while they leave load to the others,
-    // else the bearing set's cells and the rest of the load spread evenly.
-    let warm = warm && state.pressure.dim() == shape;
-    if !warm {
-        state.pressure = Array2::zeros(shape);
-        state.displacement = Array2::zeros(shape);
-        state.gap = Array2::zeros(shape);
-    }
-    let mut held = state.pressure.mapv(|p| p >= cap);
+    // else the bearing set's cells and the rest of the load spread evenly (the first round).
     let mut inner = ContactState::unloaded(shape);
-    if warm && held_load(&held) < BEARING_SHARE * load {
-        Zip::from(&mut inner.pressure)
-            .and(&state.pressure)
-            .and(&held)
-            .for_each(|e, &p, &h| *e = if h { 0.0 } else { p });
-    } else {
-        let depth = bearing_approach(g0, BEARING_SHARE * load / (cap * cell));
-        held = g0.mapv(|g| g < depth);
+    let warm_held = (warm && state.pressure.dim() == shape)
+        .then(|| state.pressure.mapv(|p| p >= cap))
+        .filter(|held| held_load(held) < BEARING_SHARE * load);
+    let mut held = match warm_held {
+        Some(held) => {
+            Zip::from(&mut inner.pressure)
+                .and(&state.pressure)
+                .and(&held)
+                .for_each(|e, &p, &h| *e = if h { 0.0 } else { p });
+            held
+        }
+        None => {
+            let depth = bearing_approach(g0, BEARING_SHARE * load / (cap * cell));
+            g0.mapv(|g| g < depth)
+        }
+    };
+    if state.pressure.dim() != shape {
+        // The solution is assembled into the state's fields.
+        *state = ContactState {
+            permanent_set: state.permanent_set.take(),
+            ..ContactState::unloaded(shape)
+        };
     }
     let mut p_held = Array2::<f64>::zeros(shape);
     let mut u_held = Array2::<f64>::zeros(shape);
@@ -354,32 +361,24 @@ fn active_set(
             // end), so that a cell on the edge of both cannot flip from round to round.
             let opening = tolerance * scale;
             let limit = cap * (1.0 + options.tolerance);
-            let mut flips = held.clone();
-            Zip::from(&mut flips)
-                .and(&inner.pressure)
+            Zip::from(&mut held)
+                .and(&mut inner.pressure)
                 .and(&inner.displacement)
                 .and(&u_held)
                 .and(g0)
-                .for_each(|f, &p, &u, &uh, &g| {
-                    *f = if *f {
+                .for_each(|h, p, &u, &uh, &g| {
+                    let flip = if *h {
                         g + u + uh - approach > opening
                     } else {
-                        p > limit
+                        *p > limit
                     };
+                    if flip {
+                        *h = !*h;
+                        // A cell released starts at H, one that joins leaves the problem.
+                        *p = if *h { 0.0 } else { cap };
+                        changed += 1;
+                    }
                 });
-            changed = flips.iter().filter(|&&f| f).count();
-            if changed > 0 {
-                Zip::from(&mut held)
-                    .and(&mut inner.pressure)
-                    .and(&flips)
-                    .for_each(|h, p, &f| {
-                        if f {
-                            *h = !*h;
-                            // A cell released starts at H, one that joins leaves the problem.
-                            *p = if *h { 0.0 } else { cap };
-                        }
-                    });
-            }
         }
         if !report.converged() || (changed == 0 && tolerance <= options.tolerance) {
             assemble(state, (&inner, &p_held, &u_held), g0, cap, approach);
