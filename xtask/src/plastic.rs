@@ -2,7 +2,7 @@
 //! under a hardness, against load, beside Persson's elastoplastic theory, with the iterations
 //! each solve took beside the elastic solve at the same load.
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use elastic::{Domain, Periodic};
 use solver::{ContactOptions, Control, Interface, cg};
 use std::time::Instant;
@@ -60,6 +60,118 @@ pub fn plastic_rough() -> Result<()> {
                 report.iterations,
                 if report.converged() { "" } else { " NOT CONVERGED" },
                 elastic.iterations,
+            );
+        }
+    }
+    Ok(())
+}
+
+/// `cargo xtask study plastic-pull-off`: a Lennard-Jones sphere (point law, mu = 5, R = 1000
+/// z0) on a free grid of `N` (default 256) cells `HALF` (default 256) z0 either side, loaded to
+/// each depth of `DEPTHS` (z0, default 5,10,20) past yield at each hardness of `HARDNESS` (E*,
+/// default 0.025,0.05,0.1) and unloaded; its pull-off beside the elastic sphere's on the same
+/// grid and beside Mesarovic & Johnson's flattened sphere in the JKR limit
+/// ([`theory::flattened`]), taken flattened to the radius of the plastic zone and to the
+/// contact radius at the deepest point.
+pub fn plastic_pull_off() -> Result<()> {
+    use crate::sphere::{MODULUS, RADIUS, Z0};
+    use ljadhesion::{LennardJones, PointLaw};
+    use solver::{ContactProblem, CyclePoint, Method, Settings, summarize};
+    use std::f64::consts::PI;
+    let n: usize = std::env::var("N").unwrap_or_else(|_| "256".into()).parse()?;
+    let half: f64 = std::env::var("HALF").unwrap_or_else(|_| "256".into()).parse()?;
+    let list = |name: &str, default: &str| -> Result<Vec<f64>> {
+        let text = std::env::var(name).unwrap_or_else(|_| default.into());
+        Ok(text
+            .split(',')
+            .map(|s| s.trim().parse())
+            .collect::<Result<_, _>>()?)
+    };
+    let hardnesses = list("HARDNESS", "0.025,0.05,0.1")?;
+    let depths = list("DEPTHS", "5,10,20")?;
+    let mu: f64 = 5.0;
+    let w0 = (mu.powi(3) / (RADIUS / Z0)).sqrt() * MODULUS * Z0;
+    let law = PointLaw(LennardJones::new(w0, Z0)?);
+    let side = 2.0 * half * Z0;
+    let cell_area = (side / n as f64).powi(2);
+    let jkr = 1.5 * PI * RADIUS * w0;
+    let settings = Settings::with_method(Method::EnergyDescent);
+    // Loaded in steps of z0 from 3 z0 apart and unloaded to 30 z0 apart, in steps of z0.
+    let cycle = |depth: f64| -> Vec<Control> {
+        let down = (0..).map(|k| -3.0 + k as f64).take_while(|&a| a < depth);
+        let up = (0..).map(|k| depth - k as f64).take_while(|&a| a >= -30.0);
+        down.chain(up).map(|a| Control::Approach(a * Z0)).collect()
+    };
+    // Pull-off [N] (positive), plastic and contact radius at the deepest point [m], mean
+    // iterations a step, all converged, seconds.
+    let run = |hardness: Option<f64>, depth: f64| -> Result<(f64, f64, f64, usize, bool, f64)> {
+        let mut builder = ContactProblem::builder()
+            .grid(n, n, side, side)
+            .sphere(RADIUS)
+            .modulus(MODULUS)
+            .law(law);
+        if let Some(h) = hardness {
+            builder = builder.hardness(h * MODULUS);
+        }
+        let started = Instant::now();
+        let points = builder
+            .build()?
+            .sweep(&cycle(depth), Some(0.5 * Z0), &settings, None, &mut ())?;
+        let deepest = points
+            .iter()
+            .max_by(|a, b| a.report.approach.total_cmp(&b.report.approach))
+            .context("an empty sweep")?;
+        let radius = |fraction: f64| (fraction * (n * n) as f64 * cell_area / PI).sqrt();
+        let plastic = radius(deepest.report.yielding.plastic_area_fraction);
+        let contact = radius(deepest.report.contact_area_fraction);
+        let iterations = points.iter().map(|p| p.report.iterations.count()).sum::<usize>() / points.len();
+        let s = summarize(&points.iter().map(CyclePoint::from).collect::<Vec<_>>());
+        let pull_off = -s.pull_off_force.unwrap_or(f64::NAN);
+        Ok((
+            pull_off,
+            plastic,
+            contact,
+            iterations,
+            s.all_converged,
+            started.elapsed().as_secs_f64(),
+        ))
+    };
+    println!(
+        "mu = {mu}, R = {:.0} z0, {n}^2 cells of {:.2} z0, point law; JKR's pull-off 1.5 pi R w0 = {jkr:.4e} N",
+        RADIUS / Z0,
+        side / n as f64 / Z0
+    );
+    println!(
+        "| H / E* | depth / z0 | plastic radius / z0 | contact radius / z0 | pull-off / JKR | M-J at plastic radius | M-J at contact radius | iterations a step | s |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|");
+    for &depth in &depths {
+        let (elastic, _, contact, iterations, converged, s) = run(None, depth)?;
+        println!(
+            "| elastic | {depth} | 0 | {:.1} | {:.4} | 1 | 1 | {iterations}{} | {s:.0} |",
+            contact / Z0,
+            elastic / jkr,
+            if converged { "" } else { " not all converged" }
+        );
+        for &h in &hardnesses {
+            let (pull_off, plastic, contact, iterations, converged, s) = run(Some(h), depth)?;
+            let theory = |a_max: f64| {
+                let flattened = theory::flattened::Flattened {
+                    r: RADIUS,
+                    e_star: MODULUS,
+                    hardness: h * MODULUS,
+                    a_max,
+                };
+                -flattened.pull_off(w0) / jkr
+            };
+            println!(
+                "| {h} | {depth} | {:.1} | {:.1} | {:.4} | {:.4} | {:.4} | {iterations}{} | {s:.0} |",
+                plastic / Z0,
+                contact / Z0,
+                pull_off / jkr,
+                theory(plastic),
+                theory(contact),
+                if converged { "" } else { " not all converged" }
             );
         }
     }

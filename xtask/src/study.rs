@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 /// The studies, by name, with what each shows.
-pub const STUDIES: [(&str, &str); 6] = [
+pub const STUDIES: [(&str, &str); 7] = [
     (
         "pull-off-mesh",
         "a sphere's pull-off at mu = 1 against the cell size, point, line, surface and surface-energy laws (minutes)",
@@ -44,6 +44,12 @@ pub const STUDIES: [(&str, &str); 6] = [
         "elastic and plastic areas of a self-affine surface under a hardness against load, beside Persson's \
          elastoplastic theory, with the iterations against the elastic solve's (N=1024; minutes)",
     ),
+    (
+        "plastic-pull-off",
+        "the pull-off of a Lennard-Jones sphere (mu = 5) loaded past yield, against the depth and the hardness, \
+         beside the elastic sphere's and Mesarovic & Johnson's flattened sphere (N=256; HALF=256 z0; \
+         DEPTHS=5,10,20 z0; HARDNESS=0.025,0.05,0.1 E*; an hour or more)",
+    ),
 ];
 
 /// Runs the study `name`.
@@ -55,6 +61,7 @@ pub fn run(name: &str) -> Result<()> {
         "challenge-mesh" => challenge_mesh(),
         "rough-sphere-mesh" => rough_sphere_mesh(),
         "plastic-rough" => crate::plastic::plastic_rough(),
+        "plastic-pull-off" => crate::plastic::plastic_pull_off(),
         _ => {
             let names: Vec<_> = STUDIES.iter().map(|(n, _)| *n).collect();
             bail!("unknown study `{name}`; the studies are {}", names.join(", "))

@@ -11,6 +11,7 @@
 
 use crate::error::{Result, SolverError, invalid};
 use crate::state::ContactState;
+use ljadhesion::{AdhesionLaw, Cells};
 use ndarray::{Array2, ArrayView2, Zip};
 
 /// The interface between the body and the counterface.
@@ -57,20 +58,40 @@ impl Interface {
         }
     }
 
+    /// Refuses a hardness at or below the attraction `-p(0)` \[Pa\] that `law` gives surfaces
+    /// in contact (the exponential's `w0 / rho`, Dugdale's `w0 / h0`; none for the
+    /// Lennard-Jones laws, whose contact is their equilibrium): the wall holding a contact cell
+    /// carries that pull as compressive pressure, so every contact would yield without bound.
+    pub fn check_law(&self, law: &dyn AdhesionLaw) -> Result<()> {
+        let Some(h) = self.hardness else {
+            return Ok(());
+        };
+        let cells = Cells {
+            dx: 1.0,
+            dy: 1.0,
+            periodic: true,
+        };
+        let mut at_contact = Array2::zeros((2, 2));
+        law.pressure_field(Array2::zeros((2, 2)).view(), &cells, at_contact.view_mut())?;
+        let pull = -at_contact[(0, 0)];
+        if h <= pull {
+            return Err(invalid(
+                "hardness",
+                h,
+                format!(
+                    "must exceed the `{}` law's attraction at contact, {pull:.4e} Pa: the wall \
+                     holding a contact cell carries that pull, and every contact would yield \
+                     without bound",
+                    law.name()
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// The cap on the compressive pressure \[Pa\]: infinite when elastic.
     pub(crate) fn cap(&self) -> f64 {
         self.hardness.unwrap_or(f64::INFINITY)
-    }
-
-    /// Refuses, naming what can, a method that cannot take this interface.
-    pub(crate) fn refuse_in(&self, method: &str) -> Result<()> {
-        match self.hardness {
-            Some(_) => Err(SolverError::Unsupported(format!(
-                "the {method} method cannot take a hardness (it has no bound on the compressive \
-                 pressure); use `accelerated` or `dual-loop` (`auto` picks `accelerated`)"
-            ))),
-            None => Ok(()),
-        }
     }
 }
 

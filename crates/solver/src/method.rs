@@ -87,10 +87,10 @@ impl Method {
     pub const FLOW_ABOVE: f64 = 8.0;
 
     /// The method for `law` under `control` on `domain`, over a half-space of composite modulus
-    /// `e_star` \[Pa\], across `interface`: itself, or for [`Method::Auto`] the accelerated loop
-    /// under a hardness (the only methods bounding the pressure above are the loops), else the
-    /// energy descent for the laws with an
-    /// energy (local or of the field); for the line and surface laws under approach control
+    /// `e_star` \[Pa\], across `interface`: itself, or for [`Method::Auto`] the energy descent
+    /// for the laws with an energy (local, or of the field without a hardness, which the
+    /// descent does not take with it); for the other laws with a flat potential (the line
+    /// and surface laws, and the surface-energy law under a hardness) under approach control
     /// Newton where the law's stiffness bound is at most [`Method::FLOW_ABOVE`] times a cell's
     /// own elastic stiffness, else the flow (on coarser cells, where each cell holds on or lets
     /// go alone, Newton circles between states); the flow for them under load control on periodic domains; the
@@ -109,14 +109,12 @@ impl Method {
         if self != Method::Auto {
             return self;
         }
-        if interface.hardness.is_some() {
-            // The loops' inner solves are the only ones bounded above.
-            return Method::Accelerated;
-        }
         let approach = matches!(control, Control::Approach(_));
         let load = matches!(control, Control::Force(_) | Control::MeanPressure(_));
         let adhesive = law.work_of_adhesion() > 0.0;
-        let energy = law.local_potential().is_some() || law.field_potential().is_some();
+        // Under a hardness the descent takes only the laws of a cell's own gap.
+        let field = law.field_potential().is_some() && interface.hardness.is_none();
+        let energy = law.local_potential().is_some() || field;
         let averaged = !energy && law.flat_potential().is_some() && law.stiffness_bound().is_finite();
         let periodic = domain.periodic;
         let coarse = law.stiffness_bound() * domain.cell_compliance(e_star) > Method::FLOW_ABOVE;

@@ -388,7 +388,7 @@ impl ProblemBuilder {
     /// # Errors
     /// A missing modulus or grid, nothing to press (a flat with no roughness), heights whose
     /// shape differs from the grid's, a wave on a free domain, a hardness that is not finite
-    /// and positive, and the geometry's and the
+    /// and positive or not above the law's attraction at contact, and the geometry's and the
     /// operators' own checks.
     pub fn build(self) -> Result<ContactProblem> {
         let e_star = self
@@ -446,6 +446,7 @@ impl ProblemBuilder {
         };
         self.interface.validate()?;
         let law = self.law.unwrap_or_else(|| Arc::new(NoAdhesion));
+        self.interface.check_law(law.as_ref())?;
         let mut problem = ContactProblem::from_shared(operator, initial_gap, law)?;
         problem.interface = self.interface;
         Ok(problem)

@@ -1,7 +1,9 @@
-//! The hardness cap without adhesion: the sphere's exact onset of yield, the bearing-area limit,
-//! and a load-unload-reload cycle whose external work is the plastic work.
+//! The hardness cap: without adhesion the sphere's exact onset of yield, the bearing-area limit
+//! and a load-unload-reload cycle whose external work is the plastic work; with adhesion every
+//! method against another, and the pull-off of a yielded Lennard-Jones sphere.
 
-use solver::{ContactOptions, ContactProblem, ContactState, Control, Interface};
+use ljadhesion::{AdhesionLaw, LennardJones, PointLaw, SurfaceLaw};
+use solver::{ContactOptions, ContactProblem, ContactState, Control, Interface, Method};
 use surfgen::{Amplitudes, Grid, Normalization, Psd, SurfaceSpec, generate};
 
 const E: f64 = 1e9;
@@ -224,52 +226,107 @@ fn bad_hardness_and_loads_beyond_it_are_refused_by_name() {
     );
 }
 
-/// The pull-off of a Lennard-Jones sphere (surface law, Tabor parameter 1) loaded to the
-/// approach `deepest` \[m\] and unloaded, with hardness `h` \[Pa\].
-fn adhesive_pull_off(h: Option<f64>, deepest: f64) -> f64 {
-    use ljadhesion::{LennardJones, SurfaceLaw};
+/// A Lennard-Jones sphere (Tabor parameter `mu`, R = 1000 z0, 64^2 cells of 4.7 z0) under
+/// `law` made of the Lennard-Jones law, loaded from 3 z0 apart to the approach `deepest` \[m\]
+/// and unloaded by `method`, with hardness `h` \[Pa\]: the pull-off \[N\] and the plastic work
+/// \[J\] of the cycle.
+fn sphere_cycle<L: AdhesionLaw + 'static>(
+    law: fn(LennardJones) -> L,
+    method: Method,
+    h: Option<f64>,
+    mu: f64,
+    deepest: f64,
+) -> (f64, f64) {
     let (r, z0): (f64, f64) = (1e-6, 1e-9);
-    // mu^3 = R w0^2 / (E*^2 z0^3) = 1.
-    let w0 = (E * E * z0.powi(3) / r).sqrt();
+    // mu^3 = R w0^2 / (E*^2 z0^3).
+    let w0 = (mu.powi(3) * E * E * z0.powi(3) / r).sqrt();
     let mut builder = ContactProblem::builder()
         .grid(64, 64, 3e-7, 3e-7)
         .sphere(r)
         .modulus(E)
-        .law(SurfaceLaw(LennardJones::new(w0, z0).unwrap()));
+        .law(law(LennardJones::new(w0, z0).unwrap()));
     if let Some(h) = h {
         builder = builder.hardness(h);
     }
     let problem = builder.build().unwrap();
     let steps = ((deepest + 3.0 * z0) / (0.5 * z0)).round() as usize;
     let path = solver::approach_cycle(-3.0 * z0, deepest, steps);
-    // The method a hardness takes, for the elastic sphere too: the same fixed point.
-    let settings = solver::Settings::with_method(solver::Method::Accelerated);
+    let mut settings = solver::Settings::with_method(method);
+    settings.tolerance = 1e-8;
     let points = problem
         .sweep(&path, Some(0.25 * z0), &settings, None, &mut ())
         .unwrap();
     let cycle: Vec<solver::CyclePoint> = points.iter().map(solver::CyclePoint::from).collect();
     let summary = solver::summarize(&cycle);
-    assert!(summary.all_converged, "{h:?} {deepest:e}");
+    assert!(summary.all_converged, "{method:?} {h:?} {mu} {deepest:e}");
     if h.is_none() {
         assert_eq!(summary.plastic_work, 0.0);
     }
-    -summary.pull_off_force.unwrap()
+    (-summary.pull_off_force.unwrap(), summary.plastic_work)
 }
 
 #[test]
-fn an_adhesive_sphere_pulls_off_harder_the_more_it_yielded_and_as_an_elastic_one_when_hard() {
-    let (shallow, deep) = (3e-9, 6e-9);
-    let elastic = adhesive_pull_off(None, deep);
+fn every_adhesive_method_takes_a_hardness_and_they_agree() {
+    // Tabor parameter 1, yielding at 30 MPa (Hertz's peak at the deepest approach is 68 MPa,
+    // the law's peak attraction 32 MPa): the gap methods against the accelerated loop, a
+    // different algorithm (fixed point of the adhesive pressure around capped solves), on
+    // the same cycle.
+    let h = Some(3e7);
+    let point = point_law_pair(h);
+    let surface = sphere_cycle(SurfaceLaw, Method::Accelerated, h, 1.0, 6e-9);
+    let flow = sphere_cycle(SurfaceLaw, Method::Flow, h, 1.0, 6e-9);
+    let newton = sphere_cycle(SurfaceLaw, Method::Newton, h, 1.0, 6e-9);
+    assert!(surface.1 > 0.0);
+    for (a, b, tolerance) in [
+        (point.0.0, point.1.0, 1e-6),
+        (point.0.1, point.1.1, 1e-6),
+        (flow.0, surface.0, 1e-5),
+        (flow.1, surface.1, 1e-5),
+        (newton.0, surface.0, 1e-5),
+        (newton.1, surface.1, 1e-5),
+    ] {
+        assert!((a / b - 1.0).abs() < tolerance, "{a:e} vs {b:e}");
+    }
+}
+
+/// The point-law cycle of [`every_adhesive_method_takes_a_hardness_and_they_agree`] by the
+/// energy descent and by the accelerated loop.
+fn point_law_pair(h: Option<f64>) -> ((f64, f64), (f64, f64)) {
+    (
+        sphere_cycle(PointLaw, Method::EnergyDescent, h, 1.0, 6e-9),
+        sphere_cycle(PointLaw, Method::Accelerated, h, 1.0, 6e-9),
+    )
+}
+
+#[test]
+fn a_lennard_jones_sphere_pulls_off_harder_the_deeper_it_yielded_and_as_an_elastic_one_when_hard() {
+    // Tabor parameter 5 (near JKR's limit), by the energy descent (`auto`'s choice).
+    let cycle = |h, deepest| sphere_cycle(PointLaw, Method::Auto, h, 5.0, deepest).0;
+    let elastic = cycle(None, 6e-9);
     // A hardness far above every pressure reached: nothing yields, the same pull-off.
-    let hard = adhesive_pull_off(Some(1e3 * E), deep);
-    assert!((hard / elastic - 1.0).abs() < 1e-9, "{hard:e} vs {elastic:e}");
-    // At 30 MPa (Hertz's peak at the deeper approach is 68 MPa, the law's peak attraction
-    // 32 MPa) the flattened tip holds a larger contact, the more so the deeper it went.
-    let soft_shallow = adhesive_pull_off(Some(3e7), shallow);
-    let soft_deep = adhesive_pull_off(Some(3e7), deep);
-    assert!(soft_shallow > 1.02 * elastic, "{soft_shallow:e} vs {elastic:e}");
-    assert!(
-        soft_deep > 1.05 * soft_shallow,
-        "{soft_deep:e} vs {soft_shallow:e}"
-    );
+    let hard = cycle(Some(1e3 * E), 6e-9);
+    assert!((hard / elastic - 1.0).abs() < 1e-6, "{hard:e} vs {elastic:e}");
+    // At 30 MPa the flattened tip holds a larger contact, the more so the deeper it went.
+    let shallow = cycle(Some(3e7), 3e-9);
+    let deep = cycle(Some(3e7), 6e-9);
+    assert!(shallow > 1.02 * elastic, "{shallow:e} vs {elastic:e}");
+    assert!(deep > 1.05 * shallow, "{deep:e} vs {shallow:e}");
+}
+
+#[test]
+fn a_hardness_below_the_laws_attraction_at_contact_is_refused() {
+    // The exponential law pulls contact cells with w0 / rho = 1e7 Pa: a wall yielding at 5 MPa
+    // could never hold them.
+    let law = ljadhesion::ExponentialLaw::new(0.01, 1e-9).unwrap();
+    let builder = || {
+        ContactProblem::builder()
+            .grid(16, 16, 1e-6, 1e-6)
+            .sphere(1e-6)
+            .modulus(E)
+            .law(law)
+    };
+    let err = builder().hardness(5e6).build().unwrap_err();
+    assert!(err.to_string().contains("hardness"), "{err}");
+    assert!(err.to_string().contains("attraction at contact"), "{err}");
+    assert!(builder().hardness(2e7).build().is_ok());
 }

@@ -36,7 +36,6 @@ pub(super) struct EnergyDescent;
 
 impl AdhesiveMethod for EnergyDescent {
     fn check(&self, job: &Job) -> Result<()> {
-        job.interface.refuse_in("energy")?;
         potential(job).map(|_| ())
     }
 
@@ -61,6 +60,14 @@ fn potential<'a>(job: &Job<'a>) -> Result<Energy<'a>> {
             return Err(SolverError::Unsupported(format!(
                 "energy descent needs a law with an energy (point, surface-energy, exponential), \
                  not `{}`",
+                law.name()
+            )));
+        }
+        Energy::Field(_) if job.interface.hardness.is_some() => {
+            return Err(SolverError::Unsupported(format!(
+                "energy descent takes a hardness with the laws of a cell's own gap (point, \
+                 exponential, none), not `{}`, whose yielded cells would pull on their \
+                 neighbours; use `accelerated`",
                 law.name()
             )));
         }
@@ -95,6 +102,7 @@ pub(super) fn solve<'a>(
     let mut trial = Point::new(Array2::zeros(unknown));
     let mut s_direction = Array2::zeros(unknown);
     let (mx, my, nx, ny) = (problem.mx, problem.my, problem.nx, problem.ny);
+    let yields = problem.cap.is_finite();
 
     let scale = job.residual_scale();
     let mut driver = Driver::new(settings, observer, started);
@@ -182,10 +190,14 @@ pub(super) fn solve<'a>(
             .map(|(j, (((dr, rr), gr), zr))| {
                 let mut slope = 0.0;
                 for (i, (((d, &r), &g), &z)) in dr.iter_mut().zip(rr).zip(gr).zip(zr).enumerate() {
-                    *d = if on_wall(j, i, g, nx, ny) && r == 0.0 {
+                    let next = -z + beta * *d;
+                    // A cell on the wall moves only the way its own gradient sends it: under a
+                    // hardness the conjugate part could otherwise carry it across the kink
+                    // against it (orthant-wise descent's rule).
+                    *d = if on_wall(j, i, g, nx, ny) && (r == 0.0 || (yields && next * r > 0.0)) {
                         0.0
                     } else {
-                        -z + beta * *d
+                        next
                     };
                     slope += r * *d;
                 }

@@ -23,8 +23,7 @@ pub(crate) fn cells(domain: &Domain) -> Cells {
 }
 
 /// One solve's input, checked: the problem's parts, the control, the settings, the resolved
-/// method and the start. A method that cannot take the interface refuses it in its `check`
-/// ([`Interface::refuse_in`]).
+/// method and the start. A method that cannot take the interface refuses it in its `check`.
 #[derive(Clone, Copy)]
 pub(crate) struct Job<'a> {
     pub op: &'a dyn Compliance,

@@ -86,6 +86,7 @@ pub(crate) fn solve(
         g0,
     } = parts;
     interface.validate()?;
+    interface.check_law(law)?;
     let shape = op.domain().shape();
     // The methods work on contiguous rows: any other layout is copied into one here.
     let g0 = g0.as_standard_layout();

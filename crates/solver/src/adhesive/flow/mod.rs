@@ -139,7 +139,6 @@ pub(super) struct Flow;
 
 impl AdhesiveMethod for Flow {
     fn check(&self, job: &Job) -> Result<()> {
-        job.interface.refuse_in("flow")?;
         energy(job).map(|_| ())
     }
 

@@ -17,6 +17,14 @@
 //! driven to the contact pressure there and to zero in the padding, where no pressure may act,
 //! so the block's displacement is the free one. No mean constraint: the projection is a clip.
 //!
+//! Under a hardness `H` ([`crate::Interface`]) the wall gives way: the gap on the block may go
+//! negative, by the overlap that becomes the permanent set, at the price `H |g|` a cell
+//! (`E` gains `mean(H max(-g, 0))`, and the law continues below `g = 0` along its tangent, so
+//! that a yielded cell feels the contact's adhesive pressure `p(0)` beside `H`). The energy is
+//! then smooth but for a kink at `g = 0`, where the contact pressure fills `[0, H]`: each cell
+//! keeps to its side of the kink through a step (the side of its gap, or on the wall of the
+//! direction), as orthant-wise descent does for an L1 term (Andrew & Gao, ICML 2007).
+//!
 //! The system lives here: a point and its evaluation (the law, the stiffness's response, the
 //! gradient and its projection). Its parts: the stiffness and its near/far split
 //! (`stiffness`), the row-coupled preconditioner of the line and surface laws (`rows`), the
@@ -158,6 +166,8 @@ pub(super) struct Problem<'a> {
     pub(super) mean_gap: Option<f64>,
     /// The prescribed mean pressure \[Pa\] (periodic load control: the mean gap is free).
     load: Option<f64>,
+    /// The hardness \[Pa\] ([`crate::Interface::cap`]): infinite for a rigid wall.
+    pub(super) cap: f64,
     pub(super) calls: usize,
     /// The stiffness's diagonal `S_ii` [Pa/m] (the same for every cell).
     pub(super) diagonal: f64,
@@ -173,8 +183,10 @@ impl Problem<'_> {
     /// Writes `max(from + step d + c, 0)` into `gap` (on the domain's block; no bound in the
     /// padding), with the shift `c` that restores a prescribed mean gap (else 0), except on
     /// cells of `from` on the wall that `d` leaves there, which stay: the projection of the
-    /// step onto the constraints within the current face. `c` comes from Newton on the
-    /// convex, piecewise-linear mean (exact after finitely many steps). With `hold` (periodic),
+    /// step onto the constraints within the current face. Under a hardness a cell below the
+    /// wall, or on it and sent below by `d`, is bounded from above instead, `min(.., 0)` (it
+    /// stays on its side of the kink, module docs). `c` comes from Newton on the monotone,
+    /// piecewise-linear mean (exact after finitely many steps). With `hold` (periodic),
     /// cells of `from` with a gap at most `hold` \[m\] stay where they are and only the others
     /// shift (a warm start's first guess).
     pub(super) fn step_and_project(
@@ -195,7 +207,11 @@ impl Problem<'_> {
         // the whole contact set by a round-off gap whenever the shift is positive; their
         // contact pressures then enter the next direction, which presses them back into the
         // wall, and the step is cut again and again.)
-        let held = |f: f64, d: f64| hold.is_some_and(|h| f <= h) || (f <= 0.0 && d == 0.0);
+        let held = |f: f64, d: f64| hold.is_some_and(|h| f <= h) || (f == 0.0 && d == 0.0);
+        let yields = self.cap.is_finite();
+        // The cell's side of the kink: below the wall (bounded above by it) or above.
+        let below = |f: f64, d: f64| yields && (f < 0.0 || (f == 0.0 && d < 0.0));
+        let project = |f: f64, d: f64, v: f64| if below(f, d) { v.min(0.0) } else { v.max(0.0) };
         let mut c = 0.0;
         // A prescribed mean gap is periodic: the unknown is the gap everywhere.
         for _ in 0..if self.mean_gap.is_some() { 100 } else { 0 } {
@@ -205,7 +221,7 @@ impl Problem<'_> {
                     let v = f + step * d + c;
                     if held(f, d) {
                         [s + f, k]
-                    } else if v > 0.0 {
+                    } else if (v > 0.0) != below(f, d) && v != 0.0 {
                         [s + v, k + 1.0]
                     } else {
                         [s, k]
@@ -236,7 +252,7 @@ impl Problem<'_> {
                 } else if held(f, ds[k]) {
                     f
                 } else {
-                    (f + step * ds[k] + c).max(0.0)
+                    project(f, ds[k], f + step * ds[k] + c)
                 };
             }
         });
@@ -259,6 +275,9 @@ impl Problem<'_> {
         new: impl Fn(f64, usize, bool) -> f64 + Sync,
     ) {
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
+        // Under a hardness a cell stays on its side of the kink, as in `step_and_project`, and
+        // one stopped at the kink from either side keeps no velocity across it.
+        let yields = self.cap.is_finite();
         if self.mean_gap.is_some() {
             debug_assert!(shift.is_none(), "a shift would move the prescribed mean gap");
             // The shift that keeps the mean needs every cell's step first.
@@ -274,7 +293,7 @@ impl Problem<'_> {
             Zip::from(velocity.slice_mut(s![..ny, ..nx]))
                 .and(gap.slice(s![..ny, ..nx]))
                 .par_for_each(|v, &g| {
-                    if g <= 0.0 && *v < 0.0 {
+                    if g == 0.0 && (*v < 0.0 || (yields && *v > 0.0)) {
                         *v = 0.0
                     }
                 });
@@ -290,14 +309,18 @@ impl Problem<'_> {
                 for i in 0..mx {
                     let (k, inside) = (j * mx + i, j < ny && i < nx);
                     let (f, v) = (fs[k], new(vr[i], k, inside));
+                    let below = yields && (f < 0.0 || (f == 0.0 && v < 0.0));
                     gr[i] = if !inside {
                         f + step * v
-                    } else if f <= 0.0 && v == 0.0 {
+                    } else if f == 0.0 && v == 0.0 {
                         f
+                    } else if below {
+                        (f + step * v).min(0.0)
                     } else {
                         (f + step * v).max(0.0)
                     };
-                    vr[i] = if inside && gr[i] <= 0.0 && v < 0.0 { 0.0 } else { v };
+                    let stopped = gr[i] == 0.0 && if below { v > 0.0 } else { v < 0.0 };
+                    vr[i] = if inside && stopped { 0.0 } else { v };
                     if held.is_some_and(|h| h[k] == 0) {
                         gr[i] = (gr[i] + by).max(0.0);
                     }
@@ -346,6 +369,7 @@ impl Problem<'_> {
             self.calls += 1;
         }
         let energy = self.energy;
+        let closed = self.law_gaps(at);
         // By rows on a periodic grid only: the unknown is the block, with no padding.
         let law_rows = by_rows
             .then(|| self.law.stiffness_rows())
@@ -356,8 +380,9 @@ impl Problem<'_> {
             Energy::None => self.law_on_block(at)?,
             Energy::Field(field) => {
                 let block = s![..self.ny, ..self.nx];
+                let gap = closed.as_ref().map_or_else(|| at.gap.slice(block), |c| c.view());
                 field.evaluate_field(
-                    at.gap.slice(block),
+                    gap,
                     &self.cells,
                     self.probe.0.view_mut(),
                     at.law.slice_mut(block),
@@ -375,6 +400,7 @@ impl Problem<'_> {
             energy,
             load: self.load.unwrap_or(0.0),
             project: self.mean_gap.is_none(),
+            cap: self.cap,
         };
         // The split's far part is taken out for the pass over the rows, which writes it (after
         // a transform) or reads it (near), and put back after it.
@@ -385,7 +411,10 @@ impl Problem<'_> {
             None => (0..self.my).map(|_| None).collect(),
         };
         let elastic_rows: Vec<&mut [f64]> = flat_mut(&mut at.elastic).chunks_mut(mx).collect();
-        let (block_gap, coupling) = (at.gap.slice(s![..ny, ..nx]), &at.coupling);
+        let block_gap = closed
+            .as_ref()
+            .map_or_else(|| at.gap.slice(s![..ny, ..nx]), |c| c.view());
+        let coupling = &at.coupling;
         let shared = &*self;
         let rows: Vec<(RowSums, S)> = flat_mut(&mut at.law)
             .par_chunks_mut(mx)
@@ -497,6 +526,18 @@ impl Problem<'_> {
         }
     }
 
+    /// Under a hardness, with a cell yielded below the wall, the block's gaps as the law sees
+    /// them: closed there (the yielded surface lies on the counterface; a law of the
+    /// neighbours' gaps would otherwise read the overlap as a tilt). Else `None`: the gaps
+    /// themselves.
+    fn law_gaps(&self, at: &Point) -> Option<Array2<f64>> {
+        let block = at.gap.slice(s![..self.ny, ..self.nx]);
+        if !self.cap.is_finite() || !block.iter().any(|&g| g < 0.0) {
+            return None;
+        }
+        Some(block.mapv(|g| g.max(0.0)))
+    }
+
     /// Writes the law's pressure at `at`'s gaps on the domain's block into `at.law`, and its
     /// stiffness `-dp/dg` [Pa/m] there into `at.curvature` (coupled: by the cell's own gap,
     /// and by its +x neighbour's into `at.coupling`), in closed form where the law has it,
@@ -505,7 +546,8 @@ impl Problem<'_> {
     /// evaluated as a whole.
     fn law_on_block(&mut self, at: &mut Point) -> Result<()> {
         let block = s![..self.ny, ..self.nx];
-        let gap = at.gap.slice(block);
+        let closed = self.law_gaps(at);
+        let gap = closed.as_ref().map_or_else(|| at.gap.slice(block), |c| c.view());
         if self.couple {
             if at.coupling.dim() != (self.ny, self.nx) {
                 at.coupling = Array2::zeros((self.ny, self.nx));
@@ -565,9 +607,10 @@ impl Problem<'_> {
     }
 
     /// Projects `at`'s raw gradient in place: less the mean-pressure multiplier (its mean over
-    /// the cells off the wall), zero where a cell on the wall is pushed into it (that is its
-    /// contact pressure), and with zero mean over the cells that move, so that the mean gap
-    /// stays (the multiplier and the mean only where the mean gap is prescribed).
+    /// the cells off the wall), less what the wall takes up where a cell on it is pushed into
+    /// it (that is its contact pressure, at most the hardness), and with zero mean over the
+    /// cells that move, so that the mean gap stays (the multiplier and the mean only where the
+    /// mean gap is prescribed).
     pub(super) fn project_gradient(&self, at: &mut Point) -> GradientSums {
         let (mx, nx, ny) = (self.mx, self.nx, self.ny);
         let lambda = if self.mean_gap.is_some() && at.free.1 > 0.0 {
@@ -592,8 +635,8 @@ impl Problem<'_> {
                     let mut sums = [0.0; 2];
                     for (i, (r, &g)) in row.iter_mut().zip(&gs[j * mx..][..mx]).enumerate() {
                         let v = *r - lambda;
-                        *r = if on_wall(j, i, g, nx, ny) && v >= 0.0 {
-                            0.0
+                        *r = if on_wall(j, i, g, nx, ny) {
+                            v - v.clamp(0.0, self.cap)
                         } else {
                             v
                         };
@@ -639,6 +682,8 @@ struct Pass<'a> {
     load: f64,
     /// Whether the gradient is projected here (no prescribed mean gap).
     project: bool,
+    /// The hardness \[Pa\] (infinite: a rigid wall).
+    cap: f64,
 }
 
 /// A row's share of an evaluation's sums, added over the rows in order
@@ -696,6 +741,7 @@ impl Pass<'_> {
             energy,
             load,
             project,
+            cap,
         } = *self;
         let with_energy = !matches!(energy, Energy::None);
         let mut sums = RowSums::EMPTY;
@@ -720,7 +766,7 @@ impl Pass<'_> {
             }
             // Only a local potential writes here: rewriting the law's fields unchanged
             // would cost two field-sized writes a step on grids past the cache.
-            let (v, p) = match energy {
+            let (mut v, p) = match energy {
                 Energy::Local(potential) => {
                     let (v, p, c) = potential.evaluate(g);
                     (lr[i], cr[i]) = (p, c);
@@ -730,13 +776,22 @@ impl Pass<'_> {
                 Energy::None => (0.0, lr[i]),
             };
             rr[i] = es[i] - p + load;
+            if g < 0.0 {
+                // Yielded (only under a hardness): the law goes on along its tangent at contact
+                // (the pressure the laws give a negative gap, no curvature), and the cell pays
+                // `H` for every metre below the wall.
+                v -= (p + cap) * g;
+                cr[i] = 0.0;
+                rr[i] -= cap;
+            }
             sums.interaction_energy += v + load * g;
             sums.min_gap = sums.min_gap.min(g);
-            if g > 0.0 {
+            if g != 0.0 {
                 sums.free_gradient += rr[i];
                 sums.free_cells += 1.0;
-            } else if project && rr[i] >= 0.0 {
-                rr[i] = 0.0;
+            } else if project {
+                // On the wall: the contact pressure takes up what it can, up to the hardness.
+                rr[i] -= rr[i].clamp(0.0, cap);
             }
             sums.max_gradient = sums.max_gradient.max(rr[i].abs());
         }
@@ -752,7 +807,7 @@ pub(super) fn peak_bytes(cells: f64, periodic: bool) -> f64 {
 }
 
 /// Whether cell `(j, i)` of the unknown, at `g`, is on the wall: the unknown is the gap (the
-/// domain's `(ny, nx)` block) and it is closed.
+/// domain's `(ny, nx)` block) and it is closed (not yielded below it).
 pub(super) fn on_wall(j: usize, i: usize, g: f64, nx: usize, ny: usize) -> bool {
-    g <= 0.0 && j < ny && i < nx
+    g == 0.0 && j < ny && i < nx
 }

@@ -91,6 +91,7 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
             ny,
             mean_gap,
             load,
+            cap: job.interface.cap(),
             calls: 0,
             diagonal: 0.0,
             split: None,
@@ -105,12 +106,15 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
             // contact at the same compressive load or approach instead.
             Start::Loading => {
                 let non_adhesive = |control| {
-                    crate::cg::solve(op, g0, control, &settings.contact, None, &mut ()).map(|(s, _)| s.gap)
+                    let interface = &job.interface;
+                    let options = &settings.contact;
+                    crate::cg::solve_with(op, g0, interface, control, options, None, &mut ())
+                        .map(|(s, _)| signed_gap(s))
                 };
                 match load {
                     Some(p) if p > 0.0 => non_adhesive(Control::MeanPressure(p))?,
                     None if delta > 0.0 => non_adhesive(Control::Approach(delta))?,
-                    _ => g0.mapv(|g| g - delta),
+                    _ => g0.mapv(|g| (g - delta).max(0.0)),
                 }
             }
             Start::Unloading => Array2::zeros(shape),
@@ -140,7 +144,7 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
         // displacement, with its attached cells held at their old gaps (as on periodic grids).
         let mut first = Array2::zeros(padded);
         match start {
-            Start::Loading => first.assign(&base),
+            Start::Loading => first.assign(&base.mapv(|b| b.max(0.0))),
             Start::Unloading => {}
             Start::Warm(s) => {
                 let total = &s.contact.pressure + &s.adhesive_pressure;
@@ -181,6 +185,15 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
         delta,
         load,
     })
+}
+
+/// The gap of a non-adhesive state less its permanent set: negative where the surface yielded
+/// in that solve (the gap of the unknown, [`super`]'s module docs).
+fn signed_gap(state: ContactState) -> Array2<f64> {
+    match state.permanent_set {
+        Some(set) => state.gap - set,
+        None => state.gap,
+    }
 }
 
 /// The state and report at the solution `x`, whose gradient `sums` describe (see [`setup`]
@@ -224,15 +237,18 @@ pub(in crate::adhesive) fn state(
         (take(&x.gap), take(&x.elastic), take(&x.law))
     };
     // Contact pressure where the gap is closed: the gradient's elastic and adhesive part plus
-    // the mean pressure.
+    // the mean pressure, at most the hardness (held at it where the surface yielded).
+    let cap = problem.cap;
     let mut pressure = Array2::zeros(shape);
     Zip::from(&mut pressure)
         .and(&gap)
         .and(&elastic)
         .and(&law_pressure)
         .par_for_each(|p, &g, &e, &l| {
-            *p = if g <= 0.0 {
-                (e - l + mean_pressure).max(0.0)
+            *p = if g < 0.0 {
+                cap
+            } else if g == 0.0 {
+                (e - l + mean_pressure).clamp(0.0, cap)
             } else {
                 0.0
             }
@@ -247,6 +263,10 @@ pub(in crate::adhesive) fn state(
         None => delta,
         Some(_) => g0.mean().unwrap_or(0.0) - gap.mean().unwrap_or(0.0),
     };
+    // A yielded cell's gap is closed: its overlap joins the permanent set when the solve
+    // settles ([`crate::interface::settle`]).
+    let mut gap = gap;
+    gap.mapv_inplace(|g| g.max(0.0));
     let contact = ContactState {
         pressure,
         gap,

@@ -284,7 +284,6 @@ pub(super) struct Newton;
 
 impl AdhesiveMethod for Newton {
     fn check(&self, job: &Job) -> Result<()> {
-        job.interface.refuse_in("newton")?;
         if !matches!(job.control, Control::Approach(_)) {
             return Err(SolverError::Unsupported(
                 "the Newton solver takes the approach only (use `accelerated` for loads and central \
@@ -322,11 +321,13 @@ impl AdhesiveMethod for Newton {
 /// Solves under approach control (periodic or free) with any law; see the module docs.
 fn solve(job: &Job, observer: &mut dyn FnMut(usize, f64) -> bool) -> Result<(AdhesiveState, AdhesiveReport)> {
     let started = Instant::now();
-    // A law without a local energy but with a field energy (surface-energy) or a flat one
-    // (line, surface) can have its state predicted by descending that energy when Newton
-    // cannot get going.
+    // A law without a local energy but with a field energy (surface-energy; not under a
+    // hardness, which the descent takes with local energies only) or a flat one (line,
+    // surface) can have its state predicted by descending that energy when Newton cannot get
+    // going.
     let law = job.law;
-    let predictor = match (law.local_potential(), law.field_potential()) {
+    let field = law.field_potential().filter(|_| job.interface.hardness.is_none());
+    let predictor = match (law.local_potential(), field) {
         (Some(_), _) => None,
         (None, Some(field)) => Some(gap::Energy::Field(field)),
         (None, None) => law.flat_potential().map(gap::Energy::Local),
