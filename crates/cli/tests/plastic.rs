@@ -104,7 +104,7 @@ fn a_plastic_sweep_killed_and_resumed_is_the_same_to_the_bit() {
 }
 
 #[test]
-fn bad_hardness_and_methods_without_a_cap_are_refused_by_name() {
+fn bad_hardness_and_laws_or_methods_that_cannot_take_it_are_refused_by_name() {
     let d = dir("refused");
     for bad in ["0", "-1e7", "nan", "inf"] {
         let mut a = args(&d.join(format!("bad{bad}")));
@@ -114,35 +114,46 @@ fn bad_hardness_and_methods_without_a_cap_are_refused_by_name() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains("--hardness must be a finite"), "{bad}: {err}");
     }
-    let o = run(&[
-        "solve",
-        "--sphere-radius",
-        "1e-6",
-        "--n",
-        "64",
-        "--length",
-        "2e-7",
-        "--modulus",
-        "1e9",
-        "--work-of-adhesion",
-        "0.05",
-        "--z0",
-        "1e-9",
-        "--law",
-        "point",
-        "--hardness",
-        "3e7",
-        "--approach",
-        "1e-9",
-        "--solver",
-        "energy",
-        "--out",
-        d.join("energy").to_str().unwrap(),
-    ]
-    .map(String::from));
-    assert!(!o.status.success());
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("the energy method cannot take a hardness"), "{err}");
+    // The descent takes a hardness with the laws of a cell's own gap only; a hardness below
+    // the exponential law's pull at contact (w0 / rho = 5e7 Pa) would never hold a contact.
+    for (law, range, err_has) in [
+        (
+            "surface-energy",
+            "--z0",
+            "takes a hardness with the laws of a cell's own gap",
+        ),
+        ("exponential", "--range", "attraction at contact"),
+    ] {
+        let o = run(&[
+            "solve",
+            "--sphere-radius",
+            "1e-6",
+            "--n",
+            "64",
+            "--length",
+            "2e-7",
+            "--modulus",
+            "1e9",
+            "--work-of-adhesion",
+            "0.05",
+            range,
+            "1e-9",
+            "--law",
+            law,
+            "--hardness",
+            "3e7",
+            "--approach",
+            "1e-9",
+            "--solver",
+            "energy",
+            "--out",
+            d.join(law).to_str().unwrap(),
+        ]
+        .map(String::from));
+        assert!(!o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(err_has) && err.contains("hardness"), "{err}");
+    }
 }
 
 #[test]
