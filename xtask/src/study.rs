@@ -48,7 +48,7 @@ pub const STUDIES: [(&str, &str); 7] = [
         "plastic-pull-off",
         "the pull-off of a Lennard-Jones sphere (mu = 5) loaded past yield, against the depth and the hardness, \
          beside the elastic sphere's and Mesarovic & Johnson's flattened sphere (N=256; HALF=256 z0; \
-         DEPTHS=5,10,20 z0; HARDNESS=0.025,0.05,0.1 E*; an hour or more)",
+         DEPTHS=5,10,20 z0; HARDNESS=0.025,0.05,0.1 E*; half an hour)",
     ),
 ];
 

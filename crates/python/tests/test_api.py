@@ -228,7 +228,7 @@ def test_a_hardness_caps_the_pressure_and_leaves_a_permanent_set():
         with pytest.raises(ValueError, match="hardness must be a finite H > 0 Pa"):
             rc.solve(**rough, hardness=bad, mean_pressure=1e7)
     with pytest.raises(ValueError, match="takes a hardness with the laws of a cell's own gap"):
-        rc.solve(**SPHERE, law="surface-energy", hardness=2e7, approach=1e-9, solver="energy")
+        rc.solve(**SPHERE, law="surface_energy", hardness=2e7, approach=1e-9, solver="energy")
     exponential = {k: v for k, v in SPHERE.items() if k != "z0"}
     with pytest.raises(ValueError, match="attraction at contact"):
         rc.solve(**exponential, law="exponential", range=1e-9, hardness=2e7, approach=1e-9)

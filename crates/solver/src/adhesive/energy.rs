@@ -14,6 +14,10 @@
 //! up to the fold, where a fixed-point iteration on the adhesive pressure can also land on the
 //! unstable branch between.
 //!
+//! Under a hardness the wall is the kink of `gap`'s module docs (a cell may yield below it),
+//! taken with the laws of a cell's own gap: a yielded cell of a field energy would pull on its
+//! neighbours through an energy the kink's tangent does not continue.
+//!
 //! Two operator applications per iteration (the direction and the trial gap), against one per
 //! inner iteration times many inner iterations per outer one in the dual loop.
 
@@ -67,7 +71,7 @@ fn potential<'a>(job: &Job<'a>) -> Result<Energy<'a>> {
             return Err(SolverError::Unsupported(format!(
                 "energy descent takes a hardness with the laws of a cell's own gap (point, \
                  exponential, none), not `{}`, whose yielded cells would pull on their \
-                 neighbours; use `accelerated`",
+                 neighbours; use `newton`, `flow` or `accelerated`",
                 law.name()
             )));
         }

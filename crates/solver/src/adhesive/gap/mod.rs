@@ -369,12 +369,17 @@ impl Problem<'_> {
             self.calls += 1;
         }
         let energy = self.energy;
-        let closed = self.law_gaps(at);
         // By rows on a periodic grid only: the unknown is the block, with no padding.
         let law_rows = by_rows
             .then(|| self.law.stiffness_rows())
             .flatten()
             .filter(|_| self.couple && (mx, self.my) == (nx, ny));
+        // The gaps the law reads here (`law_on_block` makes its own).
+        let closed = if law_rows.is_some() || matches!(energy, Energy::Field(_)) {
+            self.law_gaps(at)
+        } else {
+            None
+        };
         match energy {
             Energy::None if law_rows.is_some() => {}
             Energy::None => self.law_on_block(at)?,
