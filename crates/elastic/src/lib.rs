@@ -9,7 +9,10 @@
 //! - [`Free`]: Love's exact influence coefficients for rectangular cells, applied as a linear
 //!   convolution on a zero-padded grid (DC-FFT); the displacement vanishes at infinity.
 //!
-//! Both are [`Compliance`] operators ([`PeriodicStiffness`] inverts the periodic one,
+//! - [`Layer`]: the compliance by wavenumber of a layer of finite thickness on a rigid base,
+//!   bonded or frictionless (a body's spectral kernel beside the half-space's).
+//!
+//! Both operators are [`Compliance`] operators ([`PeriodicStiffness`] inverts the periodic one,
 //! [`FreeStiffness`] the free one on its padded grid):
 //! planned once, then applied many times to caller-owned buffers with a caller-owned
 //! [`Workspace`] (no field-sized allocation per application), in parallel, with results that do not depend on the number of threads at all.
@@ -32,11 +35,13 @@
 
 mod convolution;
 pub mod error;
+pub mod layer;
 pub mod love;
 pub mod material;
 mod operators;
 
 pub use error::{ElasticError, Result};
+pub use layer::{Base, Layer};
 pub use material::{Material, composite_modulus};
 pub use operators::{Free, FreeStiffness, Periodic, PeriodicStiffness, Workspace};
 
