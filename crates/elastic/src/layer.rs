@@ -173,6 +173,90 @@ mod tests {
         }
     }
 
+    /// The surface displacement \[m\] under unit pressure of a plane-strain layer of thickness 1
+    /// and Young's modulus 1 at wavenumber `q`, from Navier's equations integrated through its
+    /// depth (RK4) with its four boundary conditions: no shear and the pressure on top, no
+    /// normal displacement at the base and no shear (frictionless) or no slip (bonded) there.
+    fn navier(q: f64, nu: f64, base: Base) -> f64 {
+        let mu = 1.0 / (2.0 * (1.0 + nu));
+        let lambda = nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        // Y = (U, U', W, W') with u_x = i U e^{iqx}, u_z = W e^{iqx}, z down into the layer.
+        let f = |y: [f64; 4]| {
+            let [u, du, w, dw] = y;
+            let ddu = ((lambda + 2.0 * mu) * q * q * u - (lambda + mu) * q * dw) / mu;
+            let ddw = (mu * q * q * w + (lambda + mu) * q * du) / (lambda + 2.0 * mu);
+            [du, ddu, dw, ddw]
+        };
+        let n = 2000;
+        let dz = 1.0 / n as f64;
+        // Y(1) for each unit start: the columns of the fundamental matrix.
+        let at_base: Vec<[f64; 4]> = (0..4)
+            .map(|k| {
+                let mut y = [0.0; 4];
+                y[k] = 1.0;
+                let add = |y: [f64; 4], k: [f64; 4], h: f64| std::array::from_fn(|i| y[i] + h * k[i]);
+                for _ in 0..n {
+                    let k1 = f(y);
+                    let k2 = f(add(y, k1, dz / 2.0));
+                    let k3 = f(add(y, k2, dz / 2.0));
+                    let k4 = f(add(y, k3, dz));
+                    y = std::array::from_fn(|i| {
+                        y[i] + dz / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+                    });
+                }
+                y
+            })
+            .collect();
+        let row = |i: usize| [at_base[0][i], at_base[1][i], at_base[2][i], at_base[3][i]];
+        // sigma_zz(0) = lambda (-q U + W') + 2 mu W' = -1, sigma_xz(0) ~ U' + q W = 0,
+        // W(1) = 0, and U'(1) = 0 (frictionless) or U(1) = 0 (bonded).
+        let mut a = [
+            [-lambda * q, 0.0, 0.0, lambda + 2.0 * mu, -1.0],
+            [0.0, 1.0, q, 0.0, 0.0],
+            [row(2)[0], row(2)[1], row(2)[2], row(2)[3], 0.0],
+            match base {
+                Base::Frictionless => [row(1)[0], row(1)[1], row(1)[2], row(1)[3], 0.0],
+                Base::Bonded => [row(0)[0], row(0)[1], row(0)[2], row(0)[3], 0.0],
+            },
+        ];
+        // Gaussian elimination with partial pivoting.
+        for c in 0..4 {
+            let p = (c..4)
+                .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
+                .unwrap();
+            a.swap(c, p);
+            for r in c + 1..4 {
+                let m = a[r][c] / a[c][c];
+                for k in c..5 {
+                    a[r][k] -= m * a[c][k];
+                }
+            }
+        }
+        let mut y0 = [0.0; 4];
+        for c in (0..4).rev() {
+            y0[c] = (a[c][4] - (c + 1..4).map(|k| a[c][k] * y0[k]).sum::<f64>()) / a[c][c];
+        }
+        // The pressure pushes the surface into the layer, W(0) > 0.
+        y0[2]
+    }
+
+    #[test]
+    fn the_factors_solve_navier_s_equations_through_the_layer() {
+        for base in [Base::Bonded, Base::Frictionless] {
+            for nu in [0.0, 0.3, 0.45] {
+                let l = Layer::new(1.0, nu, base).unwrap();
+                for q in [0.1, 0.5, 1.0, 2.0] {
+                    let e_star = 1.0 / (1.0 - nu * nu);
+                    let (got, want) = (l.compliance(q, e_star), navier(q, nu, base));
+                    assert!(
+                        (got / want - 1.0).abs() < 1e-10,
+                        "{base:?} nu {nu} q {q}: {got} {want}"
+                    );
+                }
+            }
+        }
+    }
+
     #[test]
     fn a_thick_layer_is_the_half_space_and_nothing_overflows() {
         for base in [Base::Bonded, Base::Frictionless] {
