@@ -225,11 +225,10 @@ mod tests {
                 .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
                 .unwrap();
             a.swap(c, p);
-            for r in c + 1..4 {
-                let m = a[r][c] / a[c][c];
-                for k in c..5 {
-                    a[r][k] -= m * a[c][k];
-                }
+            let pivot = a[c];
+            for r in a.iter_mut().skip(c + 1) {
+                let m = r[c] / pivot[c];
+                r.iter_mut().zip(&pivot).skip(c).for_each(|(x, p)| *x -= m * p);
             }
         }
         let mut y0 = [0.0; 4];
