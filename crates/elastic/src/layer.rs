@@ -54,13 +54,7 @@ impl Layer {
                 reason: "must be a finite layer thickness > 0 m",
             });
         }
-        if !(poisson > -1.0 && poisson <= 0.5) {
-            return Err(ElasticError::InvalidParameter {
-                name: "poisson",
-                value: poisson,
-                reason: "must lie in (-1, 0.5]",
-            });
-        }
+        crate::material::check_poisson("poisson", poisson)?;
         Ok(Layer {
             thickness,
             poisson,

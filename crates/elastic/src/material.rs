@@ -19,13 +19,7 @@ impl Material {
                 reason: "must be finite and > 0 Pa",
             });
         }
-        if !(nu > -1.0 && nu <= 0.5) {
-            return Err(ElasticError::InvalidParameter {
-                name: "poisson_ratio",
-                value: nu,
-                reason: "must lie in (-1, 0.5]",
-            });
-        }
+        check_poisson("poisson_ratio", nu)?;
         Ok(Material { e, nu })
     }
 
@@ -80,6 +74,19 @@ pub(crate) fn check_modulus(e_star: f64) -> Result<f64> {
             name: "e_star",
             value: e_star,
             reason: "the composite modulus must be finite and > 0 Pa",
+        })
+    }
+}
+
+/// Refuses a Poisson's ratio `nu` outside `(-1, 0.5]`, naming it `name`.
+pub(crate) fn check_poisson(name: &'static str, nu: f64) -> Result<()> {
+    if nu > -1.0 && nu <= 0.5 {
+        Ok(())
+    } else {
+        Err(ElasticError::InvalidParameter {
+            name,
+            value: nu,
+            reason: "must lie in (-1, 0.5]",
         })
     }
 }
