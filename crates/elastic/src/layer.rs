@@ -16,6 +16,7 @@
 //! Evaluated without overflow at any `x`, and without cancellation as `x -> 0`.
 
 use crate::error::{ElasticError, Result};
+use std::f64::consts::PI;
 
 /// How the layer meets its rigid base.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -107,6 +108,132 @@ impl Layer {
             };
         }
         2.0 / (e_star * q) * self.compliance_ratio(q)
+    }
+
+    /// The layer's influence in real space (tabulated once: about 3 million Bessel functions).
+    pub(crate) fn real_space(&self) -> RealSpace {
+        RealSpace::new(self)
+    }
+}
+
+/// 8-point Gauss-Legendre nodes and weights on `[-1, 1]`.
+const GAUSS: [(f64, f64); 8] = [
+    (-0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
+    (-0.796_666_477_413_626_7, 0.222_381_034_453_374_5),
+    (-0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (-0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (0.796_666_477_413_626_7, 0.222_381_034_453_374_5),
+    (0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
+];
+
+/// Beyond this distance over the thickness the layer's point influence is taken as zero: it
+/// decays exponentially, below `1e-14 / (pi E* h)` there for every base and `nu` in `[0, 0.5]`.
+const CUT: f64 = 40.0;
+
+/// Spacing of the tabulated correction in distance over thickness: cubic interpolation on it is
+/// good to about 1e-9 of the correction.
+const TABLE_STEP: f64 = 0.02;
+
+/// The layer's point influence in real space less the half-space's, for the free grid's
+/// influence coefficients. By the Hankel transform, a point force `P` displaces the surface at
+/// distance `r` by `P G(r)` with `G(r) = [1/r + F(r/h)/h] / (pi E*)`, where
+/// `F(s) = int_0^oo (R(t) - 1) J0(s t) dt` and `R` is [`Layer::compliance_ratio`] at `q = t/h`.
+/// `F` is smooth and tends to `-1/s` (the half-space's tail cancelled) exponentially fast, so
+/// `G` vanishes beyond [`CUT`] thicknesses. `F` is tabulated once by Gauss-Legendre quadrature
+/// (`R - 1` decays as `exp(-2t)`, cut at `t = 30`; panels shorter than half a period of `J0`).
+#[derive(Clone, Debug)]
+pub(crate) struct RealSpace {
+    thickness: f64,
+    /// `F` at `s = k TABLE_STEP`, `k = 0..`, one point past [`CUT`] on either side for the
+    /// interpolation.
+    table: Vec<f64>,
+}
+
+impl RealSpace {
+    fn new(layer: &Layer) -> RealSpace {
+        use rayon::prelude::*;
+        let points = (CUT / TABLE_STEP) as usize + 3;
+        let table = (0..points)
+            .into_par_iter()
+            .map(|k| {
+                let s = k as f64 * TABLE_STEP;
+                let width = if s > 0.0 { (PI / s).min(0.5) } else { 0.5 };
+                let panels = (30.0 / width).ceil() as usize;
+                let width = 30.0 / panels as f64;
+                (0..panels)
+                    .map(|i| {
+                        let middle = (i as f64 + 0.5) * width;
+                        GAUSS
+                            .iter()
+                            .map(|&(x, w)| {
+                                let t = middle + 0.5 * width * x;
+                                w * (layer.compliance_ratio(t / layer.thickness) - 1.0)
+                                    * libm::j0(s * t)
+                            })
+                            .sum::<f64>()
+                            * 0.5
+                            * width
+                    })
+                    .sum()
+            })
+            .collect();
+        RealSpace {
+            thickness: layer.thickness,
+            table,
+        }
+    }
+
+    /// `F(s)` by cubic interpolation in the table, `s` in `[0, CUT]`.
+    fn correction(&self, s: f64) -> f64 {
+        let at = s / TABLE_STEP;
+        // Four points k-1..k+2 around `at`; the table's evenness about 0 (F is even in s)
+        // supplies the point before the first.
+        let k = (at.floor() as usize).min(self.table.len() - 3);
+        let t = at - k as f64;
+        let f = |i: isize| self.table[i.unsigned_abs()];
+        let k = k as isize;
+        let (a, b, c, d) = (f(k - 1), f(k), f(k + 1), f(k + 2));
+        // Lagrange's cubic through the four.
+        let (tm, tp, t2) = (t - 1.0, t + 1.0, t - 2.0);
+        (-t * tm * t2 * a + 3.0 * tp * tm * t2 * b - 3.0 * tp * t * t2 * c + tp * t * tm * d) / 6.0
+    }
+
+    /// The displacement \[m\] at `(x, y)` \[m\] under unit pressure \[Pa\] on the cell `|x'| <= a`,
+    /// `|y'| <= b`, of the layer of plane-strain modulus `e_star` \[Pa\], less the half-space's
+    /// ([`crate::love::cell_influence`]); `None` where the layer's whole influence is below
+    /// the cut (the caller takes zero there).
+    pub(crate) fn cell_correction(&self, x: f64, y: f64, a: f64, b: f64, e_star: f64) -> Option<f64> {
+        let h = self.thickness;
+        // The nearest point of the cell.
+        let near = (x.abs() - a).max(0.0).hypot((y.abs() - b).max(0.0));
+        if near > CUT * h {
+            return None;
+        }
+        // Panels no wider than the thickness, 8 points each way: `F` varies on the scale `h`.
+        let panels = |half: f64| ((2.0 * half / h).ceil() as usize).max(1);
+        let (px, py) = (panels(a), panels(b));
+        let (wx, wy) = (2.0 * a / px as f64, 2.0 * b / py as f64);
+        let mut sum = 0.0;
+        for j in 0..py {
+            let ym = -b + (j as f64 + 0.5) * wy;
+            for &(v, wv) in &GAUSS {
+                let dy = y - (ym + 0.5 * wy * v);
+                for i in 0..px {
+                    let xm = -a + (i as f64 + 0.5) * wx;
+                    for &(u, wu) in &GAUSS {
+                        let s = (x - (xm + 0.5 * wx * u)).hypot(dy) / h;
+                        if s < CUT {
+                            sum += wu * wv * self.correction(s);
+                        } else {
+                            sum -= wu * wv / s;
+                        }
+                    }
+                }
+            }
+        }
+        Some(sum * 0.25 * wx * wy / (PI * e_star * h))
     }
 }
 

@@ -1,4 +1,4 @@
-//! # elastic: surface operators of an elastic half-space
+//! # elastic: surface operators of an elastic body
 //!
 //! The normal surface displacement `u` \[m\] of an elastic half-space of composite modulus `E*`
 //! \[Pa\] under a normal pressure `p` \[Pa\] (positive = compressive, pushing the surface in, so
@@ -9,8 +9,11 @@
 //! - [`Free`]: Love's exact influence coefficients for rectangular cells, applied as a linear
 //!   convolution on a zero-padded grid (DC-FFT); the displacement vanishes at infinity.
 //!
-//! - [`Layer`]: the compliance by wavenumber of a layer of finite thickness on a rigid base,
-//!   bonded or frictionless (a body's spectral kernel beside the half-space's).
+//!
+//! Both take a [`Body`] other than the half-space: a [`Layer`] of finite thickness on a rigid
+//! base, bonded or frictionless, whose compliance by wavenumber is the half-space's times a
+//! factor of `q h` (on free grids, Love's coefficients plus the layer's correction in real
+//! space).
 //!
 //! Both operators are [`Compliance`] operators ([`PeriodicStiffness`] inverts the periodic one,
 //! [`FreeStiffness`] the free one on its padded grid):
@@ -33,6 +36,7 @@
 //! # Ok::<(), elastic::ElasticError>(())
 //! ```
 
+mod body;
 mod convolution;
 pub mod error;
 pub mod layer;
@@ -40,6 +44,7 @@ pub mod love;
 pub mod material;
 mod operators;
 
+pub use body::Body;
 pub use error::{ElasticError, Result};
 pub use layer::{Base, Layer};
 pub use material::{Material, composite_modulus};
@@ -107,8 +112,23 @@ pub trait Compliance: Sync + Send {
     /// The grid it acts on.
     fn domain(&self) -> &Domain;
 
-    /// Composite modulus E* \[Pa\].
+    /// Composite modulus E* \[Pa\] (a layer's plane-strain modulus).
     fn e_star(&self) -> f64;
+
+    /// The body whose compliance this is.
+    fn body(&self) -> Body;
+
+    /// The compliance \[m/Pa\] of the mean mode that [`Compliance::apply`] leaves out: a mean
+    /// pressure `p` also displaces the whole surface by this times `p`. Zero on free grids
+    /// (nothing is left out) and for the periodic half-space (the mode has no finite
+    /// compliance: displacements and approaches are measured from the mean surface).
+    fn mean_compliance(&self) -> f64 {
+        if self.domain().periodic {
+            self.body().mean_compliance(self.e_star()).unwrap_or(0.0)
+        } else {
+            0.0
+        }
+    }
 
     /// Buffers for [`Compliance::apply`]; make one per concurrent caller and reuse it.
     fn make_workspace(&self) -> Workspace;

@@ -1,8 +1,9 @@
-//! The two half-space operators: periodic (spectral) and free (Love + DC-FFT).
+//! The two operators of a body: periodic (spectral) and free (influence coefficients +
+//! DC-FFT).
 
+use crate::body::Body;
 use crate::convolution::{ConvWorkspace, Convolution};
 use crate::error::{ElasticError, Result};
-use crate::love::cell_influence;
 use crate::material::check_modulus;
 use crate::{Compliance, Domain};
 use ndarray::{Array2, ArrayView2, ArrayViewMut2};
@@ -33,28 +34,33 @@ fn wavevector(k: usize, n: usize, l: f64) -> f64 {
     2.0 * PI * signed / l
 }
 
-/// The periodic half-space: `u(q) = 2 p(q) / (E* |q|)` for `q != 0`; the mean displacement is
-/// zero (`q = 0` carries the load, which a periodic half-space cannot displace by a finite
-/// amount), so `u` is the displacement relative to its mean.
+/// The periodic body: `u(q) = 2 p(q) R(q) / (E* |q|)` for `q != 0`, `R` the body's factor
+/// ([`Body::compliance_ratio`], 1 for the half-space); the mean displacement is left out
+/// (`q = 0` carries the load, which a periodic half-space cannot displace by a finite amount,
+/// and a layer displaces by [`Compliance::mean_compliance`] times the mean pressure), so `u` is
+/// the displacement relative to its mean.
 #[derive(Clone)]
 pub struct Periodic {
     domain: Domain,
     e_star: f64,
+    body: Body,
     conv: Convolution,
 }
 
 impl Periodic {
-    /// The operator on `domain` (its `periodic` flag must be set) for composite modulus
+    /// The half-space on `domain` (its `periodic` flag must be set) for composite modulus
     /// `e_star` \[Pa\]. Plans are made once here.
     pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
+        Periodic::with_body(domain, e_star, Body::HalfSpace)
+    }
+
+    /// The operator of `body` (of plane-strain modulus `e_star` \[Pa\]) on `domain`.
+    pub fn with_body(domain: Domain, e_star: f64, body: Body) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
-        let Domain { nx, ny, dx, dy, .. } = domain;
-        let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
-        let kernel = Array2::from_shape_fn((nx / 2 + 1, ny), |(kx, ky)| {
-            let (qx, qy) = (wavevector(kx, nx, lx), wavevector(ky, ny, ly));
-            let q = qx.hypot(qy);
-            if q == 0.0 { 0.0 } else { 2.0 / (e_star * q) }
+        let Domain { nx, ny, .. } = domain;
+        let kernel = periodic_multiplier(&domain, |q| {
+            if q == 0.0 { 0.0 } else { 2.0 / (e_star * q) * body.compliance_ratio(q) }
         });
         Ok(Periodic {
             domain: Domain {
@@ -62,31 +68,45 @@ impl Periodic {
                 ..domain
             },
             e_star,
+            body,
             conv: Convolution::new(nx, ny, kernel, (ny, nx), (ny, nx)),
         })
     }
 }
 
-/// The periodic half-space's stiffness: the inverse of [`Periodic`] on fields of zero mean,
-/// `p(q) = E* |q| u(q) / 2` for `q != 0`; the mean of `u` is ignored and the pressure comes out
+/// `f(|q|)` on the periodic transform grid of `domain` (transposed half layout).
+fn periodic_multiplier(domain: &Domain, f: impl Fn(f64) -> f64) -> Array2<f64> {
+    let Domain { nx, ny, dx, dy, .. } = *domain;
+    let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
+    Array2::from_shape_fn((nx / 2 + 1, ny), |(kx, ky)| {
+        f(wavevector(kx, nx, lx).hypot(wavevector(ky, ny, ly)))
+    })
+}
+
+/// The periodic body's stiffness: the inverse of [`Periodic`] on fields of zero mean,
+/// `p(q) = E* |q| u(q) / (2 R(q))` for `q != 0`; the mean of `u` is ignored and the pressure comes out
 /// with zero mean (the mean pressure is the load, which the displacement's fluctuations do not
 /// fix). For solvers whose unknown is the displacement or the gap rather than the pressure.
 pub struct PeriodicStiffness {
     domain: Domain,
     conv: Convolution,
-    /// Its inverse on fields of zero mean: `2 / (E* |q|)`, zero at `q = 0`.
+    /// Its inverse on fields of zero mean: [`Periodic`]'s multiplier, zero at `q = 0`.
     inverse: Convolution,
 }
 
 impl PeriodicStiffness {
-    /// The operator on the periodic `domain` for composite modulus `e_star` \[Pa\].
+    /// The half-space's on the periodic `domain` for composite modulus `e_star` \[Pa\].
     pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
+        PeriodicStiffness::with_body(domain, e_star, Body::HalfSpace)
+    }
+
+    /// The stiffness of `body` (of plane-strain modulus `e_star` \[Pa\]) on `domain`.
+    pub fn with_body(domain: Domain, e_star: f64, body: Body) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
-        let Domain { nx, ny, dx, dy, .. } = domain;
-        let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
-        let kernel = Array2::from_shape_fn((nx / 2 + 1, ny), |(kx, ky)| {
-            0.5 * e_star * wavevector(kx, nx, lx).hypot(wavevector(ky, ny, ly))
+        let Domain { nx, ny, .. } = domain;
+        let kernel = periodic_multiplier(&domain, |q| {
+            if q == 0.0 { 0.0 } else { 0.5 * e_star * q / body.compliance_ratio(q) }
         });
         let inverse = kernel.mapv(|k| if k > 0.0 { 1.0 / k } else { 0.0 });
         Ok(PeriodicStiffness {
@@ -158,38 +178,49 @@ impl PeriodicStiffness {
     }
 }
 
-/// The free (non-periodic) half-space: exact influence coefficients of uniform pressure on
-/// each rectangular cell (Love 1929), applied as a linear convolution by FFT on a zero-padded
-/// `2nx` by `2ny` grid (DC-FFT). The displacement is the true one (zero at infinity).
+/// The free (non-periodic) body: exact influence coefficients of uniform pressure on each
+/// rectangular cell (Love 1929 for the half-space, plus a layer's correction), applied as a
+/// linear convolution by FFT on a zero-padded `2nx` by `2ny` grid (DC-FFT). The displacement is
+/// the true one (zero at infinity).
 #[derive(Clone)]
 pub struct Free {
     domain: Domain,
     e_star: f64,
+    body: Body,
     conv: Convolution,
 }
 
 impl Free {
-    /// The operator on `domain` for composite modulus `e_star` \[Pa\]. Computes the influence
+    /// The half-space on `domain` for composite modulus `e_star` \[Pa\]. Computes the influence
     /// coefficients and their spectrum once (the most expensive step: about 1.3 s at 4096^2).
     pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
+        Free::with_body(domain, e_star, Body::HalfSpace)
+    }
+
+    /// The operator of `body` (of plane-strain modulus `e_star` \[Pa\]) on `domain`. A layer's
+    /// coefficients cost more than Love's where the layer is thicker than a cell (64 points a
+    /// cell within 40 thicknesses: `docs/performance.md`).
+    pub fn with_body(domain: Domain, e_star: f64, body: Body) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
-        let conv = free_convolution(&domain, e_star, (domain.ny, domain.nx));
+        let conv = free_convolution(&domain, e_star, body, (domain.ny, domain.nx));
         Ok(Free {
             domain: Domain {
                 periodic: false,
                 ..domain
             },
             e_star,
+            body,
             conv,
         })
     }
 }
 
-/// The DC-FFT convolution of the free half-space from `(ny, nx)` pressures to `output`
+/// The DC-FFT convolution of the free `body` from `(ny, nx)` pressures to `output`
 /// displacements (at most the padded `(2ny, 2nx)`).
-fn free_convolution(domain: &Domain, e_star: f64, output: (usize, usize)) -> Convolution {
+fn free_convolution(domain: &Domain, e_star: f64, body: Body, output: (usize, usize)) -> Convolution {
     let Domain { nx, ny, dx, dy, .. } = *domain;
+    let influence = body.influence(dx, dy, e_star);
     let (mx, my) = (2 * nx, 2 * ny);
     // Influence of cell (0, 0) on the cell at offset (i, j): even in both, so compute a
     // quadrant and wrap. Offset n (the padding's Nyquist) never reaches a kept output; it
@@ -198,7 +229,7 @@ fn free_convolution(domain: &Domain, e_star: f64, output: (usize, usize)) -> Con
         .into_par_iter()
         .map(|k| {
             let (j, i) = (k / (nx + 1), k % (nx + 1));
-            cell_influence(i as f64 * dx, j as f64 * dy, 0.5 * dx, 0.5 * dy, e_star)
+            influence.at(i as f64 * dx, j as f64 * dy)
         })
         .collect();
     let fold = |k: usize, n: usize| if k <= n { k } else { 2 * n - k };
@@ -213,7 +244,7 @@ fn free_convolution(domain: &Domain, e_star: f64, output: (usize, usize)) -> Con
     conv
 }
 
-/// The free half-space's stiffness on its padded grid, for solvers whose unknown is the
+/// The free body's stiffness on its padded grid, for solvers whose unknown is the
 /// displacement: the inverse of the `2nx` by `2ny` circulant compliance whose first `(ny, nx)`
 /// block is [`Free`]. A displacement `U` \[m\] of the whole padded grid is held by the pressure
 /// `S U` \[Pa\] on the whole padded grid; where `S U` vanishes outside the first block, `U`'s
@@ -225,6 +256,7 @@ fn free_convolution(domain: &Domain, e_star: f64, output: (usize, usize)) -> Con
 pub struct FreeStiffness {
     domain: Domain,
     e_star: f64,
+    body: Body,
     stiffness: Convolution,
     compliance: Convolution,
     /// The circulant compliance from padded fields to padded fields.
@@ -232,16 +264,24 @@ pub struct FreeStiffness {
 }
 
 impl FreeStiffness {
-    /// The operator for the free `domain` and composite modulus `e_star` \[Pa\].
+    /// The half-space's for the free `domain` and composite modulus `e_star` \[Pa\].
     ///
     /// # Errors
     /// A bad domain or modulus, or a kernel spectrum that is not positive (not seen on any
     /// grid: the wrapped kernel of Love's coefficients is positive definite).
     pub fn new(domain: Domain, e_star: f64) -> Result<Self> {
+        FreeStiffness::with_body(domain, e_star, Body::HalfSpace)
+    }
+
+    /// The stiffness of `body` (of plane-strain modulus `e_star` \[Pa\]) on the free `domain`.
+    ///
+    /// # Errors
+    /// As [`FreeStiffness::new`].
+    pub fn with_body(domain: Domain, e_star: f64, body: Body) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
         let padded = (2 * domain.ny, 2 * domain.nx);
-        let compliance = free_convolution(&domain, e_star, padded);
+        let compliance = free_convolution(&domain, e_star, body, padded);
         // The compliance's multiplier is stored divided by `mx my`; the stiffness's unscaled one
         // is its reciprocal.
         let kernel = compliance.kernel();
@@ -263,6 +303,7 @@ impl FreeStiffness {
                 ..domain
             },
             e_star,
+            body,
             stiffness,
             compliance,
             padded_compliance,
@@ -277,6 +318,11 @@ impl FreeStiffness {
     /// Composite modulus E* \[Pa\].
     pub fn e_star(&self) -> f64 {
         self.e_star
+    }
+
+    /// The body.
+    pub fn body(&self) -> Body {
+        self.body
     }
 
     /// Shape `(2ny, 2nx)` of the padded fields.
@@ -369,6 +415,9 @@ macro_rules! impl_compliance {
             }
             fn e_star(&self) -> f64 {
                 self.e_star
+            }
+            fn body(&self) -> Body {
+                self.body
             }
             fn make_workspace(&self) -> Workspace {
                 Workspace(self.conv.make_workspace())
