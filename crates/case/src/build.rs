@@ -136,7 +136,7 @@ impl Case {
                     law.as_ref(),
                     solver::Control::Approach(0.0),
                     &domain,
-                    e_star,
+                    domain.cell_compliance(e_star),
                     &solver::Interface {
                         hardness: self.hardness,
                     },

@@ -118,6 +118,10 @@ pub trait Compliance: Sync + Send {
     /// The body whose compliance this is.
     fn body(&self) -> Body;
 
+    /// The displacement \[m\] of a cell under unit pressure \[Pa\] on itself: the operator's
+    /// diagonal (Love's self-coefficient, [`Domain::cell_compliance`], for the half-space).
+    fn cell_compliance(&self) -> f64;
+
     /// The compliance \[m/Pa\] of the mean mode that [`Compliance::apply`] leaves out: a mean
     /// pressure `p` also displaces the whole surface by this times `p`. Zero on free grids
     /// (nothing is left out) and for the periodic half-space (the mode has no finite

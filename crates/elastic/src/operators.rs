@@ -44,6 +44,7 @@ pub struct Periodic {
     domain: Domain,
     e_star: f64,
     body: Body,
+    cell: f64,
     conv: Convolution,
 }
 
@@ -62,6 +63,27 @@ impl Periodic {
         let kernel = periodic_multiplier(&domain, |q| {
             if q == 0.0 { 0.0 } else { 2.0 / (e_star * q) * body.compliance_ratio(q) }
         });
+        // The circulant's diagonal, the mean of the multiplier over the grid, mean mode included
+        // (the half-space keeps Love's self-coefficient).
+        let cell = match body {
+            Body::HalfSpace => domain.cell_compliance(e_star),
+            Body::Layer(_) => {
+                let Domain { dx, dy, .. } = domain;
+                let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
+                let total: f64 = (0..ny)
+                    .flat_map(|ky| (0..nx).map(move |kx| (kx, ky)))
+                    .map(|(kx, ky)| {
+                        let q = wavevector(kx, nx, lx).hypot(wavevector(ky, ny, ly));
+                        if q == 0.0 {
+                            body.mean_compliance(e_star).unwrap_or(0.0)
+                        } else {
+                            2.0 / (e_star * q) * body.compliance_ratio(q)
+                        }
+                    })
+                    .sum();
+                total / (nx * ny) as f64
+            }
+        };
         Ok(Periodic {
             domain: Domain {
                 periodic: true,
@@ -69,6 +91,7 @@ impl Periodic {
             },
             e_star,
             body,
+            cell,
             conv: Convolution::new(nx, ny, kernel, (ny, nx), (ny, nx)),
         })
     }
@@ -187,6 +210,7 @@ pub struct Free {
     domain: Domain,
     e_star: f64,
     body: Body,
+    cell: f64,
     conv: Convolution,
 }
 
@@ -203,7 +227,7 @@ impl Free {
     pub fn with_body(domain: Domain, e_star: f64, body: Body) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
-        let conv = free_convolution(&domain, e_star, body, (domain.ny, domain.nx));
+        let (conv, cell) = free_convolution(&domain, e_star, body, (domain.ny, domain.nx));
         Ok(Free {
             domain: Domain {
                 periodic: false,
@@ -211,14 +235,20 @@ impl Free {
             },
             e_star,
             body,
+            cell,
             conv,
         })
     }
 }
 
 /// The DC-FFT convolution of the free `body` from `(ny, nx)` pressures to `output`
-/// displacements (at most the padded `(2ny, 2nx)`).
-fn free_convolution(domain: &Domain, e_star: f64, body: Body, output: (usize, usize)) -> Convolution {
+/// displacements (at most the padded `(2ny, 2nx)`), and its self-coefficient \[m/Pa\].
+fn free_convolution(
+    domain: &Domain,
+    e_star: f64,
+    body: Body,
+    output: (usize, usize),
+) -> (Convolution, f64) {
     let Domain { nx, ny, dx, dy, .. } = *domain;
     let influence = body.influence(dx, dy, e_star);
     let (mx, my) = (2 * nx, 2 * ny);
@@ -239,9 +269,10 @@ fn free_convolution(domain: &Domain, e_star: f64, body: Body, output: (usize, us
     };
     let mut conv = Convolution::without_kernel(mx, my, (ny, nx), output);
     let kernel = conv.real_spectrum(wrapped_row, &mut conv.make_workspace());
+    let diagonal = quadrant[0];
     drop(quadrant);
     conv.set_kernel(kernel);
-    conv
+    (conv, diagonal)
 }
 
 /// The free body's stiffness on its padded grid, for solvers whose unknown is the
@@ -281,7 +312,7 @@ impl FreeStiffness {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
         let padded = (2 * domain.ny, 2 * domain.nx);
-        let compliance = free_convolution(&domain, e_star, body, padded);
+        let (compliance, _) = free_convolution(&domain, e_star, body, padded);
         // The compliance's multiplier is stored divided by `mx my`; the stiffness's unscaled one
         // is its reciprocal.
         let kernel = compliance.kernel();
@@ -418,6 +449,9 @@ macro_rules! impl_compliance {
             }
             fn body(&self) -> Body {
                 self.body
+            }
+            fn cell_compliance(&self) -> f64 {
+                self.cell
             }
             fn make_workspace(&self) -> Workspace {
                 Workspace(self.conv.make_workspace())

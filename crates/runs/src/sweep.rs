@@ -191,7 +191,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             .then(|| {
                 settings
                     .method
-                    .resolve(problem.law.as_ref(), controls[0], &domain, problem.e_star(), &problem.interface)
+                    .resolve(problem.law.as_ref(), controls[0], &domain, problem.operator.cell_compliance(), &problem.interface)
                     .name()
             }),
         "adhesive_range": problem.adhesive().then_some(range),

@@ -47,6 +47,7 @@ pub mod error;
 mod fields;
 pub mod geometry;
 pub mod interface;
+mod mean_mode;
 pub mod method;
 pub mod observer;
 pub mod options;

@@ -7,8 +7,8 @@
 
 use crate::error::{Result, invalid};
 use crate::interface::Interface;
-use crate::options::{ContactOptions, Control};
 use elastic::Domain;
+use crate::options::{ContactOptions, Control};
 use ljadhesion::AdhesionLaw;
 
 /// The adhesive methods, one entry each: the variant of [`Method`] with its doc, its name on
@@ -103,7 +103,7 @@ impl Method {
         law: &dyn AdhesionLaw,
         control: Control,
         domain: &Domain,
-        e_star: f64,
+        cell_compliance: f64,
         interface: &Interface,
     ) -> Method {
         if self != Method::Auto {
@@ -117,7 +117,7 @@ impl Method {
         let energy = law.local_potential().is_some() || field;
         let averaged = !energy && law.flat_potential().is_some() && law.stiffness_bound().is_finite();
         let periodic = domain.periodic;
-        let coarse = law.stiffness_bound() * domain.cell_compliance(e_star) > Method::FLOW_ABOVE;
+        let coarse = law.stiffness_bound() * cell_compliance > Method::FLOW_ABOVE;
         if approach && adhesive && energy {
             Method::EnergyDescent
         } else if approach && adhesive && averaged {

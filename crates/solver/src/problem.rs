@@ -12,7 +12,7 @@ use crate::observer::Observer;
 use crate::options::{ContactOptions, Control};
 use crate::report::ContactReport;
 use crate::state::ContactState;
-use elastic::{Compliance, Domain, Free, Periodic};
+use elastic::{Body, Compliance, Domain, Free, Layer, Periodic};
 use ljadhesion::{AdhesionLaw, NoAdhesion};
 use ndarray::Array2;
 use std::sync::Arc;
@@ -313,10 +313,12 @@ pub struct ProblemBuilder {
     periodic: Option<bool>,
     law: Option<Arc<dyn AdhesionLaw>>,
     interface: Interface,
+    body: Body,
 }
 
 impl ProblemBuilder {
-    /// The composite modulus E* \[Pa\] (required).
+    /// The composite modulus E* \[Pa\] (required): with a [`ProblemBuilder::layer`], the
+    /// layer's plane-strain modulus `E / (1 - nu^2)`.
     pub fn modulus(mut self, e_star: f64) -> Self {
         self.modulus = Some(e_star);
         self
@@ -374,6 +376,14 @@ impl ProblemBuilder {
     /// it ([`crate::interface`]); elastic by default.
     pub fn hardness(mut self, hardness: f64) -> Self {
         self.interface.hardness = Some(hardness);
+        self
+    }
+
+    /// An elastic layer of finite thickness on a rigid base for the body ([`elastic::Layer`]);
+    /// a half-space by default. On periodic grids the approach is then measured from the base
+    /// (`crate::mean_mode`).
+    pub fn layer(mut self, layer: Layer) -> Self {
+        self.body = Body::Layer(layer);
         self
     }
 
@@ -440,9 +450,9 @@ impl ProblemBuilder {
             }
         };
         let operator: Arc<dyn Compliance> = if periodic {
-            Arc::new(Periodic::new(domain, e_star)?)
+            Arc::new(Periodic::with_body(domain, e_star, self.body)?)
         } else {
-            Arc::new(Free::new(domain, e_star)?)
+            Arc::new(Free::with_body(domain, e_star, self.body)?)
         };
         self.interface.validate()?;
         let law = self.law.unwrap_or_else(|| Arc::new(NoAdhesion));

@@ -9,6 +9,7 @@ pub mod flattened;
 pub mod greenwood;
 pub mod hertz;
 pub mod jkr_dmt;
+pub mod layer;
 pub mod maugis;
 pub mod rough;
 pub mod wavy;

@@ -40,7 +40,7 @@ pub(crate) struct Job<'a> {
 impl Job<'_> {
     /// The residuals' scale: a cell's compliance over the law's range [1/Pa].
     pub fn residual_scale(&self) -> f64 {
-        self.op.domain().cell_compliance(self.op.e_star()) / self.law.range()
+        self.op.cell_compliance() / self.law.range()
     }
 }
 

@@ -31,6 +31,7 @@ pub use state::{AdhesiveState, Start};
 
 use crate::error::{Result, SolverError, invalid};
 use crate::interface::Interface;
+use crate::mean_mode::MeanMode;
 use crate::method::{Method, Settings};
 use crate::options::Control;
 use elastic::Compliance;
@@ -73,6 +74,61 @@ pub(crate) struct Parts<'a> {
 
 /// Solves the problem of `parts` under `control` (see [`crate::ContactProblem::solve`]).
 pub(crate) fn solve(
+    parts: Parts,
+    control: Control,
+    settings: &Settings,
+    start: Start,
+    observer: &mut dyn FnMut(usize, f64) -> bool,
+) -> Result<(AdhesiveState, AdhesiveReport)> {
+    let Some(mean) = MeanMode::of(parts.op) else {
+        return solve_relative(parts, control, settings, start, observer);
+    };
+    // The methods' frame: the approach from the mean surface (crate::mean_mode).
+    let mean_of = |s: &AdhesiveState| s.total_pressure().mean().unwrap_or(0.0);
+    let warm = match start {
+        Start::Warm(w) => {
+            let mut w = w.clone();
+            let p_mean = mean_of(&w);
+            mean.shift(&mut w.contact, p_mean, -1.0);
+            Some(w)
+        }
+        _ => None,
+    };
+    let start = warm.as_ref().map_or(start, Start::Warm);
+    let to_base = |(mut state, mut report): (AdhesiveState, AdhesiveReport)| {
+        report.approach += mean.shift(&mut state.contact, report.mean_pressure, 1.0);
+        (state, report)
+    };
+    let Control::Approach(delta) = control else {
+        return solve_relative(parts, control, settings, start, observer).map(to_base);
+    };
+    // Each trial starts from the caller's permanent set, seeded by the last trial's fields.
+    let before = warm.as_ref().and_then(|w| w.contact.permanent_set.clone());
+    let guess = warm.as_ref().map_or(0.0, mean_of);
+    let tolerance = settings.tolerance * parts.law.range();
+    let (solution, _) = mean.approach(
+        delta,
+        guess,
+        tolerance,
+        |at, last: Option<&(AdhesiveState, AdhesiveReport)>| {
+            let seed = last.map(|(s, _)| {
+                let mut s = s.clone();
+                s.contact.permanent_set = before.clone();
+                s
+            });
+            let from = seed.as_ref().map_or(start, Start::Warm);
+            let (s, r) = solve_relative(parts, Control::Approach(at), settings, from, observer)?;
+            let (p, t) = (r.mean_pressure, r.termination);
+            Ok(((s, r), p, t))
+        },
+        |(_, r), t| r.termination = t,
+    )?;
+    Ok(to_base(solution))
+}
+
+/// [`solve`] in the methods' frame: on a periodic body with a mean compliance, the approach
+/// is measured from the mean surface ([`crate::mean_mode`]).
+fn solve_relative(
     parts: Parts,
     control: Control,
     settings: &Settings,
@@ -145,7 +201,7 @@ pub(crate) fn solve(
     let g0 = yielded.as_ref().map_or(g0, |g| g.view());
     let method = settings
         .method
-        .resolve(law, control, op.domain(), op.e_star(), &interface);
+        .resolve(law, control, op.domain(), op.cell_compliance(), &interface);
     let job = Job {
         op,
         law,

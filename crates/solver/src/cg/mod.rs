@@ -27,6 +27,7 @@ use crate::observer::Observer;
 use crate::options::{ContactOptions, Control};
 use crate::report::{ContactReport, Termination, count_clusters};
 use crate::state::ContactState;
+use crate::mean_mode::MeanMode;
 use elastic::Compliance;
 use ndarray::{Array2, ArrayView2, Zip};
 use rayon::prelude::*;
@@ -64,6 +65,60 @@ pub fn solve(
 /// approach, a load beyond the hardness times the area, a tolerance below what f64
 /// arithmetic can reach.
 pub fn solve_with(
+    op: &dyn Compliance,
+    g0: ArrayView2<f64>,
+    interface: &Interface,
+    control: Control,
+    options: &ContactOptions,
+    warm: Option<&ContactState>,
+    observer: &mut dyn Observer,
+) -> Result<(ContactState, ContactReport)> {
+    let Some(mean) = MeanMode::of(op) else {
+        return solve_relative(op, g0, interface, control, options, warm, observer);
+    };
+    // The methods' frame: the approach from the mean surface (crate::mean_mode).
+    let warm = warm.map(|w| {
+        let mut w = w.clone();
+        let p_mean = w.pressure.mean().unwrap_or(0.0);
+        mean.shift(&mut w, p_mean, -1.0);
+        w
+    });
+    let cells = g0.len() as f64 * op.domain().cell_area();
+    let to_base = |(mut state, mut report): (ContactState, ContactReport)| {
+        let p = report.mean_pressure;
+        report.approach += mean.shift(&mut state, p, 1.0);
+        report.elastic_energy += 0.5 * op.mean_compliance() * p * p * cells;
+        (state, report)
+    };
+    let Control::Approach(delta) = control else {
+        return solve_relative(op, g0, interface, control, options, warm.as_ref(), observer).map(to_base);
+    };
+    // Each trial starts from the caller's permanent set, seeded by the last trial's pressure.
+    let before = warm.as_ref().and_then(|w| w.permanent_set.clone());
+    let guess = warm.as_ref().map_or(0.0, |w| w.pressure.mean().unwrap_or(0.0));
+    let tolerance = options.tolerance * gap_scale(g0);
+    let (solution, _) = mean.approach(
+        delta,
+        guess,
+        tolerance,
+        |at, last: Option<&(ContactState, ContactReport)>| {
+            let seed = last.map(|(s, _)| ContactState {
+                permanent_set: before.clone(),
+                ..s.clone()
+            });
+            let from = seed.as_ref().or(warm.as_ref());
+            let (s, r) = solve_relative(op, g0, interface, Control::Approach(at), options, from, observer)?;
+            let (p, t) = (r.mean_pressure, r.termination);
+            Ok(((s, r), p, t))
+        },
+        |(_, r), t| r.termination = t,
+    )?;
+    Ok(to_base(solution))
+}
+
+/// [`solve_with`] in the methods' frame: on a periodic body with a mean compliance, the
+/// approach is measured from the mean surface ([`crate::mean_mode`]).
+pub(crate) fn solve_relative(
     op: &dyn Compliance,
     g0: ArrayView2<f64>,
     interface: &Interface,
@@ -446,7 +501,7 @@ fn along_direction(
         // No direction to give a step (every loaded cell at the cap, or a lone cell under load
         // control): interpenetrating cells enter at a lone cell's stiffness, or nothing would
         // ever move.
-        1.0 / op.domain().cell_compliance(op.e_star())
+        1.0 / op.cell_compliance()
     };
     // Pass F: step, projection onto p >= 0, release of every interpenetrating cell at zero
     // pressure (free ones and those just clipped: releasing the clipped ones too saves about

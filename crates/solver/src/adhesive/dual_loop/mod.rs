@@ -114,7 +114,7 @@ fn solve(
     let mut g_eff = Array2::<f64>::zeros(shape);
     let mut law_p = Array2::<f64>::zeros(shape);
     let mut residual_field = Array2::<f64>::zeros(shape);
-    let mut cell_beta = CellRelaxation::new(shape, domain.cell_compliance(op.e_star()), law.range());
+    let mut cell_beta = CellRelaxation::new(shape, op.cell_compliance(), law.range());
     let mut relaxation = Relaxation::new(settings.mixing.relaxation.unwrap_or(1.0));
     let mut mixer = Anderson::new(if accelerated { settings.mixing.history } else { 0 });
     let (mut calls, mut inner_iterations, mut outer) = (0, 0, 0);

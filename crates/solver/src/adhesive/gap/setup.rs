@@ -98,7 +98,7 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
         }
     };
     let (mut problem, first, hold) = if domain.periodic {
-        let stiffness = PeriodicStiffness::new(domain, op.e_star())?;
+        let stiffness = PeriodicStiffness::with_body(domain, op.e_star(), op.body())?;
         let first = match start {
             // A first step from the rigid overlap (or, under load control, where the rigid
             // shift has no elastic stiffness, from a point contact) would snap far more of
@@ -108,7 +108,7 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
                 let non_adhesive = |control| {
                     let interface = &job.interface;
                     let options = &settings.contact;
-                    crate::cg::solve_with(op, g0, interface, control, options, None, &mut ())
+                    crate::cg::solve_relative(op, g0, interface, control, options, None, &mut ())
                         .map(|(s, _)| signed_gap(s))
                 };
                 match load {
@@ -135,7 +135,7 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
         let hold = matches!(start, Start::Warm(_)).then(|| law.range());
         (problem, first, hold)
     } else {
-        let stiffness = FreeStiffness::new(domain, op.e_star())?;
+        let stiffness = FreeStiffness::with_body(domain, op.e_star(), op.body())?;
         let padded = stiffness.padded_shape();
         let mut ws = stiffness.make_workspace();
         let mut base = Array2::zeros(padded);
