@@ -5,14 +5,16 @@
 //! is measured from the mean surface. The approach from the rigid base is that plus the
 //! layer's uniform compression, `delta = delta_mean + C0 p_mean`, and the surface displacement
 //! gains `C0 p_mean`; here a solve's state and report are moved to that frame, a warm start
-//! back to the methods', and a prescribed approach is met by a secant on the methods' own
-//! (`delta_mean + C0 p_mean(delta_mean) = delta`, increasing along a stable branch).
+//! back to the methods', and a prescribed approach is met by a root search over the mean
+//! pressure with the methods under load control, which stay well posed in full contact (where
+//! the methods' approach stops moving and the layer's compression takes up the rest).
 
 use crate::error::Result;
+use crate::options::Control;
 use crate::report::Termination;
 use crate::state::ContactState;
 
-/// Secant steps before a prescribed approach is given up as not converged.
+/// Trial solves before a prescribed approach is given up as not converged.
 const MAX_STEPS: usize = 40;
 
 /// A periodic body's mean mode.
@@ -38,51 +40,86 @@ impl MeanMode {
         shift
     }
 
-    /// Solves for the approach `delta` \[m\] from the base: `solve(delta_mean, last)` solves at
-    /// the methods' approach `delta_mean`, warm from the last solution if any, and returns it
-    /// with its mean pressure \[Pa\] and termination. The first guess takes `p_guess` \[Pa\];
-    /// the secant stops within `tolerance` \[m\] of `delta`, or after [`MAX_STEPS`] with the
-    /// last solution marked [`Termination::MaxIterations`]. Returns the solution (still in the
-    /// methods' frame) and its mean pressure.
+    /// Solves for the approach `delta` \[m\] from the base. `solve(control, last)` solves in
+    /// the methods' frame, warm from the last trial if any, and returns the solution and its
+    /// [`Trial`]. The mean pressure is sought (the methods' approach rises with it, so
+    /// `miss(p) = delta_mean(p) + C0 p - delta` rises too): from `p_guess` \[Pa\] (else the
+    /// full-contact bound `(delta - mean_gap) / C0`, or zero), then the fixed-point step
+    /// `p = (delta - delta_mean(p)) / C0`, which crosses the root, then false position
+    /// (Illinois) in the bracket, to within `tolerance` \[m\]; after [`MAX_STEPS`] the last
+    /// solution is marked [`Termination::MaxIterations`] by `mark`. A trial that pulls off counts
+    /// as too tensile. With no contact at zero load and `delta <= 0`, the answer is the
+    /// approach-controlled solve at `delta` (no mean pressure, no shift).
     pub(crate) fn approach<S>(
         &self,
         delta: f64,
-        p_guess: f64,
+        p_guess: Option<f64>,
+        mean_gap: f64,
         tolerance: f64,
-        mut solve: impl FnMut(f64, Option<&S>) -> Result<(S, f64, Termination)>,
+        mut solve: impl FnMut(Control, Option<&S>) -> Result<(S, Trial)>,
         mut mark: impl FnMut(&mut S, Termination),
-    ) -> Result<(S, f64)> {
+    ) -> Result<S> {
         let c0 = self.compliance;
-        let miss = |x: f64, p: f64| x + c0 * p - delta;
-        let mut x0 = delta - c0 * p_guess;
-        let (mut s0, mut p0, t0) = solve(x0, None)?;
-        if t0 != Termination::Converged && t0 != Termination::NoContact {
-            return Ok((s0, p0));
-        }
-        let mut f0 = miss(x0, p0);
-        if f0.abs() <= tolerance {
-            return Ok((s0, p0));
-        }
-        // A fixed-point step first: exact when the mean pressure does not change.
-        let mut x1 = delta - c0 * p0;
-        for _ in 0..MAX_STEPS {
-            let (s1, p1, t1) = solve(x1, Some(&s0))?;
-            if t1 != Termination::Converged && t1 != Termination::NoContact {
-                return Ok((s1, p1));
-            }
-            let f1 = miss(x1, p1);
-            if f1.abs() <= tolerance {
-                return Ok((s1, p1));
-            }
-            let next = if f1 != f0 {
-                x1 - f1 * (x1 - x0) / (f1 - f0)
-            } else {
-                delta - c0 * p1
+        let mut p = p_guess.unwrap_or(((delta - mean_gap) / c0).max(0.0));
+        // The bracket: (p, miss) below and above the root.
+        let (mut low, mut high): (Option<(f64, f64)>, Option<(f64, f64)>) = (None, None);
+        let mut last: Option<S> = None;
+        let mut stale = 0;
+        for step in 1..=MAX_STEPS {
+            let (mut solution, trial) = solve(Control::MeanPressure(p), last.as_ref())?;
+            let miss = match trial.termination {
+                Termination::PulledOff => f64::NEG_INFINITY,
+                Termination::Converged | Termination::NoContact => {
+                    trial.approach + c0 * trial.mean_pressure - delta
+                }
+                _ => return Ok(solution),
             };
-            (x0, f0, s0, p0) = (x1, f1, s1, p1);
-            x1 = next;
+            if trial.termination == Termination::NoContact && p == 0.0 && delta <= 0.0 {
+                return solve(Control::Approach(delta), None).map(|(s, _)| s);
+            }
+            if miss.abs() <= tolerance {
+                return Ok(solution);
+            }
+            if step == MAX_STEPS {
+                mark(&mut solution, Termination::MaxIterations);
+                return Ok(solution);
+            }
+            let fixed_point = (delta - trial.approach) / c0;
+            if miss < 0.0 {
+                // Illinois: halve the other end's weight when the same end moves twice.
+                if let Some(h) = high.as_mut().filter(|_| stale < 0) {
+                    h.1 *= 0.5;
+                }
+                stale = stale.min(0) - 1;
+                low = Some((p, miss));
+            } else {
+                if let Some(l) = low.as_mut().filter(|_| stale > 0) {
+                    l.1 *= 0.5;
+                }
+                stale = stale.max(0) + 1;
+                high = Some((p, miss));
+            }
+            if trial.termination != Termination::PulledOff {
+                last = Some(solution);
+            }
+            p = match (low, high) {
+                (Some((a, fa)), Some((b, fb))) if fa.is_finite() => a - fa * (b - a) / (fb - fa),
+                (Some((a, _)), Some((b, _))) => 0.5 * (a + b),
+                _ if miss.is_finite() => fixed_point,
+                // Pulled off with nothing above: half as tensile.
+                _ => 0.5 * p,
+            };
         }
-        mark(&mut s0, Termination::MaxIterations);
-        Ok((s0, p0))
+        unreachable!("the last step returns")
     }
+}
+
+/// What [`MeanMode::approach`] needs of a trial solve, in the methods' frame.
+pub(crate) struct Trial {
+    /// Approach from the mean surface \[m\].
+    pub(crate) approach: f64,
+    /// Mean pressure \[Pa\].
+    pub(crate) mean_pressure: f64,
+    /// Why it stopped.
+    pub(crate) termination: Termination,
 }

@@ -84,3 +84,48 @@ fn a_thin_compressible_layer_is_winklers_bed() {
         }
     }
 }
+
+#[test]
+fn a_wave_flattened_on_a_periodic_layer_sinks_it_by_its_uniform_compression() {
+    // A wave A (1 - cos q x) pressed flat on a layer: the mode q needs A / C(q) of pressure
+    // amplitude, the mean pressure compresses the layer by C0 p_mean, so from the base the
+    // approach is the mean gap + C0 p_mean. Both controls, without adhesion and through an adhesive
+    // method with no law.
+    let (n, side, amplitude) = (64, 64e-6, 0.2e-6);
+    let q = 2.0 * std::f64::consts::PI / side;
+    for base in [Base::Bonded, Base::Frictionless] {
+        let layer = Layer::new(10e-6, 0.3, base).unwrap();
+        let problem = ContactProblem::builder()
+            .grid(n, n, side, side)
+            .wave(amplitude)
+            .modulus(E_STAR)
+            .layer(layer)
+            .build()
+            .unwrap();
+        let p_mean = 1.5 * amplitude / layer.compliance(q, E_STAR);
+        // From first touch: the sampled wave's mean gap (its crest falls between cells).
+        let mean_gap = problem.initial_gap.mean().unwrap();
+        let delta = mean_gap + layer.compliance(0.0, E_STAR) * p_mean;
+        let options = ContactOptions {
+            tolerance: 1e-10,
+            ..ContactOptions::default()
+        };
+        let (_, loaded) = problem
+            .solve_without_adhesion(Control::MeanPressure(p_mean), &options, None, &mut ())
+            .unwrap();
+        assert_eq!(loaded.contact_area_fraction, 1.0);
+        assert!((loaded.approach / delta - 1.0).abs() < 1e-9, "{base:?}: {} {delta}", loaded.approach);
+        let (_, pressed) = problem
+            .solve_without_adhesion(Control::Approach(delta), &options, None, &mut ())
+            .unwrap();
+        assert!(pressed.converged());
+        assert!((pressed.mean_pressure / p_mean - 1.0).abs() < 1e-8, "{base:?}: {} {p_mean}", pressed.mean_pressure);
+        let settings = solver::Settings::default();
+        for control in [Control::MeanPressure(p_mean), Control::Approach(delta)] {
+            let (_, report) = problem.solve(control, &settings, solver::Start::Loading, &mut ()).unwrap();
+            assert!(report.converged(), "{base:?} {control:?}: {report:?}");
+            assert!((report.approach / delta - 1.0).abs() < 1e-6, "{base:?} {control:?}: {}", report.approach);
+            assert!((report.mean_pressure / p_mean - 1.0).abs() < 1e-6, "{base:?} {control:?}: {}", report.mean_pressure);
+        }
+    }
+}

@@ -31,7 +31,7 @@ pub use state::{AdhesiveState, Start};
 
 use crate::error::{Result, SolverError, invalid};
 use crate::interface::Interface;
-use crate::mean_mode::MeanMode;
+use crate::mean_mode::{MeanMode, Trial};
 use crate::method::{Method, Settings};
 use crate::options::Control;
 use elastic::Compliance;
@@ -104,22 +104,28 @@ pub(crate) fn solve(
     };
     // Each trial starts from the caller's permanent set, seeded by the last trial's fields.
     let before = warm.as_ref().and_then(|w| w.contact.permanent_set.clone());
-    let guess = warm.as_ref().map_or(0.0, mean_of);
+    let guess = warm.as_ref().map(mean_of);
     let tolerance = settings.tolerance * parts.law.range();
-    let (solution, _) = mean.approach(
+    let mean_gap = parts.g0.mean().unwrap_or(0.0);
+    let solution = mean.approach(
         delta,
         guess,
+        mean_gap,
         tolerance,
-        |at, last: Option<&(AdhesiveState, AdhesiveReport)>| {
+        |control, last: Option<&(AdhesiveState, AdhesiveReport)>| {
             let seed = last.map(|(s, _)| {
                 let mut s = s.clone();
                 s.contact.permanent_set = before.clone();
                 s
             });
             let from = seed.as_ref().map_or(start, Start::Warm);
-            let (s, r) = solve_relative(parts, Control::Approach(at), settings, from, observer)?;
-            let (p, t) = (r.mean_pressure, r.termination);
-            Ok(((s, r), p, t))
+            let (s, r) = solve_relative(parts, control, settings, from, observer)?;
+            let trial = Trial {
+                approach: r.approach,
+                mean_pressure: r.mean_pressure,
+                termination: r.termination,
+            };
+            Ok(((s, r), trial))
         },
         |(_, r), t| r.termination = t,
     )?;

@@ -27,7 +27,7 @@ use crate::observer::Observer;
 use crate::options::{ContactOptions, Control};
 use crate::report::{ContactReport, Termination, count_clusters};
 use crate::state::ContactState;
-use crate::mean_mode::MeanMode;
+use crate::mean_mode::{MeanMode, Trial};
 use elastic::Compliance;
 use ndarray::{Array2, ArrayView2, Zip};
 use rayon::prelude::*;
@@ -95,21 +95,27 @@ pub fn solve_with(
     };
     // Each trial starts from the caller's permanent set, seeded by the last trial's pressure.
     let before = warm.as_ref().and_then(|w| w.permanent_set.clone());
-    let guess = warm.as_ref().map_or(0.0, |w| w.pressure.mean().unwrap_or(0.0));
+    let guess = warm.as_ref().and_then(|w| w.pressure.mean());
     let tolerance = options.tolerance * gap_scale(g0);
-    let (solution, _) = mean.approach(
+    let mean_gap = g0.mean().unwrap_or(0.0);
+    let solution = mean.approach(
         delta,
         guess,
+        mean_gap,
         tolerance,
-        |at, last: Option<&(ContactState, ContactReport)>| {
+        |control, last: Option<&(ContactState, ContactReport)>| {
             let seed = last.map(|(s, _)| ContactState {
                 permanent_set: before.clone(),
                 ..s.clone()
             });
             let from = seed.as_ref().or(warm.as_ref());
-            let (s, r) = solve_relative(op, g0, interface, Control::Approach(at), options, from, observer)?;
-            let (p, t) = (r.mean_pressure, r.termination);
-            Ok(((s, r), p, t))
+            let (s, r) = solve_relative(op, g0, interface, control, options, from, observer)?;
+            let trial = Trial {
+                approach: r.approach,
+                mean_pressure: r.mean_pressure,
+                termination: r.termination,
+            };
+            Ok(((s, r), trial))
         },
         |(_, r), t| r.termination = t,
     )?;
