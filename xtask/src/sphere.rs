@@ -55,7 +55,7 @@ impl Setup {
             &law,
             Control::Approach(0.0),
             &domain,
-            MODULUS,
+            domain.cell_compliance(MODULUS),
             &Default::default(),
         )
     }

@@ -2,7 +2,7 @@
 //! geometry, material and law put together.
 
 use crate::error::{Context, Error, Result, bail};
-use crate::{Built, Case, DomainKind, LawKind, fingerprint};
+use crate::{Built, Case, DomainKind, LawKind, LayerBase, fingerprint};
 use solver::geometry::SphereProfile;
 use solver::{ContactProblem, ProblemBuilder, Shape};
 use std::path::Path;
@@ -23,7 +23,7 @@ impl Case {
         } else {
             LawKind::None
         });
-        let refused: [(&str, bool, &str); 14] = [
+        let refused: [(&str, bool, &str); 16] = [
             (
                 "rms_height",
                 self.rms_height.is_some() && (file || self.rms_gradient.is_some()),
@@ -91,6 +91,16 @@ impl Case {
                  this case has no such law",
             ),
             (
+                "poisson",
+                self.poisson.is_some() && self.thickness.is_none(),
+                "is the layer's Poisson's ratio: give --thickness (a half-space takes E* alone)",
+            ),
+            (
+                "layer_base",
+                self.layer_base.is_some() && self.thickness.is_none(),
+                "says how a layer meets its base: give --thickness",
+            ),
+            (
                 "solver",
                 self.solver.is_some() && law == LawKind::None,
                 "chooses the adhesive solver; without adhesion the conjugate gradients solve",
@@ -156,6 +166,24 @@ impl Case {
                 bail!("--hardness must be a finite H > 0 Pa (omit it for an elastic surface), got {h}");
             }
             builder = builder.hardness(h);
+        }
+        if let Some(h) = self.thickness {
+            let nu = self
+                .poisson
+                .context("--thickness needs the layer's --poisson: its response depends on it")?;
+            let base = match self.layer_base.unwrap_or(LayerBase::Bonded) {
+                LayerBase::Bonded => elastic::Base::Bonded,
+                LayerBase::Frictionless => elastic::Base::Frictionless,
+            };
+            let layer = elastic::Layer::new(h, nu, base).map_err(|e| {
+                Error::Key(match e {
+                    elastic::ElasticError::InvalidParameter { name, value, reason } => {
+                        format!("--{name} {reason}, got {value}")
+                    }
+                    other => other.to_string(),
+                })
+            })?;
+            builder = builder.layer(layer);
         }
         let (roughness, filled) = self.roughness(roughness)?;
         let (heights, size) = match roughness {

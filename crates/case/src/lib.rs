@@ -35,6 +35,17 @@ pub enum DomainKind {
     Free,
 }
 
+/// How a layer meets its rigid base.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+#[serde(rename_all = "snake_case")]
+pub enum LayerBase {
+    /// Bonded: no slip at the base.
+    Bonded,
+    /// Frictionless: the layer slides on the base.
+    Frictionless,
+}
+
 /// A contact case: every flag is also a key of the TOML case file (`--config`), with the same
 /// name in snake_case. Flags override the file.
 #[derive(Debug, Default, Clone, Serialize, Deserialize)]
@@ -106,9 +117,21 @@ pub struct Case {
     /// Periodic or free boundaries (default: periodic for a rough flat, free with a sphere).
     #[cfg_attr(feature = "clap", arg(long, value_enum))]
     pub domain: Option<DomainKind>,
-    /// Composite modulus E* [Pa].
+    /// Composite modulus E* [Pa]; with --thickness, the layer's plane-strain modulus
+    /// E / (1 - nu^2).
     #[cfg_attr(feature = "clap", arg(long))]
     pub modulus: Option<f64>,
+    /// Thickness h [m] of an elastic layer on a rigid base, in place of the half-space (a film
+    /// or coating; needs --poisson). On periodic grids the approach is then measured from the
+    /// base.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub thickness: Option<f64>,
+    /// Poisson's ratio nu of the layer [-], in (-1, 0.5] (0.5: incompressible).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub poisson: Option<f64>,
+    /// How the layer meets its rigid base (default bonded).
+    #[cfg_attr(feature = "clap", arg(long, value_enum))]
+    pub layer_base: Option<LayerBase>,
     /// Penetration hardness H [Pa] of an elastic-perfectly-plastic surface: the compressive
     /// contact pressure never exceeds it, and where it would the surface yields and keeps the
     /// overlap as permanent set (default: elastic).

@@ -1281,7 +1281,13 @@ fn auto_picks_the_librarys_method_for_every_built_in_example() {
         let e_star = number("modulus").unwrap();
         let expected = law.work_of_adhesion().gt(&0.0).then(|| {
             Method::Auto
-                .resolve(law.as_ref(), control, &domain, e_star, &Default::default())
+                .resolve(
+                    law.as_ref(),
+                    control,
+                    &domain,
+                    domain.cell_compliance(e_star),
+                    &Default::default(),
+                )
                 .name()
         });
         // The command line's choice, as its summary records it.

@@ -169,8 +169,7 @@ impl RealSpace {
                             .iter()
                             .map(|&(x, w)| {
                                 let t = middle + 0.5 * width * x;
-                                w * (layer.compliance_ratio(t / layer.thickness) - 1.0)
-                                    * libm::j0(s * t)
+                                w * (layer.compliance_ratio(t / layer.thickness) - 1.0) * libm::j0(s * t)
                             })
                             .sum::<f64>()
                             * 0.5

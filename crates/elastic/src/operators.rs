@@ -61,7 +61,11 @@ impl Periodic {
         domain.validate()?;
         let Domain { nx, ny, .. } = domain;
         let kernel = periodic_multiplier(&domain, |q| {
-            if q == 0.0 { 0.0 } else { 2.0 / (e_star * q) * body.compliance_ratio(q) }
+            if q == 0.0 {
+                0.0
+            } else {
+                2.0 / (e_star * q) * body.compliance_ratio(q)
+            }
         });
         // The circulant's diagonal, the mean of the multiplier over the grid, mean mode included
         // (the half-space keeps Love's self-coefficient).
@@ -129,7 +133,11 @@ impl PeriodicStiffness {
         domain.validate()?;
         let Domain { nx, ny, .. } = domain;
         let kernel = periodic_multiplier(&domain, |q| {
-            if q == 0.0 { 0.0 } else { 0.5 * e_star * q / body.compliance_ratio(q) }
+            if q == 0.0 {
+                0.0
+            } else {
+                0.5 * e_star * q / body.compliance_ratio(q)
+            }
         });
         let inverse = kernel.mapv(|k| if k > 0.0 { 1.0 / k } else { 0.0 });
         Ok(PeriodicStiffness {
@@ -243,12 +251,7 @@ impl Free {
 
 /// The DC-FFT convolution of the free `body` from `(ny, nx)` pressures to `output`
 /// displacements (at most the padded `(2ny, 2nx)`), and its self-coefficient \[m/Pa\].
-fn free_convolution(
-    domain: &Domain,
-    e_star: f64,
-    body: Body,
-    output: (usize, usize),
-) -> (Convolution, f64) {
+fn free_convolution(domain: &Domain, e_star: f64, body: Body, output: (usize, usize)) -> (Convolution, f64) {
     let Domain { nx, ny, dx, dy, .. } = *domain;
     let influence = body.influence(dx, dy, e_star);
     let (mx, my) = (2 * nx, 2 * ny);

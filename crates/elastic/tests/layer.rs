@@ -1,9 +1,9 @@
 //! A layer's operators against its compliance: the free grid's real-space coefficients against
 //! its 2-D transform, the periodic operator against its modes, a thin layer against Winkler.
 
+use elastic::love::cell_influence;
 use elastic::{Base, Body, Compliance, Domain, Free, FreeStiffness, Layer, Periodic, PeriodicStiffness};
 use ndarray::Array2;
-use elastic::love::cell_influence;
 use std::f64::consts::PI;
 
 const E_STAR: f64 = 1e9;
@@ -64,7 +64,13 @@ fn the_free_layers_coefficients_are_the_transform_of_its_compliance() {
     // coefficient plus the layer's correction, here from the 2-D transform (the operator
     // uses the Hankel transform and a cell quadrature), on layers half a cell to 8 cells thick.
     let (n, dx, dy) = (48, 1e-6, 1.3e-6);
-    let domain = Domain { nx: n, ny: n, dx, dy, periodic: false };
+    let domain = Domain {
+        nx: n,
+        ny: n,
+        dx,
+        dy,
+        periodic: false,
+    };
     let source = (20, 20);
     let mut p = Array2::zeros((n, n));
     p[source] = 1.0;
@@ -101,7 +107,13 @@ fn the_free_layers_coefficients_are_the_transform_of_its_compliance() {
 #[test]
 fn the_periodic_layer_scales_each_mode_and_leaves_the_mean_to_its_compliance() {
     let (nx, ny, d) = (48, 40, 1e-6);
-    let domain = Domain { nx, ny, dx: d, dy: d, periodic: true };
+    let domain = Domain {
+        nx,
+        ny,
+        dx: d,
+        dy: d,
+        periodic: true,
+    };
     let layer = Layer::new(3e-6, 0.3, Base::Bonded).unwrap();
     let op = Periodic::with_body(domain, E_STAR, Body::Layer(layer)).unwrap();
     let stiffness = PeriodicStiffness::with_body(domain, E_STAR, Body::Layer(layer)).unwrap();
@@ -125,7 +137,15 @@ fn the_periodic_layer_scales_each_mode_and_leaves_the_mean_to_its_compliance() {
     assert!(op.mean_compliance() > 0.0);
     let half_space = Periodic::new(domain, E_STAR).unwrap();
     assert_eq!(half_space.mean_compliance(), 0.0);
-    let free = Free::with_body(Domain { periodic: false, ..domain }, E_STAR, Body::Layer(layer)).unwrap();
+    let free = Free::with_body(
+        Domain {
+            periodic: false,
+            ..domain
+        },
+        E_STAR,
+        Body::Layer(layer),
+    )
+    .unwrap();
     assert_eq!(free.mean_compliance(), 0.0);
 }
 
@@ -135,12 +155,28 @@ fn a_thin_layer_under_a_wide_load_is_winklers_foundation() {
     // surface sinks by h / M times the pressure, as a bed of springs; outside, not at all.
     let (n, d, h, nu) = (64, 1e-6, 1e-7, 0.3);
     let layer = Layer::new(h, nu, Base::Bonded).unwrap();
-    let domain = Domain { nx: n, ny: n, dx: d, dy: d, periodic: false };
+    let domain = Domain {
+        nx: n,
+        ny: n,
+        dx: d,
+        dy: d,
+        periodic: false,
+    };
     let free = Free::with_body(domain, E_STAR, Body::Layer(layer)).unwrap();
-    let p = Array2::from_shape_fn((n, n), |(j, i)| if (12..52).contains(&j) && (12..52).contains(&i) { 1e6 } else { 0.0 });
+    let p = Array2::from_shape_fn((n, n), |(j, i)| {
+        if (12..52).contains(&j) && (12..52).contains(&i) {
+            1e6
+        } else {
+            0.0
+        }
+    });
     let u = apply(&free, &p);
     let winkler = 1e6 * layer.compliance(0.0, E_STAR);
     // Love's coefficients and the layer's correction are each ~20 times the sum here.
-    assert!((u[(32, 32)] / winkler - 1.0).abs() < 1e-7, "{} {winkler}", u[(32, 32)]);
+    assert!(
+        (u[(32, 32)] / winkler - 1.0).abs() < 1e-7,
+        "{} {winkler}",
+        u[(32, 32)]
+    );
     assert!(u[(32, 5)].abs() < 1e-9 * winkler, "{}", u[(32, 5)]);
 }

@@ -461,7 +461,7 @@ fn sweep<'py>(
                 problem.law.as_ref(),
                 controls[0],
                 &problem.domain(),
-                problem.e_star(),
+                problem.operator.cell_compliance(),
                 &problem.interface,
             )
             .name()

@@ -354,7 +354,8 @@ impl Theory {
         };
         Theory {
             tabor,
-            wave: wave.filter(|_| problem.adhesive()),
+            // Johnson's wave is on a half-space.
+            wave: wave.filter(|_| problem.adhesive() && case.thickness.is_none()),
             pull_off_pressure: summary
                 .pull_off_force
                 .map(|f| f / (domain.cell_area() * (domain.nx * domain.ny) as f64)),
@@ -400,8 +401,13 @@ fn print_cycle(
             let mut line = format!("                      = {:.4} pi R w0", w / unit);
             if let Some(mu) = theory.tabor {
                 let md = theory::maugis::MaugisDugdale::new(theory::maugis_parameter_of_tabor(mu));
+                let on = if case.thickness.is_some() {
+                    ", half-space"
+                } else {
+                    ""
+                };
                 line += &format!(
-                    " (Maugis-Dugdale's least load at lambda = 1.157 mu: {:.4})",
+                    " (Maugis-Dugdale's least load at lambda = 1.157 mu{on}: {:.4})",
                     md.pull_off_load_control()
                 );
             }
@@ -417,12 +423,36 @@ fn print_cycle(
     ) && let Some(deep) = cycle.iter().max_by(|a, b| a.approach.total_cmp(&b.approach))
         && deep.approach > 0.0
     {
-        let hertz = theory::hertz::load_of_approach(deep.approach, r, problem.e_star());
+        // On a layer, Dimitriadis' correction of Hertz (a fit for chi = sqrt(R delta) / h <~ 0.5).
+        let (name, reference) = match problem.operator.body() {
+            elastic::Body::Layer(layer) => {
+                let base = match layer.base {
+                    elastic::Base::Bonded => theory::layer::Base::Bonded,
+                    elastic::Base::Frictionless => theory::layer::Base::Frictionless,
+                };
+                let chi = (r * deep.approach).sqrt() / layer.thickness;
+                (
+                    format!("Dimitriadis (chi = {chi:.3})"),
+                    theory::layer::dimitriadis_load(
+                        deep.approach,
+                        r,
+                        layer.thickness,
+                        problem.e_star(),
+                        layer.poisson,
+                        base,
+                    ),
+                )
+            }
+            elastic::Body::HalfSpace => (
+                "Hertz".to_string(),
+                theory::hertz::load_of_approach(deep.approach, r, problem.e_star()),
+            ),
+        };
         say!(
-            "Hertz at the deepest approach ({:.4e} m): {hertz:.6e} N; solved {:.6e} N ({:+.2} %)",
+            "{name} at the deepest approach ({:.4e} m): {reference:.6e} N; solved {:.6e} N ({:+.2} %)",
             deep.approach,
             deep.load,
-            100.0 * (deep.load / hertz - 1.0)
+            100.0 * (deep.load / reference - 1.0)
         );
     }
     // Under load control the contact area is the result: a line a step.

@@ -7,8 +7,8 @@
 
 use crate::error::{Result, invalid};
 use crate::interface::Interface;
-use elastic::Domain;
 use crate::options::{ContactOptions, Control};
+use elastic::Domain;
 use ljadhesion::AdhesionLaw;
 
 /// The adhesive methods, one entry each: the variant of [`Method`] with its doc, its name on
@@ -86,8 +86,8 @@ impl Method {
     /// (`docs/decisions.md`: the two take the same time near 5-8).
     pub const FLOW_ABOVE: f64 = 8.0;
 
-    /// The method for `law` under `control` on `domain`, over a half-space of composite modulus
-    /// `e_star` \[Pa\], across `interface`: itself, or for [`Method::Auto`] the energy descent
+    /// The method for `law` under `control` on `domain`, whose cells have the compliance
+    /// `cell_compliance` \[m/Pa\] ([`elastic::Compliance::cell_compliance`]), across `interface`: itself, or for [`Method::Auto`] the energy descent
     /// for the laws with an energy (local, or of the field without a hardness, which the
     /// descent does not take with it); for the other laws with a flat potential (the line
     /// and surface laws, and the surface-energy law under a hardness) under approach control

@@ -46,7 +46,11 @@ fn a_sphere_on_a_layer_follows_dimitriadis_and_tends_to_hertz_at_his_first_order
     let (n, a) = (128, 1e-4);
     let (side, delta) = (n as f64 * a / 24.0, a * a / R);
     let hertz = load(None, delta, n, side);
-    for (nu, base) in [(0.49, Base::Bonded), (0.3, Base::Bonded), (0.3, Base::Frictionless)] {
+    for (nu, base) in [
+        (0.49, Base::Bonded),
+        (0.3, Base::Bonded),
+        (0.3, Base::Frictionless),
+    ] {
         let (alpha0, _) = theory_layer::dimitriadis_coefficients(nu, base_of(base));
         let first = -2.0 * alpha0 / std::f64::consts::PI;
         for chi in [0.05, 0.1, 0.25, 0.5] {
@@ -57,8 +61,15 @@ fn a_sphere_on_a_layer_follows_dimitriadis_and_tends_to_hertz_at_his_first_order
             println!("{base:?} nu {nu} chi {chi}: {got:.5}, Dimitriadis {want:.5}");
             // His polynomial is a truncated series: on a bonded layer at chi = 0.5 it falls
             // short of the exact load (by 4 % at nu = 0.3, 8 % at 0.49: docs/validation.md).
-            let tolerance = if chi > 0.3 && base == Base::Bonded { 0.1 } else { 0.02 };
-            assert!((got / want - 1.0).abs() < tolerance, "{base:?} nu {nu} chi {chi}: {got} {want}");
+            let tolerance = if chi > 0.3 && base == Base::Bonded {
+                0.1
+            } else {
+                0.02
+            };
+            assert!(
+                (got / want - 1.0).abs() < tolerance,
+                "{base:?} nu {nu} chi {chi}: {got} {want}"
+            );
             if chi == 0.05 {
                 // The first-order rate, the second-order term taken out.
                 let rate = (got - 1.0 - first * first * chi * chi) / (first * chi);
@@ -114,18 +125,36 @@ fn a_wave_flattened_on_a_periodic_layer_sinks_it_by_its_uniform_compression() {
             .solve_without_adhesion(Control::MeanPressure(p_mean), &options, None, &mut ())
             .unwrap();
         assert_eq!(loaded.contact_area_fraction, 1.0);
-        assert!((loaded.approach / delta - 1.0).abs() < 1e-9, "{base:?}: {} {delta}", loaded.approach);
+        assert!(
+            (loaded.approach / delta - 1.0).abs() < 1e-9,
+            "{base:?}: {} {delta}",
+            loaded.approach
+        );
         let (_, pressed) = problem
             .solve_without_adhesion(Control::Approach(delta), &options, None, &mut ())
             .unwrap();
         assert!(pressed.converged());
-        assert!((pressed.mean_pressure / p_mean - 1.0).abs() < 1e-8, "{base:?}: {} {p_mean}", pressed.mean_pressure);
+        assert!(
+            (pressed.mean_pressure / p_mean - 1.0).abs() < 1e-8,
+            "{base:?}: {} {p_mean}",
+            pressed.mean_pressure
+        );
         let settings = solver::Settings::default();
         for control in [Control::MeanPressure(p_mean), Control::Approach(delta)] {
-            let (_, report) = problem.solve(control, &settings, solver::Start::Loading, &mut ()).unwrap();
+            let (_, report) = problem
+                .solve(control, &settings, solver::Start::Loading, &mut ())
+                .unwrap();
             assert!(report.converged(), "{base:?} {control:?}: {report:?}");
-            assert!((report.approach / delta - 1.0).abs() < 1e-6, "{base:?} {control:?}: {}", report.approach);
-            assert!((report.mean_pressure / p_mean - 1.0).abs() < 1e-6, "{base:?} {control:?}: {}", report.mean_pressure);
+            assert!(
+                (report.approach / delta - 1.0).abs() < 1e-6,
+                "{base:?} {control:?}: {}",
+                report.approach
+            );
+            assert!(
+                (report.mean_pressure / p_mean - 1.0).abs() < 1e-6,
+                "{base:?} {control:?}: {}",
+                report.mean_pressure
+            );
         }
     }
 }

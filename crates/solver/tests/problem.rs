@@ -110,21 +110,39 @@ fn auto_takes_the_tested_method_for_each_law_and_control() {
     );
     for (law, control, expected) in cases {
         assert_eq!(
-            Method::Auto.resolve(law, control, &fine, e_star, &Default::default()),
+            Method::Auto.resolve(
+                law,
+                control,
+                &fine,
+                fine.cell_compliance(e_star),
+                &Default::default()
+            ),
             expected,
             "{} {control:?}",
             law.name()
         );
         // A chosen method stays chosen.
         assert_eq!(
-            Method::DualLoop.resolve(law, control, &fine, e_star, &Default::default()),
+            Method::DualLoop.resolve(
+                law,
+                control,
+                &fine,
+                fine.cell_compliance(e_star),
+                &Default::default()
+            ),
             Method::DualLoop
         );
         // Loads on free domains: the flow takes the approach only there.
         if expected == Method::Flow {
             let free = grid(1e-9, false);
             assert_eq!(
-                Method::Auto.resolve(law, control, &free, e_star, &Default::default()),
+                Method::Auto.resolve(
+                    law,
+                    control,
+                    &free,
+                    free.cell_compliance(e_star),
+                    &Default::default()
+                ),
                 Method::Accelerated
             );
         }
@@ -134,7 +152,13 @@ fn auto_takes_the_tested_method_for_each_law_and_control() {
             for periodic in [true, false] {
                 let coarse = grid(3e-8, periodic);
                 assert_eq!(
-                    Method::Auto.resolve(law, control, &coarse, e_star, &Default::default()),
+                    Method::Auto.resolve(
+                        law,
+                        control,
+                        &coarse,
+                        coarse.cell_compliance(e_star),
+                        &Default::default()
+                    ),
                     Method::Flow
                 );
             }

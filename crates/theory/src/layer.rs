@@ -37,7 +37,10 @@ pub fn dimitriadis_coefficients(nu: f64, base: Base) -> (f64, f64) {
             -(1.2876 - 1.4678 * nu + 1.3442 * nu * nu) / (1.0 - nu),
             (0.6387 - 1.0277 * nu + 1.5164 * nu * nu) / (1.0 - nu),
         ),
-        Base::Frictionless => (-0.347 * (3.0 - 2.0 * nu) / (1.0 - nu), 0.056 * (5.0 - 2.0 * nu) / (1.0 - nu)),
+        Base::Frictionless => (
+            -0.347 * (3.0 - 2.0 * nu) / (1.0 - nu),
+            0.056 * (5.0 - 2.0 * nu) / (1.0 - nu),
+        ),
     }
 }
 

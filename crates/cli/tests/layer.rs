@@ -1,0 +1,91 @@
+//! A layer end to end: the flags reach the problem and the record; refusals name the flag.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("roughcontact-layer-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_roughcontact"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// A smooth sphere (R = 1 mm, E* = 1 MPa) pressed 10 um on a 64^2 free grid, with `extra`.
+fn sphere(out: &PathBuf, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "solve",
+        "--sphere-radius",
+        "1e-3",
+        "--n",
+        "64",
+        "--length",
+        "4e-4",
+        "--modulus",
+        "1e6",
+        "--approach",
+        "1e-5",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    run(&args)
+}
+
+fn summary(out: &PathBuf) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn a_sphere_on_a_film_is_stiffer_than_on_the_half_space_and_the_record_says_why() {
+    let d = dir("film");
+    let half = sphere(&d.join("half"), &[]);
+    assert!(half.status.success(), "{}", String::from_utf8_lossy(&half.stderr));
+    let film = sphere(
+        &d.join("film"),
+        &[
+            "--thickness",
+            "2e-4",
+            "--poisson",
+            "0.45",
+            "--layer-base",
+            "frictionless",
+        ],
+    );
+    assert!(film.status.success(), "{}", String::from_utf8_lossy(&film.stderr));
+    let (half, film) = (summary(&d.join("half")), summary(&d.join("film")));
+    let load = |s: &serde_json::Value| s["load"].as_f64().unwrap();
+    // chi = sqrt(R delta) / h = 0.5: Dimitriadis gives 1.54 for the sliding layer.
+    let ratio = load(&film) / load(&half);
+    assert!(ratio > 1.4 && ratio < 1.7, "{ratio}");
+    assert_eq!(film["case"]["thickness"].as_f64(), Some(2e-4));
+    assert_eq!(film["case"]["poisson"].as_f64(), Some(0.45));
+    assert_eq!(film["case"]["layer_base"].as_str(), Some("frictionless"));
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn bad_layers_are_refused_by_name() {
+    let d = dir("refused");
+    for (extra, says) in [
+        (&["--thickness", "0", "--poisson", "0.3"][..], "--thickness"),
+        (&["--thickness", "-1e-6", "--poisson", "0.3"][..], "--thickness"),
+        (&["--thickness", "nan", "--poisson", "0.3"][..], "--thickness"),
+        (&["--thickness", "1e-4", "--poisson", "0.6"][..], "--poisson"),
+        (&["--thickness", "1e-4", "--poisson", "-1"][..], "--poisson"),
+        (&["--thickness", "1e-4"][..], "--poisson"),
+        (&["--poisson", "0.3"][..], "--poisson"),
+        (&["--layer-base", "bonded"][..], "--layer-base"),
+    ] {
+        let o = sphere(&d.join("x"), extra);
+        assert!(!o.status.success(), "{extra:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(says), "{extra:?}: {err}");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
