@@ -158,3 +158,42 @@ fn a_wave_flattened_on_a_periodic_layer_sinks_it_by_its_uniform_compression() {
         }
     }
 }
+
+/// The pull-off force \[N\] of a Lennard-Jones sphere (surface law, Tabor parameter `mu`,
+/// R = 1 um, E* = 1 GPa, z0 = 1 nm) on `layer` (none: the half-space), from a cycle to 4 z0
+/// deep on a 64^2 free grid, and the JKR contact radius at pull-off \[m\].
+fn pull_off(layer: Option<Layer>, mu: f64) -> (f64, f64) {
+    use ljadhesion::{LennardJones, SurfaceLaw};
+    let (r, z0, e): (f64, f64, f64) = (1e-6, 1e-9, 1e9);
+    let w0 = (mu.powi(3) * e * e * z0.powi(3) / r).sqrt();
+    let mut builder = ContactProblem::builder()
+        .grid(64, 64, 3e-7, 3e-7)
+        .sphere(r)
+        .modulus(e)
+        .law(SurfaceLaw(LennardJones::new(w0, z0).unwrap()));
+    if let Some(layer) = layer {
+        builder = builder.layer(layer);
+    }
+    let problem = builder.build().unwrap();
+    let path = solver::approach_cycle(-3.0 * z0, 4.0 * z0, 14);
+    let points = problem
+        .sweep(&path, Some(0.25 * z0), &solver::Settings::default(), None, &mut ())
+        .unwrap();
+    let cycle: Vec<solver::CyclePoint> = points.iter().map(solver::CyclePoint::from).collect();
+    let summary = solver::summarize(&cycle);
+    assert!(summary.all_converged, "{layer:?}");
+    let a_jkr = (9.0 * std::f64::consts::PI * w0 * r * r / (8.0 * e)).cbrt();
+    (-summary.pull_off_force.unwrap(), a_jkr)
+}
+
+#[test]
+fn a_thick_layer_pulls_off_as_the_half_space() {
+    // Tabor parameter 5: near JKR. A bonded layer a hundred contact radii thick changes the
+    // pull-off by less than 1 %; one a contact radius thick changes it by more.
+    let (half, a) = pull_off(None, 5.0);
+    let (thick, _) = pull_off(Some(Layer::new(100.0 * a, 0.3, Base::Bonded).unwrap()), 5.0);
+    let (thin, _) = pull_off(Some(Layer::new(a, 0.3, Base::Bonded).unwrap()), 5.0);
+    println!("pull-off: half-space {half:e} N, h = 100 a {thick:e} N, h = a {thin:e} N");
+    assert!((thick / half - 1.0).abs() < 0.01, "{thick} {half}");
+    assert!((thin / half - 1.0).abs() > 0.02, "{thin} {half}");
+}
