@@ -177,7 +177,13 @@ fn pull_off(layer: Option<Layer>, mu: f64) -> (f64, f64) {
     let problem = builder.build().unwrap();
     let path = solver::approach_cycle(-3.0 * z0, 4.0 * z0, 14);
     let points = problem
-        .sweep(&path, Some(0.25 * z0), &solver::Settings::default(), None, &mut ())
+        .sweep(
+            &path,
+            Some(0.25 * z0),
+            &solver::Settings::default(),
+            None,
+            &mut (),
+        )
         .unwrap();
     let cycle: Vec<solver::CyclePoint> = points.iter().map(solver::CyclePoint::from).collect();
     let summary = solver::summarize(&cycle);
