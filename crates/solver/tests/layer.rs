@@ -203,3 +203,49 @@ fn a_thick_layer_pulls_off_as_the_half_space() {
     assert!((thick / half - 1.0).abs() < 0.01, "{thick} {half}");
     assert!((thin / half - 1.0).abs() > 0.02, "{thin} {half}");
 }
+
+#[test]
+fn past_the_mean_gap_a_periodic_half_space_refuses_the_approach_and_a_layer_takes_it() {
+    // Full contact closes the mean gap: beyond it only the layer's compression moves.
+    let (n, side, amplitude) = (32, 32e-6, 0.2e-6);
+    let build = |layer: Option<Layer>| {
+        let mut b = ContactProblem::builder()
+            .grid(n, n, side, side)
+            .wave(amplitude)
+            .modulus(E_STAR);
+        if let Some(layer) = layer {
+            b = b.layer(layer);
+        }
+        b.build().unwrap()
+    };
+    let delta = 1.5 * build(None).initial_gap.mean().unwrap();
+    let options = ContactOptions::default();
+    let e = build(None)
+        .solve_without_adhesion(Control::Approach(delta), &options, None, &mut ())
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("approach") && e.to_string().contains("mean initial gap"),
+        "{e}"
+    );
+    let layer = Layer::new(10e-6, 0.3, Base::Bonded).unwrap();
+    let problem = build(Some(layer));
+    let (_, pressed) = problem
+        .solve_without_adhesion(Control::Approach(delta), &options, None, &mut ())
+        .unwrap();
+    assert!(pressed.converged());
+    // The same state under the load it found.
+    let (_, loaded) = problem
+        .solve_without_adhesion(
+            Control::MeanPressure(pressed.mean_pressure),
+            &options,
+            None,
+            &mut (),
+        )
+        .unwrap();
+    assert!(
+        (loaded.approach / delta - 1.0).abs() < 1e-6,
+        "{} {delta}",
+        loaded.approach
+    );
+    assert_eq!(loaded.contact_area_fraction, pressed.contact_area_fraction);
+}

@@ -141,6 +141,19 @@ pub(crate) fn solve_relative(
     let before = state.permanent_set.take();
     let yielded = crate::interface::yielded_gap(g0, before.as_ref())?;
     let g0 = yielded.as_ref().map_or(g0, |g| g.view());
+    // On a periodic half-space the mean gap is the most an elastic surface can close.
+    if let Control::Approach(delta) = control
+        && op.domain().periodic
+        && interface.hardness.is_none()
+        && delta >= g0.mean().unwrap_or(0.0)
+    {
+        return Err(crate::error::invalid(
+            "approach",
+            delta,
+            "reaches the mean initial gap: a periodic surface is in full contact before that \
+             (its mean pressure is then unbounded; prescribe a load instead)",
+        ));
+    }
     let mut scratch = Scratch::new(op);
     let mut report = solve_in(
         &mut scratch,
