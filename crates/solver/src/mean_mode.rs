@@ -5,9 +5,8 @@
 //! is measured from the mean surface. The approach from the rigid base is that plus the
 //! layer's uniform compression, `delta = delta_mean + C0 p_mean`, and the surface displacement
 //! gains `C0 p_mean`; here a solve's state and report are moved to that frame, a warm start
-//! back to the methods', and a prescribed approach is met by a root search over the mean
-//! pressure with the methods under load control, which stay well posed in full contact (where
-//! the methods' approach stops moving and the layer's compression takes up the rest).
+//! back to the methods', and a prescribed approach is met by a root search along the methods'
+//! load-approach curve ([`MeanMode::approach`]).
 
 use crate::error::Result;
 use crate::options::Control;
@@ -40,43 +39,50 @@ impl MeanMode {
         shift
     }
 
-    /// Solves for the approach `delta` \[m\] from the base. `solve(control, last)` solves in
-    /// the methods' frame, warm from the last trial if any, and returns the solution and its
-    /// [`Trial`]. The mean pressure is sought (the methods' approach rises with it, so
-    /// `miss(p) = delta_mean(p) + C0 p - delta` rises too): from `p_guess` \[Pa\] (else the
-    /// full-contact bound `(delta - mean_gap) / C0`, or zero), then the fixed-point step
-    /// `p = (delta - delta_mean(p)) / C0`, which crosses the root, then false position
-    /// (Illinois) in the bracket, to within `tolerance` \[m\]; after [`MAX_STEPS`] the last
-    /// solution is marked [`Termination::MaxIterations`] by `mark`. A trial that pulls off counts
-    /// as too tensile. With no contact at zero load and `delta <= 0`, the answer is the
-    /// approach-controlled solve at `delta` (no mean pressure, no shift).
+    /// Solves for the approach `delta` \[m\] from the base: finds the point `(x, p)` of the
+    /// methods' curve (approach from the mean surface `x` \[m\], mean pressure `p` \[Pa\]) where
+    /// `miss = x + C0 p - delta` vanishes, to within `tolerance` \[m\]. `solve(control, last)`
+    /// solves in the methods' frame, warm from the last trial if any, and returns the solution
+    /// and its [`Trial`]. Trials prescribe `x` (which follows unstable branches) below the mean
+    /// gap `mean_gap` \[m\], `p` at or past it (full contact, where `x` stops and the layer's
+    /// compression takes up the rest). The first is at `x = delta - C0 p_guess` (`p_guess`
+    /// \[Pa\]: the warm start's); then the fixed-point step (`x = delta - C0 p`, or
+    /// `p = (delta - x) / C0`), which crosses the root on a rising curve; then the chord
+    /// between the two sides (Illinois' false position). After [`MAX_STEPS`] trials the last
+    /// solution is marked [`Termination::MaxIterations`] by `mark`. A trial that pulls off
+    /// counts as too tensile.
     pub(crate) fn approach<S>(
         &self,
         delta: f64,
-        p_guess: Option<f64>,
+        p_guess: f64,
         mean_gap: f64,
         tolerance: f64,
         mut solve: impl FnMut(Control, Option<&S>) -> Result<(S, Trial)>,
         mut mark: impl FnMut(&mut S, Termination),
     ) -> Result<S> {
         let c0 = self.compliance;
-        let mut p = p_guess.unwrap_or(((delta - mean_gap) / c0).max(0.0));
-        // The bracket: (p, miss) below and above the root.
-        let (mut low, mut high): (Option<(f64, f64)>, Option<(f64, f64)>) = (None, None);
+        // Below the mean gap an approach is well posed; at it, only a load.
+        let closes = |x: f64| x >= mean_gap - 1e-9 * mean_gap.abs();
+        let at = |x: f64, p: f64| {
+            if closes(x) {
+                Control::MeanPressure(p)
+            } else {
+                Control::Approach(x)
+            }
+        };
+        let mut next = at(delta - c0 * p_guess, ((delta - mean_gap) / c0).max(p_guess));
+        // The two sides: (x, p, miss); the miss of a side that stays is halved (Illinois).
+        let (mut low, mut high): (Option<[f64; 3]>, Option<[f64; 3]>) = (None, None);
         let mut last: Option<S> = None;
-        let mut stale = 0;
+        let mut side = 0i32;
         for step in 1..=MAX_STEPS {
-            let (mut solution, trial) = solve(Control::MeanPressure(p), last.as_ref())?;
+            let (mut solution, trial) = solve(next, last.as_ref())?;
+            let (x, p) = (trial.approach, trial.mean_pressure);
             let miss = match trial.termination {
                 Termination::PulledOff => f64::NEG_INFINITY,
-                Termination::Converged | Termination::NoContact => {
-                    trial.approach + c0 * trial.mean_pressure - delta
-                }
+                Termination::Converged | Termination::NoContact => x + c0 * p - delta,
                 _ => return Ok(solution),
             };
-            if trial.termination == Termination::NoContact && p == 0.0 && delta <= 0.0 {
-                return solve(Control::Approach(delta), None).map(|(s, _)| s);
-            }
             if miss.abs() <= tolerance {
                 return Ok(solution);
             }
@@ -84,30 +90,32 @@ impl MeanMode {
                 mark(&mut solution, Termination::MaxIterations);
                 return Ok(solution);
             }
-            let fixed_point = (delta - trial.approach) / c0;
             if miss < 0.0 {
-                // Illinois: halve the other end's weight when the same end moves twice.
-                if let Some(h) = high.as_mut().filter(|_| stale < 0) {
-                    h.1 *= 0.5;
+                if let Some(h) = high.as_mut().filter(|_| side < 0) {
+                    h[2] *= 0.5;
                 }
-                stale = stale.min(0) - 1;
-                low = Some((p, miss));
+                side = side.min(0) - 1;
+                low = Some([x, p, miss]);
             } else {
-                if let Some(l) = low.as_mut().filter(|_| stale > 0) {
-                    l.1 *= 0.5;
+                if let Some(l) = low.as_mut().filter(|_| side > 0) {
+                    l[2] *= 0.5;
                 }
-                stale = stale.max(0) + 1;
-                high = Some((p, miss));
+                side = side.max(0) + 1;
+                high = Some([x, p, miss]);
             }
             if trial.termination != Termination::PulledOff {
                 last = Some(solution);
             }
-            p = match (low, high) {
-                (Some((a, fa)), Some((b, fb))) if fa.is_finite() => a - fa * (b - a) / (fb - fa),
-                (Some((a, _)), Some((b, _))) => 0.5 * (a + b),
-                _ if miss.is_finite() => fixed_point,
+            next = match (low, high) {
+                (Some([xl, pl, ml]), Some([xh, ph, mh])) if ml.is_finite() => {
+                    let t = ml / (ml - mh);
+                    at(xl + t * (xh - xl), pl + t * (ph - pl))
+                }
+                // Pulled off below: halfway in load.
+                (Some([_, pl, _]), Some([_, ph, _])) => Control::MeanPressure(0.5 * (pl + ph)),
+                _ if miss.is_finite() => at(delta - c0 * p, (delta - x) / c0),
                 // Pulled off with nothing above: half as tensile.
-                _ => 0.5 * p,
+                _ => Control::MeanPressure(0.5 * p),
             };
         }
         unreachable!("the last step returns")

@@ -104,10 +104,12 @@ pub(crate) fn solve(
     };
     // Each trial starts from the caller's permanent set, seeded by the last trial's fields.
     let before = warm.as_ref().and_then(|w| w.contact.permanent_set.clone());
-    let guess = warm.as_ref().map(mean_of);
+    let guess = warm.as_ref().map_or(0.0, mean_of);
     let tolerance = settings.tolerance * parts.law.range();
     let mean_gap = parts.g0.mean().unwrap_or(0.0);
-    let solution = mean.approach(
+    // The trials' work, reported as the solve's.
+    let (mut iterations, mut calls, mut wall, mut history) = (None::<Iterations>, 0, 0.0, Vec::new());
+    let mut solution = mean.approach(
         delta,
         guess,
         mean_gap,
@@ -120,6 +122,13 @@ pub(crate) fn solve(
             });
             let from = seed.as_ref().map_or(start, Start::Warm);
             let (s, r) = solve_relative(parts, control, settings, from, observer)?;
+            match iterations.as_mut() {
+                Some(total) => total.accumulate(&r.iterations),
+                None => iterations = Some(r.iterations.clone()),
+            }
+            calls += r.operator_calls;
+            wall += r.wall_time_s;
+            history.extend_from_slice(&r.residual_history);
             let trial = Trial {
                 approach: r.approach,
                 mean_pressure: r.mean_pressure,
@@ -129,6 +138,12 @@ pub(crate) fn solve(
         },
         |(_, r), t| r.termination = t,
     )?;
+    let report = &mut solution.1;
+    if let Some(total) = iterations {
+        report.iterations = total;
+    }
+    (report.operator_calls, report.wall_time_s) = (calls, wall);
+    report.residual_history = history;
     Ok(to_base(solution))
 }
 

@@ -95,10 +95,12 @@ pub fn solve_with(
     };
     // Each trial starts from the caller's permanent set, seeded by the last trial's pressure.
     let before = warm.as_ref().and_then(|w| w.permanent_set.clone());
-    let guess = warm.as_ref().and_then(|w| w.pressure.mean());
+    let guess = warm.as_ref().map_or(0.0, |w| w.pressure.mean().unwrap_or(0.0));
     let tolerance = options.tolerance * gap_scale(g0);
     let mean_gap = g0.mean().unwrap_or(0.0);
-    let solution = mean.approach(
+    // The trials' work, reported as the solve's.
+    let (mut iterations, mut calls, mut wall, mut history) = (0, 0, 0.0, Vec::new());
+    let mut solution = mean.approach(
         delta,
         guess,
         mean_gap,
@@ -110,6 +112,10 @@ pub fn solve_with(
             });
             let from = seed.as_ref().or(warm.as_ref());
             let (s, r) = solve_relative(op, g0, interface, control, options, from, observer)?;
+            iterations += r.iterations;
+            calls += r.operator_calls;
+            wall += r.wall_time_s;
+            history.extend_from_slice(&r.residual_history);
             let trial = Trial {
                 approach: r.approach,
                 mean_pressure: r.mean_pressure,
@@ -119,6 +125,9 @@ pub fn solve_with(
         },
         |(_, r), t| r.termination = t,
     )?;
+    let report = &mut solution.1;
+    (report.iterations, report.operator_calls, report.wall_time_s) = (iterations, calls, wall);
+    report.residual_history = history;
     Ok(to_base(solution))
 }
 
