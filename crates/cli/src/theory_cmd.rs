@@ -81,6 +81,29 @@ enum Model {
         #[arg(long)]
         max_approach: f64,
     },
+    /// Rigid sphere on an elastic layer on a rigid base: Dimitriadis et al. (2002)'s
+    /// correction of Hertz in chi = sqrt(R delta) / h (a fit for chi <~ 0.5), beside Hertz and,
+    /// bonded, the thin compressible layer's Winkler limit P = pi M R delta^2 / h (SI units).
+    Layer {
+        /// Sphere radius R [m].
+        #[arg(long)]
+        radius: f64,
+        /// The layer's plane-strain modulus E* = E / (1 - nu^2) [Pa].
+        #[arg(long)]
+        modulus: f64,
+        /// Layer thickness h [m].
+        #[arg(long)]
+        thickness: f64,
+        /// The layer's Poisson's ratio nu [-], in (-1, 0.5].
+        #[arg(long)]
+        poisson: f64,
+        /// How the layer meets its base.
+        #[arg(long, value_enum, default_value = "bonded")]
+        layer_base: case::LayerBase,
+        /// Largest approach on the curve [m].
+        #[arg(long)]
+        max_approach: f64,
+    },
     /// Rigid wave A cos(2 pi x / lambda) on an elastic half-space (plane strain): Westergaard's
     /// and Johnson's (1995) JKR mean pressure [Pa] against the contact strip's half-width a
     /// [m] (one strip per wavelength); the summary gives Johnson's alpha, the pull-off and the
@@ -158,6 +181,57 @@ fn hertz(a: &TheoryArgs, r: f64, e: f64, max: f64) -> Result<()> {
     }
     if let Some(path) = &a.plot {
         draw(path, "Hertz", "approach [m]", "load [N]", pts)?;
+    }
+    Ok(())
+}
+
+fn layer(a: &TheoryArgs, (r, e, h, nu): (f64, f64, f64, f64), base: case::LayerBase, max: f64) -> Result<()> {
+    for (name, v) in [
+        ("--radius", r),
+        ("--modulus", e),
+        ("--thickness", h),
+        ("--max-approach", max),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            bail!("{name} must be finite and > 0, got {v}");
+        }
+    }
+    if !(nu > -1.0 && nu <= 0.5) {
+        bail!("--poisson must lie in (-1, 0.5], got {nu}");
+    }
+    let base = match base {
+        case::LayerBase::Bonded => theory::layer::Base::Bonded,
+        case::LayerBase::Frictionless => theory::layer::Base::Frictionless,
+    };
+    let mut out = open(a)?;
+    writeln!(
+        out,
+        "approach_m,chi,dimitriadis_load_n,hertz_load_n,winkler_load_n"
+    )?;
+    let (mut layered, mut hertz) = (Vec::new(), Vec::new());
+    for k in 0..a.points() {
+        let d = max * k as f64 / (a.points() - 1) as f64;
+        let chi = (r * d).sqrt() / h;
+        let w = theory::layer::dimitriadis_load(d, r, h, e, nu, base);
+        let w_h = theory::hertz::load_of_approach(d, r, e);
+        // Winkler's bed is the bonded compressible layer's thin limit.
+        let winkler = if base == theory::layer::Base::Bonded && nu < 0.5 {
+            format!("{:e}", theory::layer::winkler_load(d, r, h, e, nu))
+        } else {
+            String::new()
+        };
+        writeln!(out, "{d:e},{chi:e},{w:e},{w_h:e},{winkler}")?;
+        layered.push((d, w));
+        hertz.push((d, w_h));
+    }
+    if let Some(path) = &a.plot {
+        draw_curves(
+            path,
+            "sphere on a layer",
+            "approach [m]",
+            "load [N]",
+            vec![("Dimitriadis", layered), ("Hertz", hertz)],
+        )?;
     }
     Ok(())
 }
@@ -414,6 +488,7 @@ impl Model {
             Model::Dmt => "dmt",
             Model::Greenwood { .. } => "greenwood",
             Model::Hertz { .. } => "hertz",
+            Model::Layer { .. } => "layer",
             Model::Wavy { .. } => "wavy",
             Model::Area { .. } => "area",
             Model::Sticky { .. } => "sticky",
@@ -450,6 +525,21 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
             modulus,
             max_approach,
         } => return hertz(&a, radius, modulus, max_approach),
+        Model::Layer {
+            radius,
+            modulus,
+            thickness,
+            poisson,
+            layer_base,
+            max_approach,
+        } => {
+            return layer(
+                &a,
+                (radius, modulus, thickness, poisson),
+                layer_base,
+                max_approach,
+            );
+        }
         Model::Area { k, max_pressure } => return area(&a, k, max_pressure),
         Model::Wavy {
             amplitude,
@@ -503,6 +593,7 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
         Model::Dmt => (1e-7, None),
         Model::Greenwood { .. }
         | Model::Hertz { .. }
+        | Model::Layer { .. }
         | Model::Area { .. }
         | Model::Sticky { .. }
         | Model::Wavy { .. } => {
@@ -519,7 +610,7 @@ fn check_flags(a: &TheoryArgs) -> Result<()> {
     let radius = matches!(a.model, Model::Maugis { .. } | Model::Jkr | Model::Dmt);
     let summarised = !matches!(
         a.model,
-        Model::Hertz { .. } | Model::Area { .. } | Model::Sticky { .. }
+        Model::Hertz { .. } | Model::Layer { .. } | Model::Area { .. } | Model::Sticky { .. }
     );
     for (given, applies, flag) in [
         (a.summary, summarised, "--summary"),

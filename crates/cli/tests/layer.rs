@@ -89,3 +89,52 @@ fn bad_layers_are_refused_by_name() {
     }
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn theory_layer_gives_dimitriadis_beside_hertz_and_winkler() {
+    let o = run(&[
+        "theory",
+        "layer",
+        "--radius",
+        "1e-3",
+        "--modulus",
+        "1e6",
+        "--thickness",
+        "2e-4",
+        "--poisson",
+        "0.5",
+        "--max-approach",
+        "1e-5",
+        "--points",
+        "3",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = String::from_utf8(o.stdout).unwrap();
+    let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
+    // chi = 0.5 on an incompressible bonded layer: 1 + 1.133 chi + 1.283 chi^2 + 0.769 chi^3
+    // - 0.0974 chi^4 times Hertz; no Winkler limit (no compressibility).
+    let (chi, load, hertz): (f64, f64, f64) = (
+        last[1].parse().unwrap(),
+        last[2].parse().unwrap(),
+        last[3].parse().unwrap(),
+    );
+    assert_eq!(chi, 0.5);
+    let poly = 1.0 + 1.133 * 0.5 + 1.283 * 0.25 + 0.769 * 0.125 - 0.0974 * 0.0625;
+    assert!((load / hertz / poly - 1.0).abs() < 1e-3, "{load} {hertz}");
+    assert_eq!(last[4], "");
+    let o = run(&[
+        "theory",
+        "layer",
+        "--radius",
+        "1e-3",
+        "--modulus",
+        "1e6",
+        "--thickness",
+        "-1",
+        "--poisson",
+        "0.3",
+        "--max-approach",
+        "1e-5",
+    ]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--thickness"));
+}
