@@ -232,3 +232,16 @@ def test_a_hardness_caps_the_pressure_and_leaves_a_permanent_set():
     exponential = {k: v for k, v in SPHERE.items() if k != "z0"}
     with pytest.raises(ValueError, match="attraction at contact"):
         rc.solve(**exponential, law="exponential", range=1e-9, hardness=2e7, approach=1e-9)
+
+
+def test_a_film_takes_its_keywords_and_bad_ones_are_refused():
+    half = rc.solve(**SPHERE, approach=1e-9)
+    film = rc.solve(**SPHERE, approach=1e-9, thickness=5e-8, poisson=0.45, layer_base="bonded")
+    assert half.converged and film.converged
+    # A film 50 nm thick on a rigid base holds the sphere harder than the half-space.
+    assert film.report["compressive_load"] > half.report["compressive_load"]
+    assert film.case["thickness"] == 5e-8 and film.case["layer_base"] == "bonded"
+    with pytest.raises(ValueError, match="--thickness"):
+        rc.solve(**SPHERE, approach=1e-9, thickness=-1.0, poisson=0.3)
+    with pytest.raises(ValueError, match="--poisson"):
+        rc.solve(**SPHERE, approach=1e-9, thickness=5e-8)
