@@ -50,13 +50,16 @@ impl MeanMode {
     /// `p = (delta - x) / C0`), which crosses the root on a rising curve; then the chord
     /// between the two sides (Illinois' false position). After [`MAX_STEPS`] trials the last
     /// solution is marked [`Termination::MaxIterations`] by `mark`. A trial that pulls off
-    /// counts as too tensile.
+    /// counts as too tensile; load trials stay below `ceiling` \[Pa\] (a hardness: no surface
+    /// carries more), halfway to it from the side below where a step would pass it.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn approach<S>(
         &self,
         delta: f64,
         p_guess: f64,
         mean_gap: f64,
         tolerance: f64,
+        ceiling: f64,
         mut solve: impl FnMut(Control, Option<&S>) -> Result<(S, Trial)>,
         mut mark: impl FnMut(&mut S, Termination),
     ) -> Result<S> {
@@ -70,7 +73,10 @@ impl MeanMode {
                 Control::Approach(x)
             }
         };
-        let mut next = at(delta - c0 * p_guess, ((delta - mean_gap) / c0).max(p_guess));
+        let mut next = at(
+            delta - c0 * p_guess,
+            ((delta - mean_gap) / c0).max(p_guess).min(0.5 * ceiling),
+        );
         // The two sides: (x, p, miss); the miss of a side that stays is halved (Illinois).
         let (mut low, mut high): (Option<[f64; 3]>, Option<[f64; 3]>) = (None, None);
         let mut last: Option<S> = None;
@@ -117,6 +123,12 @@ impl MeanMode {
                 // Pulled off with nothing above: half as tensile.
                 _ => Control::MeanPressure(0.5 * p),
             };
+            if let Control::MeanPressure(q) = next
+                && q >= ceiling
+            {
+                let below = low.map_or(0.0, |[_, pl, _]| pl.max(0.0));
+                next = Control::MeanPressure(0.5 * (below + ceiling));
+            }
         }
         unreachable!("the last step returns")
     }

@@ -249,3 +249,54 @@ fn past_the_mean_gap_a_periodic_half_space_refuses_the_approach_and_a_layer_take
     );
     assert_eq!(loaded.contact_area_fraction, pressed.contact_area_fraction);
 }
+
+#[test]
+fn a_layer_yields_under_a_hardness_the_same_under_either_control() {
+    // A rough periodic layer under a hardness, loaded to 0.3 H, then pressed cold to the
+    // approach that load reached: every trial of the approach's root search starts from the
+    // caller's (here no) permanent set, so the same contact, cells at H and set come out.
+    let (n, side) = (64, 64e-6);
+    let heights = ndarray::Array2::from_shape_fn((n, n), |(j, i)| {
+        let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
+        0.3e-6
+            * ((2.0 * std::f64::consts::PI * (3.0 * x + y)).sin()
+                + 0.5 * (2.0 * std::f64::consts::PI * (5.0 * y - 2.0 * x)).cos())
+    });
+    let hardness = 0.05 * E_STAR;
+    let problem = ContactProblem::builder()
+        .roughness(heights, side, side)
+        .modulus(E_STAR)
+        .layer(Layer::new(8e-6, 0.3, Base::Bonded).unwrap())
+        .hardness(hardness)
+        .build()
+        .unwrap();
+    let options = ContactOptions {
+        tolerance: 1e-10,
+        ..ContactOptions::default()
+    };
+    let (loaded_state, loaded) = problem
+        .solve_without_adhesion(Control::MeanPressure(0.3 * hardness), &options, None, &mut ())
+        .unwrap();
+    assert!(loaded.converged() && loaded.yielding.plastic_area_fraction > 0.0);
+    let (pressed_state, pressed) = problem
+        .solve_without_adhesion(Control::Approach(loaded.approach), &options, None, &mut ())
+        .unwrap();
+    assert!(pressed.converged());
+    assert!(
+        (pressed.mean_pressure / loaded.mean_pressure - 1.0).abs() < 1e-6,
+        "{} {}",
+        pressed.mean_pressure,
+        loaded.mean_pressure
+    );
+    assert_eq!(pressed.contact_area_fraction, loaded.contact_area_fraction);
+    assert_eq!(
+        pressed.yielding.plastic_area_fraction,
+        loaded.yielding.plastic_area_fraction
+    );
+    let (a, b) = (
+        pressed_state.permanent_set.unwrap(),
+        loaded_state.permanent_set.unwrap(),
+    );
+    let worst = (&a - &b).iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(worst < 1e-6 * b.iter().fold(0.0f64, |m, v| m.max(*v)), "{worst}");
+}

@@ -114,6 +114,7 @@ pub(crate) fn solve(
         guess,
         mean_gap,
         tolerance,
+        parts.interface.hardness.unwrap_or(f64::INFINITY),
         |control, last: Option<&(AdhesiveState, AdhesiveReport)>| {
             let seed = last.map(|(s, _)| {
                 let mut s = s.clone();

@@ -105,6 +105,7 @@ pub fn solve_with(
         guess,
         mean_gap,
         tolerance,
+        interface.hardness.unwrap_or(f64::INFINITY),
         |control, last: Option<&(ContactState, ContactReport)>| {
             let seed = last.map(|(s, _)| ContactState {
                 permanent_set: before.clone(),
