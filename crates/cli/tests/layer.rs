@@ -1,6 +1,6 @@
 //! A layer end to end: the flags reach the problem and the record; refusals name the flag.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn dir(name: &str) -> PathBuf {
@@ -17,7 +17,7 @@ fn run(args: &[&str]) -> Output {
 }
 
 /// A smooth sphere (R = 1 mm, E* = 1 MPa) pressed 10 um on a 64^2 free grid, with `extra`.
-fn sphere(out: &PathBuf, extra: &[&str]) -> Output {
+fn sphere(out: &Path, extra: &[&str]) -> Output {
     let mut args = vec![
         "solve",
         "--sphere-radius",
@@ -37,7 +37,7 @@ fn sphere(out: &PathBuf, extra: &[&str]) -> Output {
     run(&args)
 }
 
-fn summary(out: &PathBuf) -> serde_json::Value {
+fn summary(out: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
 }
 

@@ -290,7 +290,6 @@ fn free_convolution(domain: &Domain, e_star: f64, body: Body, output: (usize, us
 pub struct FreeStiffness {
     domain: Domain,
     e_star: f64,
-    body: Body,
     stiffness: Convolution,
     compliance: Convolution,
     /// The circulant compliance from padded fields to padded fields.
@@ -337,7 +336,6 @@ impl FreeStiffness {
                 ..domain
             },
             e_star,
-            body,
             stiffness,
             compliance,
             padded_compliance,
@@ -352,11 +350,6 @@ impl FreeStiffness {
     /// Composite modulus E* \[Pa\].
     pub fn e_star(&self) -> f64 {
         self.e_star
-    }
-
-    /// The body.
-    pub fn body(&self) -> Body {
-        self.body
     }
 
     /// Shape `(2ny, 2nx)` of the padded fields.

@@ -17,7 +17,6 @@ fn data(dir: &str, name: &str) -> PathBuf {
 #[test]
 fn contact_areas_on_a_layer_match_contactmechanics() {
     let h: Array2<f64> = ndarray_npy::read_npy(data("contactmechanics-plastic-256", "surface.npy")).unwrap();
-    let n = h.nrows();
     let rows: Vec<serde_json::Value> = serde_json::from_str(
         &std::fs::read_to_string(data("contactmechanics-layer-256", "cm_layer.json")).unwrap(),
     )

@@ -125,7 +125,7 @@ pub(crate) fn solve(
             let (s, r) = solve_relative(parts, control, settings, from, observer)?;
             match iterations.as_mut() {
                 Some(total) => total.accumulate(&r.iterations),
-                None => iterations = Some(r.iterations.clone()),
+                None => iterations = Some(r.iterations),
             }
             calls += r.operator_calls;
             wall += r.wall_time_s;
