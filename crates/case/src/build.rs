@@ -23,7 +23,8 @@ impl Case {
         } else {
             LawKind::None
         });
-        let refused: [(&str, bool, &str); 16] = [
+        let coating = self.layer_base == Some(LayerBase::Elastic);
+        let refused: [(&str, bool, &str); 18] = [
             (
                 "rms_height",
                 self.rms_height.is_some() && (file || self.rms_gradient.is_some()),
@@ -101,6 +102,16 @@ impl Case {
                 "says how a layer meets its base: give --thickness",
             ),
             (
+                "substrate_modulus",
+                self.substrate_modulus.is_some() && !coating,
+                "is a coating's substrate: give --layer-base elastic (and --thickness)",
+            ),
+            (
+                "substrate_poisson",
+                self.substrate_poisson.is_some() && !coating,
+                "is a coating's substrate: give --layer-base elastic (and --thickness)",
+            ),
+            (
                 "solver",
                 self.solver.is_some() && law == LawKind::None,
                 "chooses the adhesive solver; without adhesion the conjugate gradients solve",
@@ -174,11 +185,19 @@ impl Case {
             let base = match self.layer_base.unwrap_or(LayerBase::Bonded) {
                 LayerBase::Bonded => elastic::Base::Bonded,
                 LayerBase::Frictionless => elastic::Base::Frictionless,
+                LayerBase::Elastic => elastic::Base::Substrate {
+                    e_star: self
+                        .substrate_modulus
+                        .context("--layer-base elastic needs the substrate's --substrate-modulus [Pa]")?,
+                    poisson: self
+                        .substrate_poisson
+                        .context("--layer-base elastic needs the substrate's --substrate-poisson")?,
+                },
             };
             let layer = elastic::Layer::new(h, nu, base).map_err(|e| {
                 Error::Key(match e {
                     elastic::ElasticError::InvalidParameter { name, value, reason } => {
-                        format!("--{name} {reason}, got {value}")
+                        format!("--{} {reason}, got {value}", name.replace('_', "-"))
                     }
                     other => other.to_string(),
                 })

@@ -44,6 +44,9 @@ pub enum LayerBase {
     Bonded,
     /// Frictionless: the layer slides on the base.
     Frictionless,
+    /// An elastic substrate (a coating), bonded: give --substrate-modulus and
+    /// --substrate-poisson. Periodic grids only.
+    Elastic,
 }
 
 /// A contact case: every flag is also a key of the TOML case file (`--config`), with the same
@@ -129,9 +132,18 @@ pub struct Case {
     /// Poisson's ratio nu of the layer [-], in (-1, 0.5] (0.5: incompressible).
     #[cfg_attr(feature = "clap", arg(long))]
     pub poisson: Option<f64>,
-    /// How the layer meets its rigid base (default bonded).
+    /// What the layer lies on: a rigid base, bonded or frictionless, or an elastic substrate
+    /// (default bonded).
     #[cfg_attr(feature = "clap", arg(long, value_enum))]
     pub layer_base: Option<LayerBase>,
+    /// The substrate's plane-strain modulus E / (1 - nu^2) under a coating [Pa] (with
+    /// --layer-base elastic).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub substrate_modulus: Option<f64>,
+    /// The substrate's Poisson's ratio under a coating [-], in (-1, 0.5) (with --layer-base
+    /// elastic).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub substrate_poisson: Option<f64>,
     /// Penetration hardness H [Pa] of an elastic-perfectly-plastic surface: the compressive
     /// contact pressure never exceeds it, and where it would the surface yields and keeps the
     /// overlap as permanent set (default: elastic).

@@ -202,6 +202,9 @@ fn layer(a: &TheoryArgs, (r, e, h, nu): (f64, f64, f64, f64), base: case::LayerB
     let base = match base {
         case::LayerBase::Bonded => theory::layer::Base::Bonded,
         case::LayerBase::Frictionless => theory::layer::Base::Frictionless,
+        case::LayerBase::Elastic => {
+            bail!("--layer-base elastic: Dimitriadis' corrections are for a rigid base")
+        }
     };
     let mut out = open(a)?;
     writeln!(

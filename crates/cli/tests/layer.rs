@@ -81,6 +81,72 @@ fn bad_layers_are_refused_by_name() {
         (&["--thickness", "1e-4"][..], "--poisson"),
         (&["--poisson", "0.3"][..], "--poisson"),
         (&["--layer-base", "bonded"][..], "--layer-base"),
+        (
+            &[
+                "--thickness",
+                "1e-4",
+                "--poisson",
+                "0.3",
+                "--substrate-modulus",
+                "1e9",
+            ][..],
+            "--substrate-modulus",
+        ),
+        (
+            &[
+                "--thickness",
+                "1e-4",
+                "--poisson",
+                "0.3",
+                "--layer-base",
+                "elastic",
+            ][..],
+            "--substrate-modulus",
+        ),
+        (
+            &[
+                "--thickness",
+                "1e-4",
+                "--poisson",
+                "0.3",
+                "--layer-base",
+                "elastic",
+                "--substrate-modulus",
+                "1e9",
+            ][..],
+            "--substrate-poisson",
+        ),
+        (
+            &[
+                "--thickness",
+                "1e-4",
+                "--poisson",
+                "0.3",
+                "--layer-base",
+                "elastic",
+                "--substrate-modulus",
+                "1e9",
+                "--substrate-poisson",
+                "0.5",
+            ][..],
+            "--substrate-poisson must be below 0.5",
+        ),
+        // A coating's coefficients are built on periodic grids only: the sphere's grid is free.
+        (
+            &[
+                "--thickness",
+                "1e-4",
+                "--poisson",
+                "0.3",
+                "--layer-base",
+                "elastic",
+                "--substrate-modulus",
+                "1e9",
+                "--substrate-poisson",
+                "0.3",
+            ][..],
+            "periodic grids only",
+        ),
     ] {
         let o = sphere(&d.join("x"), extra);
         assert!(!o.status.success(), "{extra:?}");
@@ -137,4 +203,56 @@ fn theory_layer_gives_dimitriadis_beside_hertz_and_winkler() {
         "1e-5",
     ]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("--thickness"));
+}
+
+#[test]
+fn a_coating_on_a_rough_periodic_surface_lies_between_its_substrate_and_its_own_material() {
+    // A stiff coating (E* 1 GPa) 2 um thick on a soft substrate (E* 0.1 GPa): the contact area
+    // at a mean pressure lies between the half-spaces of either material.
+    let d = dir("coating");
+    let area = |name: &str, extra: &[&str]| {
+        let out = d.join(name);
+        let mut args = vec![
+            "solve",
+            "--rms-gradient",
+            "0.5",
+            "--n",
+            "64",
+            "--length",
+            "1e-4",
+            "--mean-pressure",
+            "1e6",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = run(&args);
+        assert!(
+            o.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        summary(&out)["contact_area_fraction"].as_f64().unwrap()
+    };
+    let stiff = area("stiff", &["--modulus", "1e9"]);
+    let soft = area("soft", &["--modulus", "1e8"]);
+    let coated = area(
+        "coated",
+        &[
+            "--modulus",
+            "1e9",
+            "--thickness",
+            "2e-6",
+            "--poisson",
+            "0.3",
+            "--layer-base",
+            "elastic",
+            "--substrate-modulus",
+            "1e8",
+            "--substrate-poisson",
+            "0.45",
+        ],
+    );
+    assert!(stiff < coated && coated < soft, "{stiff} {coated} {soft}");
+    std::fs::remove_dir_all(&d).ok();
 }

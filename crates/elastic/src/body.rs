@@ -18,11 +18,12 @@ pub enum Body {
 }
 
 impl Body {
-    /// The body's compliance at wavenumber `q` \[1/m\] over the half-space's `2 / (E* q)` [-].
-    pub fn compliance_ratio(&self, q: f64) -> f64 {
+    /// The body's compliance at wavenumber `q` \[1/m\] over the half-space's `2 / (E* q)` of
+    /// plane-strain modulus `e_star` \[Pa\] [-].
+    pub fn compliance_ratio(&self, q: f64, e_star: f64) -> f64 {
         match self {
             Body::HalfSpace => 1.0,
-            Body::Layer(layer) => layer.compliance_ratio(q),
+            Body::Layer(layer) => layer.compliance_ratio(q, e_star),
         }
     }
 
@@ -32,7 +33,7 @@ impl Body {
     pub fn mean_compliance(&self, e_star: f64) -> Option<f64> {
         match self {
             Body::HalfSpace => None,
-            Body::Layer(layer) => Some(layer.compliance(0.0, e_star)),
+            Body::Layer(layer) => layer.mean_compliance(e_star),
         }
     }
 
@@ -44,7 +45,7 @@ impl Body {
             e_star,
             layer: match self {
                 Body::HalfSpace => None,
-                Body::Layer(layer) => Some(layer.real_space()),
+                Body::Layer(layer) => Some(layer.real_space(e_star)),
             },
         }
     }

@@ -10,6 +10,9 @@ pub enum ElasticError {
         value: f64,
         reason: &'static str,
     },
+    /// A body the operator cannot represent, with the reason.
+    #[error("{0}")]
+    Unsupported(&'static str),
     /// A field does not have the operator's shape `(ny, nx)`.
     #[error("{what} has shape {got:?}, the operator expects {expected:?}")]
     ShapeMismatch {

@@ -18,13 +18,21 @@
 use crate::error::{ElasticError, Result};
 use std::f64::consts::PI;
 
-/// How the layer meets its rigid base.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// What the layer lies on.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Base {
-    /// Bonded: no displacement at the base.
+    /// A rigid base, bonded: no displacement at the base.
     Bonded,
-    /// Frictionless: no normal displacement and no shear traction at the base.
+    /// A rigid base, frictionless: no normal displacement and no shear traction at the base.
     Frictionless,
+    /// An elastic half-space of another material, bonded (a coating on a substrate): its
+    /// plane-strain modulus \[Pa\] and Poisson's ratio, which must lie in (-1, 0.5).
+    Substrate {
+        /// Plane-strain modulus `E / (1 - nu^2)` of the substrate \[Pa\].
+        e_star: f64,
+        /// Poisson's ratio of the substrate [-].
+        poisson: f64,
+    },
 }
 
 /// An elastic layer on a rigid base (module docs).
@@ -56,6 +64,31 @@ impl Layer {
             });
         }
         crate::material::check_poisson("poisson", poisson)?;
+        if let Base::Substrate {
+            e_star,
+            poisson: substrate,
+        } = base
+        {
+            if !(e_star.is_finite() && e_star > 0.0) {
+                return Err(ElasticError::InvalidParameter {
+                    name: "substrate_modulus",
+                    value: e_star,
+                    reason: "must be a finite plane-strain modulus > 0 Pa",
+                });
+            }
+            crate::material::check_poisson("substrate_poisson", substrate)?;
+            // The coating's solution is written with Lame's lambda, infinite at nu = 1/2.
+            for (name, nu) in [("poisson", poisson), ("substrate_poisson", substrate)] {
+                if nu >= 0.5 {
+                    return Err(ElasticError::InvalidParameter {
+                        name,
+                        value: nu,
+                        reason: "must be below 0.5 for a coating on a substrate (the \
+                                 incompressible limit is taken on a rigid base only)",
+                    });
+                }
+            }
+        }
         Ok(Layer {
             thickness,
             poisson,
@@ -63,12 +96,17 @@ impl Layer {
         })
     }
 
-    /// The layer's compliance at wavenumber `q` \[1/m\] over the half-space's, `C(q) E* q / 2`
-    /// [-]: in `(0, 1]`, 1 for `q h -> oo`.
-    pub fn compliance_ratio(&self, q: f64) -> f64 {
+    /// The layer's compliance at wavenumber `q` \[1/m\] over the half-space's of its own
+    /// plane-strain modulus `e_star` \[Pa\], `C(q) E* q / 2` [-]: 1 for `q h -> oo`; on a rigid
+    /// base in `(0, 1]`, on a substrate tending to `E* / E*_substrate` as `q h -> 0`.
+    pub fn compliance_ratio(&self, q: f64, e_star: f64) -> f64 {
         let x = q * self.thickness;
         let nu = self.poisson;
         match self.base {
+            Base::Substrate {
+                e_star: substrate,
+                poisson,
+            } => coating_ratio(x, (e_star, nu), (substrate, poisson)),
             Base::Bonded => {
                 let a = 3.0 - 4.0 * nu;
                 let c = 5.0 - 12.0 * nu + 8.0 * nu * nu;
@@ -101,18 +139,26 @@ impl Layer {
     /// [`Layer::compliance_ratio`], and at `q = 0` its limit (module docs).
     pub fn compliance(&self, q: f64, e_star: f64) -> f64 {
         if q == 0.0 {
-            let nu = self.poisson;
-            return match self.base {
-                Base::Bonded => self.thickness * (1.0 - 2.0 * nu) / (e_star * (1.0 - nu) * (1.0 - nu)),
-                Base::Frictionless => self.thickness / e_star,
-            };
+            return self.mean_compliance(e_star).unwrap_or(f64::INFINITY);
         }
-        2.0 / (e_star * q) * self.compliance_ratio(q)
+        2.0 / (e_star * q) * self.compliance_ratio(q, e_star)
+    }
+
+    /// The compliance \[m/Pa\] of the mean mode of a layer of plane-strain modulus `e_star`
+    /// \[Pa\]: `h / M` bonded, `h / E*` frictionless; `None` on a substrate, a half-space that
+    /// a uniform pressure displaces without bound.
+    pub fn mean_compliance(&self, e_star: f64) -> Option<f64> {
+        let nu = self.poisson;
+        match self.base {
+            Base::Bonded => Some(self.thickness * (1.0 - 2.0 * nu) / (e_star * (1.0 - nu) * (1.0 - nu))),
+            Base::Frictionless => Some(self.thickness / e_star),
+            Base::Substrate { .. } => None,
+        }
     }
 
     /// The layer's influence in real space (tabulated once: about 3 million Bessel functions).
-    pub(crate) fn real_space(&self) -> RealSpace {
-        RealSpace::new(self)
+    pub(crate) fn real_space(&self, e_star: f64) -> RealSpace {
+        RealSpace::new(self, e_star)
     }
 }
 
@@ -152,7 +198,7 @@ pub(crate) struct RealSpace {
 }
 
 impl RealSpace {
-    fn new(layer: &Layer) -> RealSpace {
+    fn new(layer: &Layer, e_star: f64) -> RealSpace {
         use rayon::prelude::*;
         let points = (CUT / TABLE_STEP) as usize + 3;
         let table = (0..points)
@@ -169,7 +215,8 @@ impl RealSpace {
                             .iter()
                             .map(|&(x, w)| {
                                 let t = middle + 0.5 * width * x;
-                                w * (layer.compliance_ratio(t / layer.thickness) - 1.0) * libm::j0(s * t)
+                                w * (layer.compliance_ratio(t / layer.thickness, e_star) - 1.0)
+                                    * libm::j0(s * t)
                             })
                             .sum::<f64>()
                             * 0.5
@@ -236,6 +283,102 @@ impl RealSpace {
     }
 }
 
+/// A coating's compliance ratio at `x = q h`: the layer `(E*, nu)` bonded to the substrate
+/// `(E*, nu)`, both below `nu = 1/2`. Navier's equations for a mode `e^{iqx}` (displacements
+/// `i U(z)`, `W(z)`, `z` down, lengths in units of `1/q`) are solved by
+/// `W = (c + d z) e^{-z}`, `U = (-c + k d - d z) e^{-z}` and
+/// `W = (c + d z) e^{z}`, `U = (c + k d + d z) e^{z}`, `k = 3 - 4 nu`: in the layer the decaying
+/// family from the top and the growing one anchored at the interface (both bounded), in the
+/// substrate the decaying one from the interface. Six conditions fix the six constants: under
+/// unit pressure no shear on top, and at the interface `W`, `U`, `s_zz` and `s_xz` continuous,
+/// with `s_zz = (l + 2m) W' - l U` and `s_xz = m (U' + W)` (times `q`). The ratio is
+/// `W(0) E* / 2` with the moduli in units of the layer's `E*`.
+fn coating_ratio(x: f64, (e1, nu1): (f64, f64), (e2, nu2): (f64, f64)) -> f64 {
+    // Lame's constants from E* and nu: E = E* (1 - nu^2), mu = E* (1 - nu) / 2.
+    let lame = |e_star: f64, nu: f64| {
+        let mu = e_star * (1.0 - nu) / 2.0;
+        (2.0 * mu * nu / (1.0 - 2.0 * nu), mu, 3.0 - 4.0 * nu)
+    };
+    let (l1, m1, k1) = lame(1.0, nu1);
+    let (l2, m2, k2) = lame(e2 / e1, nu2);
+    // Each family's (W, U, W', U') at a point `z` of its own coordinate, per unit c and d.
+    let decaying = |k: f64, z: f64| {
+        let e = (-z).exp();
+        [
+            [e, z * e],
+            [-e, (k - z) * e],
+            [-e, (1.0 - z) * e],
+            [e, (z - 1.0 - k) * e],
+        ]
+    };
+    let growing = |k: f64, z: f64| {
+        let e = z.exp();
+        [
+            [e, z * e],
+            [e, (k + z) * e],
+            [e, (1.0 + z) * e],
+            [e, (1.0 + k + z) * e],
+        ]
+    };
+    // Rows: the four quantities (W, U, s_zz, s_xz) of a state at a point for the columns.
+    let quantities = |f: [[f64; 2]; 4], (l, m): (f64, f64)| {
+        let [w, u, dw, du] = f;
+        let mut out = [[0.0; 2]; 4];
+        for c in 0..2 {
+            out[0][c] = w[c];
+            out[1][c] = u[c];
+            out[2][c] = (l + 2.0 * m) * dw[c] - l * u[c];
+            out[3][c] = m * (du[c] + w[c]);
+        }
+        out
+    };
+    let top = (
+        quantities(decaying(k1, 0.0), (l1, m1)),
+        quantities(growing(k1, -x), (l1, m1)),
+    );
+    let interface = (
+        quantities(decaying(k1, x), (l1, m1)),
+        quantities(growing(k1, 0.0), (l1, m1)),
+        quantities(decaying(k2, 0.0), (l2, m2)),
+    );
+    // Unknowns (c1, d1, c2, d2, c3, d3); the right-hand side last.
+    let mut a = [[0.0; 7]; 6];
+    for c in 0..2 {
+        a[0][c] = top.0[2][c];
+        a[0][2 + c] = top.1[2][c];
+        a[1][c] = top.0[3][c];
+        a[1][2 + c] = top.1[3][c];
+        for q in 0..4 {
+            a[2 + q][c] = interface.0[q][c];
+            a[2 + q][2 + c] = interface.1[q][c];
+            a[2 + q][4 + c] = -interface.2[q][c];
+        }
+    }
+    a[0][6] = -1.0;
+    let y = solve6(a);
+    // W(0) = c1 + (c2 + d2 (-x)) e^{-x}, in units of 1 / (E* q); the half-space's is 2.
+    let w0 = y[0] + top.1[0][0] * y[2] + top.1[0][1] * y[3];
+    w0 / 2.0
+}
+
+/// Gaussian elimination with partial pivoting of a 6 x 6 system (right-hand side last).
+fn solve6(mut a: [[f64; 7]; 6]) -> [f64; 6] {
+    for c in 0..6 {
+        let p = (c..6).fold(c, |p, i| if a[i][c].abs() > a[p][c].abs() { i } else { p });
+        a.swap(c, p);
+        let pivot = a[c];
+        for row in a.iter_mut().skip(c + 1) {
+            let f = row[c] / pivot[c];
+            row.iter_mut().zip(&pivot).skip(c).for_each(|(v, p)| *v -= f * p);
+        }
+    }
+    let mut y = [0.0; 6];
+    for c in (0..6).rev() {
+        y[c] = (a[c][6] - (c + 1..6).map(|k| a[c][k] * y[k]).sum::<f64>()) / a[c][c];
+    }
+    y
+}
+
 /// `sinh y - y` for `0 <= y < 1`, by its series (no cancellation as `y -> 0`).
 fn sinh_less_linear(y: f64) -> f64 {
     let y2 = y * y;
@@ -271,6 +414,7 @@ mod tests {
                     / (a * (2.0 * x).cosh() + 2.0 * x * x + 5.0 - 12.0 * nu + 8.0 * nu * nu)
             }
             Base::Frictionless => ((2.0 * x).cosh() - 1.0) / ((2.0 * x).sinh() + 2.0 * x),
+            Base::Substrate { .. } => unreachable!("rigid bases only"),
         }
     }
 
@@ -281,7 +425,7 @@ mod tests {
                 let l = layer(nu, base);
                 for x in [0.01, 0.1, 0.3, 0.499, 0.5, 0.501, 1.0, 2.0, 5.0, 10.0] {
                     let q = x / l.thickness;
-                    let (got, want) = (l.compliance_ratio(q), closed_form(&l, q));
+                    let (got, want) = (l.compliance_ratio(q, E_STAR), closed_form(&l, q));
                     // The closed form itself loses digits to cancellation at small x.
                     let tolerance = if x < 0.1 { 1e-10 } else { 1e-13 };
                     assert!(
@@ -337,6 +481,7 @@ mod tests {
             match base {
                 Base::Frictionless => [row(1)[0], row(1)[1], row(1)[2], row(1)[3], 0.0],
                 Base::Bonded => [row(0)[0], row(0)[1], row(0)[2], row(0)[3], 0.0],
+                Base::Substrate { .. } => unreachable!("rigid bases only"),
             },
         ];
         // Gaussian elimination with partial pivoting.
@@ -382,7 +527,7 @@ mod tests {
             for nu in [0.0, 0.3, 0.5] {
                 let l = layer(nu, base);
                 for x in [40.0, 400.0, 4e5] {
-                    let r = l.compliance_ratio(x / l.thickness);
+                    let r = l.compliance_ratio(x / l.thickness, E_STAR);
                     assert!((r - 1.0).abs() < 1e-15, "{base:?} nu {nu} x {x}: {r}");
                 }
             }
@@ -408,7 +553,7 @@ mod tests {
         let incompressible = layer(0.5, Base::Bonded);
         assert_eq!(incompressible.compliance(0.0, E_STAR), 0.0);
         let x = 1e-3;
-        let r = incompressible.compliance_ratio(x / h);
+        let r = incompressible.compliance_ratio(x / h, E_STAR);
         assert!((r / (2.0 * x * x * x / 3.0) - 1.0).abs() < 1e-5, "{r}");
     }
 
@@ -418,11 +563,57 @@ mod tests {
             let l = layer(0.3, base);
             let mut last = 0.0;
             for k in 1..200 {
-                let r = l.compliance_ratio(k as f64 * 0.05 / l.thickness);
+                let r = l.compliance_ratio(k as f64 * 0.05 / l.thickness, E_STAR);
                 assert!(r > last && r <= 1.0, "{base:?} x {}: {r}", k as f64 * 0.05);
                 last = r;
             }
         }
+    }
+
+    #[test]
+    fn a_coating_on_its_own_material_is_the_half_space_and_on_a_rigid_one_the_bonded_layer() {
+        for nu in [0.0, 0.3, 0.45] {
+            let same = layer(
+                nu,
+                Base::Substrate {
+                    e_star: E_STAR,
+                    poisson: nu,
+                },
+            );
+            let stiff = layer(
+                nu,
+                Base::Substrate {
+                    e_star: 1e6 * E_STAR,
+                    poisson: 0.2,
+                },
+            );
+            let bonded = layer(nu, Base::Bonded);
+            for x in [1e-3, 0.01, 0.1, 0.5, 1.0, 3.0, 10.0, 30.0, 400.0] {
+                let q = x / same.thickness;
+                let r = same.compliance_ratio(q, E_STAR);
+                assert!((r - 1.0).abs() < 1e-13, "nu {nu} x {x}: {r}");
+                // A substrate a million times stiffer gives way by ~1e-6 of the layer.
+                let (got, want) = (
+                    stiff.compliance_ratio(q, E_STAR),
+                    bonded.compliance_ratio(q, E_STAR),
+                );
+                assert!(
+                    (got / want - 1.0).abs() < 2e-5 / (x * x).min(1.0),
+                    "nu {nu} x {x}: {got} {want}"
+                );
+            }
+        }
+        // Long waves see the substrate, short ones the coating.
+        let soft = layer(
+            0.3,
+            Base::Substrate {
+                e_star: 0.1 * E_STAR,
+                poisson: 0.4,
+            },
+        );
+        assert!((soft.compliance_ratio(1e-6 / soft.thickness, E_STAR) / 10.0 - 1.0).abs() < 1e-4);
+        assert!((soft.compliance_ratio(40.0 / soft.thickness, E_STAR) - 1.0).abs() < 1e-12);
+        assert_eq!(soft.mean_compliance(E_STAR), None);
     }
 
     #[test]
@@ -435,5 +626,32 @@ mod tests {
             let e = Layer::new(1e-6, nu, Base::Frictionless).unwrap_err();
             assert!(e.to_string().contains("poisson"), "{e}");
         }
+        for e_star in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let e = Layer::new(1e-6, 0.3, Base::Substrate { e_star, poisson: 0.3 }).unwrap_err();
+            assert!(e.to_string().contains("substrate_modulus"), "{e}");
+        }
+        let e = Layer::new(
+            1e-6,
+            0.3,
+            Base::Substrate {
+                e_star: 1e9,
+                poisson: 0.5,
+            },
+        )
+        .unwrap_err();
+        assert!(
+            e.to_string().contains("substrate_poisson") && e.to_string().contains("0.5"),
+            "{e}"
+        );
+        let e = Layer::new(
+            1e-6,
+            0.5,
+            Base::Substrate {
+                e_star: 1e9,
+                poisson: 0.3,
+            },
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("poisson"), "{e}");
     }
 }

@@ -4,6 +4,7 @@
 use crate::body::Body;
 use crate::convolution::{ConvWorkspace, Convolution};
 use crate::error::{ElasticError, Result};
+use crate::layer::{Base, Layer};
 use crate::material::check_modulus;
 use crate::{Compliance, Domain};
 use ndarray::{Array2, ArrayView2, ArrayViewMut2};
@@ -64,7 +65,7 @@ impl Periodic {
             if q == 0.0 {
                 0.0
             } else {
-                2.0 / (e_star * q) * body.compliance_ratio(q)
+                2.0 / (e_star * q) * body.compliance_ratio(q, e_star)
             }
         });
         // The circulant's diagonal, the mean of the multiplier over the grid, mean mode included
@@ -81,7 +82,7 @@ impl Periodic {
                         if q == 0.0 {
                             body.mean_compliance(e_star).unwrap_or(0.0)
                         } else {
-                            2.0 / (e_star * q) * body.compliance_ratio(q)
+                            2.0 / (e_star * q) * body.compliance_ratio(q, e_star)
                         }
                     })
                     .sum();
@@ -136,7 +137,7 @@ impl PeriodicStiffness {
             if q == 0.0 {
                 0.0
             } else {
-                0.5 * e_star * q / body.compliance_ratio(q)
+                0.5 * e_star * q / body.compliance_ratio(q, e_star)
             }
         });
         let inverse = kernel.mapv(|k| if k > 0.0 { 1.0 / k } else { 0.0 });
@@ -235,7 +236,7 @@ impl Free {
     pub fn with_body(domain: Domain, e_star: f64, body: Body) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
-        let (conv, cell) = free_convolution(&domain, e_star, body, (domain.ny, domain.nx));
+        let (conv, cell) = free_convolution(&domain, e_star, body, (domain.ny, domain.nx))?;
         Ok(Free {
             domain: Domain {
                 periodic: false,
@@ -251,7 +252,24 @@ impl Free {
 
 /// The DC-FFT convolution of the free `body` from `(ny, nx)` pressures to `output`
 /// displacements (at most the padded `(2ny, 2nx)`), and its self-coefficient \[m/Pa\].
-fn free_convolution(domain: &Domain, e_star: f64, body: Body, output: (usize, usize)) -> (Convolution, f64) {
+fn free_convolution(
+    domain: &Domain,
+    e_star: f64,
+    body: Body,
+    output: (usize, usize),
+) -> Result<(Convolution, f64)> {
+    if let Body::Layer(Layer {
+        base: Base::Substrate { .. },
+        ..
+    }) = body
+    {
+        // Its influence keeps the substrate's 1/r tail and an algebraic correction to it: the
+        // layer's correction, cut at 40 thicknesses, does not hold.
+        return Err(ElasticError::Unsupported(
+            "a coating on a substrate is built on periodic grids only (its real-space \
+             coefficients are not); use the periodic domain or a rigid base",
+        ));
+    }
     let Domain { nx, ny, dx, dy, .. } = *domain;
     let influence = body.influence(dx, dy, e_star);
     let (mx, my) = (2 * nx, 2 * ny);
@@ -275,7 +293,7 @@ fn free_convolution(domain: &Domain, e_star: f64, body: Body, output: (usize, us
     let diagonal = quadrant[0];
     drop(quadrant);
     conv.set_kernel(kernel);
-    (conv, diagonal)
+    Ok((conv, diagonal))
 }
 
 /// The free body's stiffness on its padded grid, for solvers whose unknown is the
@@ -314,7 +332,7 @@ impl FreeStiffness {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
         let padded = (2 * domain.ny, 2 * domain.nx);
-        let (compliance, _) = free_convolution(&domain, e_star, body, padded);
+        let (compliance, _) = free_convolution(&domain, e_star, body, padded)?;
         // The compliance's multiplier is stored divided by `mx my`; the stiffness's unscaled one
         // is its reciprocal.
         let kernel = compliance.kernel();

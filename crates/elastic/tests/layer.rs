@@ -52,7 +52,7 @@ fn correction_by_transform(layer: &Layer, x: f64, y: f64, a: f64, b: f64) -> f64
                 * 2.0
                 * PI
                 / angles as f64;
-            sum += 0.5 * width * w * 2.0 / E_STAR * (layer.compliance_ratio(q) - 1.0) * ring;
+            sum += 0.5 * width * w * 2.0 / E_STAR * (layer.compliance_ratio(q, E_STAR) - 1.0) * ring;
         }
     }
     sum / (4.0 * PI * PI)

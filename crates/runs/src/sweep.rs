@@ -423,37 +423,43 @@ fn print_cycle(
     ) && let Some(deep) = cycle.iter().max_by(|a, b| a.approach.total_cmp(&b.approach))
         && deep.approach > 0.0
     {
-        // On a layer, Dimitriadis' correction of Hertz (a fit for chi = sqrt(R delta) / h <~ 0.5).
-        let (name, reference) = match problem.operator.body() {
+        // On a layer on a rigid base, Dimitriadis' correction of Hertz (a fit for
+        // chi = sqrt(R delta) / h <~ 0.5); a coating has none (and no free grid).
+        let reference = match problem.operator.body() {
             elastic::Body::Layer(layer) => {
                 let base = match layer.base {
-                    elastic::Base::Bonded => theory::layer::Base::Bonded,
-                    elastic::Base::Frictionless => theory::layer::Base::Frictionless,
+                    elastic::Base::Bonded => Some(theory::layer::Base::Bonded),
+                    elastic::Base::Frictionless => Some(theory::layer::Base::Frictionless),
+                    elastic::Base::Substrate { .. } => None,
                 };
                 let chi = (r * deep.approach).sqrt() / layer.thickness;
-                (
-                    format!("Dimitriadis (chi = {chi:.3})"),
-                    theory::layer::dimitriadis_load(
-                        deep.approach,
-                        r,
-                        layer.thickness,
-                        problem.e_star(),
-                        layer.poisson,
-                        base,
-                    ),
-                )
+                base.map(|base| {
+                    (
+                        format!("Dimitriadis (chi = {chi:.3})"),
+                        theory::layer::dimitriadis_load(
+                            deep.approach,
+                            r,
+                            layer.thickness,
+                            problem.e_star(),
+                            layer.poisson,
+                            base,
+                        ),
+                    )
+                })
             }
-            elastic::Body::HalfSpace => (
+            elastic::Body::HalfSpace => Some((
                 "Hertz".to_string(),
                 theory::hertz::load_of_approach(deep.approach, r, problem.e_star()),
-            ),
+            )),
         };
-        say!(
-            "{name} at the deepest approach ({:.4e} m): {reference:.6e} N; solved {:.6e} N ({:+.2} %)",
-            deep.approach,
-            deep.load,
-            100.0 * (deep.load / reference - 1.0)
-        );
+        if let Some((name, reference)) = reference {
+            say!(
+                "{name} at the deepest approach ({:.4e} m): {reference:.6e} N; solved {:.6e} N ({:+.2} %)",
+                deep.approach,
+                deep.load,
+                100.0 * (deep.load / reference - 1.0)
+            );
+        }
     }
     // Under load control the contact area is the result: a line a step.
     if matches!(first, Control::MeanPressure(_)) {

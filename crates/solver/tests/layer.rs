@@ -35,6 +35,7 @@ fn base_of(base: Base) -> theory_layer::Base {
     match base {
         Base::Bonded => theory_layer::Base::Bonded,
         Base::Frictionless => theory_layer::Base::Frictionless,
+        Base::Substrate { .. } => unreachable!("rigid bases only"),
     }
 }
 
