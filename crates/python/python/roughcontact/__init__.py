@@ -437,8 +437,9 @@ def solve(
     are laid over it. ``surface`` may be a :class:`Topography` instead of a file. Exactly
     one control: ``approach`` [m], ``load`` [N], ``mean_pressure`` [Pa] or ``mean_gap`` [m].
     A film instead of the half-space: ``thickness`` [m] with the layer's ``poisson`` [-] and
-    ``layer_base`` (``"bonded"``, default, or ``"frictionless"``); ``modulus`` is then the
-    layer's E / (1 - nu^2) [Pa]. A ``hardness`` [Pa] caps the compressive pressure.
+    ``layer_base`` (``"bonded"``, default, ``"frictionless"``, or ``"elastic"`` with the
+    substrate's ``substrate_modulus`` [Pa] and ``substrate_poisson``: a coating, periodic
+    grids only); ``modulus`` is then the layer's E / (1 - nu^2) [Pa]. A ``hardness`` [Pa] caps the compressive pressure.
     ``progress(info)`` is called after every iteration with ``{'step', 'iteration',
     'residual'}``; an exception it raises stops the solve. ``threads``: threads of this
     solve's own pool (None: all cores, shared). The GIL is released while solving; Ctrl-C
