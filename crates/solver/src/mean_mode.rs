@@ -41,33 +41,34 @@ impl MeanMode {
 
     /// Solves for the approach `delta` \[m\] from the base: finds the point `(x, p)` of the
     /// methods' curve (approach from the mean surface `x` \[m\], mean pressure `p` \[Pa\]) where
-    /// `miss = x + C0 p - delta` vanishes, to within `tolerance` \[m\]. `solve(control, last)`
-    /// solves in the methods' frame, warm from the last trial if any, and returns the solution
-    /// and its [`Trial`]. Trials prescribe `x` (which follows unstable branches) below the mean
-    /// gap `mean_gap` \[m\], `p` at or past it (full contact, where `x` stops and the layer's
-    /// compression takes up the rest). The first is at `x = delta - C0 p_guess` (`p_guess`
-    /// \[Pa\]: the warm start's); then the fixed-point step (`x = delta - C0 p`, or
-    /// `p = (delta - x) / C0`), which crosses the root on a rising curve; then the chord
-    /// between the two sides (Illinois' false position). After [`MAX_STEPS`] trials the last
-    /// solution is marked [`Termination::MaxIterations`] by `mark`. A trial that pulls off
-    /// counts as too tensile; load trials stay below `ceiling` \[Pa\] (a hardness: no surface
-    /// carries more), halfway to it from the side below where a step would pass it.
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn approach<S>(
+    /// `miss = x + C0 p - delta` vanishes, to within `tolerance` \[m\]. `solve(control, seed)`
+    /// solves in the methods' frame, warm from the seed if any. Trials prescribe `x` below the
+    /// mean gap (`bounds.0` \[m\]) and `p` at or past it (full contact, where `x` stops and the
+    /// layer's compression takes up the rest). Without adhesion (`repulsive`), `p` after the
+    /// first trial too (the non-adhesive iteration is faster under a load; an approach follows
+    /// the unstable branches a load cannot), kept at or above zero, and first touch (`x = 0`
+    /// at no load) is a known point of the curve. Load trials stay below `bounds.1` \[Pa\] (a hardness: no
+    /// surface carries more), halfway to it from below where a step would pass it. The first
+    /// trial is at `x = delta - C0 p_guess` (`p_guess` \[Pa\]: the warm start's); then the
+    /// fixed-point step (`x = delta - C0 p`, or `p = (delta - x) / C0`), which crosses the root
+    /// on a rising curve; then the chord between the two sides (Illinois' false position). A
+    /// trial that pulls off counts as too tensile. After [`MAX_STEPS`] trials the last is marked
+    /// [`Termination::MaxIterations`]. The solution reports every trial's work
+    /// ([`Solved::add_work`]).
+    pub(crate) fn approach<S: Solved>(
         &self,
         delta: f64,
         p_guess: f64,
-        mean_gap: f64,
+        (mean_gap, ceiling): (f64, f64),
         tolerance: f64,
-        ceiling: f64,
-        mut solve: impl FnMut(Control, Option<&S>) -> Result<(S, Trial)>,
-        mut mark: impl FnMut(&mut S, Termination),
+        repulsive: bool,
+        mut solve: impl FnMut(Control, Option<&S>) -> Result<S>,
     ) -> Result<S> {
         let c0 = self.compliance;
         // Below the mean gap an approach is well posed; at it, only a load.
         let closes = |x: f64| x >= mean_gap - 1e-9 * mean_gap.abs();
-        let at = |x: f64, p: f64| {
-            if closes(x) {
+        let at = |x: f64, p: f64, first: bool| {
+            if closes(x) || (repulsive && !first) {
                 Control::MeanPressure(p)
             } else {
                 Control::Approach(x)
@@ -76,13 +77,24 @@ impl MeanMode {
         let mut next = at(
             delta - c0 * p_guess,
             ((delta - mean_gap) / c0).max(p_guess).min(0.5 * ceiling),
+            true,
         );
         // The two sides: (x, p, miss); the miss of a side that stays is halved (Illinois).
-        let (mut low, mut high): (Option<[f64; 3]>, Option<[f64; 3]>) = (None, None);
-        let mut last: Option<S> = None;
+        let (mut low, mut high): (Option<[f64; 3]>, Option<[f64; 3]>) = (
+            repulsive.then_some([0.0, 0.0, -delta]).filter(|_| delta > 0.0),
+            None,
+        );
+        // The last trial: it carries the work of all before it, and seeds the next unless it
+        // pulled off (then the next starts where the caller's did).
+        let (mut last, mut seeds): (Option<S>, bool) = (None, false);
+        let mut previous: Option<[f64; 3]> = None;
         let mut side = 0i32;
         for step in 1..=MAX_STEPS {
-            let (mut solution, trial) = solve(next, last.as_ref())?;
+            let mut solution = solve(next, last.as_ref().filter(|_| seeds))?;
+            if let Some(earlier) = &last {
+                solution.add_work(earlier);
+            }
+            let trial = solution.trial();
             let (x, p) = (trial.approach, trial.mean_pressure);
             let miss = match trial.termination {
                 Termination::PulledOff => f64::NEG_INFINITY,
@@ -93,7 +105,7 @@ impl MeanMode {
                 return Ok(solution);
             }
             if step == MAX_STEPS {
-                mark(&mut solution, Termination::MaxIterations);
+                solution.mark(Termination::MaxIterations);
                 return Ok(solution);
             }
             if miss < 0.0 {
@@ -109,29 +121,58 @@ impl MeanMode {
                 side = side.max(0) + 1;
                 high = Some([x, p, miss]);
             }
-            if trial.termination != Termination::PulledOff {
-                last = Some(solution);
-            }
+            seeds = trial.termination != Termination::PulledOff;
+            last = Some(solution);
+            // The secant through the last two trials, where it falls inside the bracket: on a
+            // smooth curve it converges faster than the bracket's chord, which is kept to hold it.
+            let secant = previous
+                .filter(|[_, _, m]| m.is_finite() && miss.is_finite() && *m != miss)
+                .map(|[xp, pp, mp]| {
+                    let t = mp / (mp - miss);
+                    (xp + t * (x - xp), pp + t * (p - pp))
+                })
+                .filter(|&(_, ps)| {
+                    low.is_none_or(|[_, pl, _]| ps > pl) && high.is_none_or(|[_, ph, _]| ps < ph)
+                });
+            previous = Some([x, p, miss]);
             next = match (low, high) {
+                _ if secant.is_some() => {
+                    let (xs, ps) = secant.unwrap_or((x, p));
+                    at(xs, ps, false)
+                }
                 (Some([xl, pl, ml]), Some([xh, ph, mh])) if ml.is_finite() => {
                     let t = ml / (ml - mh);
-                    at(xl + t * (xh - xl), pl + t * (ph - pl))
+                    at(xl + t * (xh - xl), pl + t * (ph - pl), false)
                 }
                 // Pulled off below: halfway in load.
                 (Some([_, pl, _]), Some([_, ph, _])) => Control::MeanPressure(0.5 * (pl + ph)),
-                _ if miss.is_finite() => at(delta - c0 * p, (delta - x) / c0),
+                _ if miss.is_finite() => at(delta - c0 * p, (delta - x) / c0, false),
                 // Pulled off with nothing above: half as tensile.
                 _ => Control::MeanPressure(0.5 * p),
             };
-            if let Control::MeanPressure(q) = next
-                && q >= ceiling
-            {
+            if let Control::MeanPressure(q) = next {
                 let below = low.map_or(0.0, |[_, pl, _]| pl.max(0.0));
-                next = Control::MeanPressure(0.5 * (below + ceiling));
+                if q >= ceiling {
+                    next = Control::MeanPressure(0.5 * (below + ceiling));
+                } else if repulsive && q < 0.0 {
+                    next = Control::MeanPressure(below);
+                }
             }
         }
         unreachable!("the last step returns")
     }
+}
+
+/// A solve as [`MeanMode::approach`] sees it: its [`Trial`], its termination to mark, and the
+/// work of earlier trials to add to its own.
+pub(crate) trait Solved {
+    /// Where it landed.
+    fn trial(&self) -> Trial;
+    /// Marks why the search stopped.
+    fn mark(&mut self, termination: Termination);
+    /// Adds the iterations, operator calls, wall time and residual history (in front) of
+    /// `earlier` to its own.
+    fn add_work(&mut self, earlier: &Self);
 }
 
 /// What [`MeanMode::approach`] needs of a trial solve, in the methods' frame.

@@ -31,7 +31,7 @@ pub use state::{AdhesiveState, Start};
 
 use crate::error::{Result, SolverError, invalid};
 use crate::interface::Interface;
-use crate::mean_mode::{MeanMode, Trial};
+use crate::mean_mode::{MeanMode, Solved, Trial};
 use crate::method::{Method, Settings};
 use crate::options::Control;
 use elastic::Compliance;
@@ -105,16 +105,17 @@ pub(crate) fn solve(
     // Each trial starts from the caller's permanent set, seeded by the last trial's fields.
     let before = warm.as_ref().and_then(|w| w.contact.permanent_set.clone());
     let guess = warm.as_ref().map_or(0.0, mean_of);
-    let tolerance = settings.tolerance * parts.law.range();
-    let mean_gap = parts.g0.mean().unwrap_or(0.0);
-    // The trials' work, reported as the solve's.
-    let (mut iterations, mut calls, mut wall, mut history) = (None::<Iterations>, 0, 0.0, Vec::new());
-    let mut solution = mean.approach(
+    let bounds = (
+        parts.g0.mean().unwrap_or(0.0),
+        parts.interface.hardness.unwrap_or(f64::INFINITY),
+    );
+    // Approach trials below the mean gap: they follow the branches loads cannot.
+    let solution = mean.approach(
         delta,
         guess,
-        mean_gap,
-        tolerance,
-        parts.interface.hardness.unwrap_or(f64::INFINITY),
+        bounds,
+        settings.tolerance * parts.law.range(),
+        false,
         |control, last: Option<&(AdhesiveState, AdhesiveReport)>| {
             let seed = last.map(|(s, _)| {
                 let mut s = s.clone();
@@ -122,29 +123,9 @@ pub(crate) fn solve(
                 s
             });
             let from = seed.as_ref().map_or(start, Start::Warm);
-            let (s, r) = solve_relative(parts, control, settings, from, observer)?;
-            match iterations.as_mut() {
-                Some(total) => total.accumulate(&r.iterations),
-                None => iterations = Some(r.iterations),
-            }
-            calls += r.operator_calls;
-            wall += r.wall_time_s;
-            history.extend_from_slice(&r.residual_history);
-            let trial = Trial {
-                approach: r.approach,
-                mean_pressure: r.mean_pressure,
-                termination: r.termination,
-            };
-            Ok(((s, r), trial))
+            solve_relative(parts, control, settings, from, observer)
         },
-        |(_, r), t| r.termination = t,
     )?;
-    let report = &mut solution.1;
-    if let Some(total) = iterations {
-        report.iterations = total;
-    }
-    (report.operator_calls, report.wall_time_s) = (calls, wall);
-    report.residual_history = history;
     Ok(to_base(solution))
 }
 
@@ -255,4 +236,28 @@ fn solve_relative(
         &[("load", report.load), ("approach", report.approach)],
     )?;
     Ok((state, report))
+}
+
+impl Solved for (AdhesiveState, AdhesiveReport) {
+    fn trial(&self) -> Trial {
+        Trial {
+            approach: self.1.approach,
+            mean_pressure: self.1.mean_pressure,
+            termination: self.1.termination,
+        }
+    }
+
+    fn mark(&mut self, termination: crate::report::Termination) {
+        self.1.termination = termination;
+    }
+
+    fn add_work(&mut self, earlier: &Self) {
+        let (report, earlier) = (&mut self.1, &earlier.1);
+        let mut iterations = earlier.iterations;
+        iterations.accumulate(&report.iterations);
+        report.iterations = iterations;
+        report.operator_calls += earlier.operator_calls;
+        report.wall_time_s += earlier.wall_time_s;
+        report.residual_history = [earlier.residual_history.as_slice(), &report.residual_history].concat();
+    }
 }

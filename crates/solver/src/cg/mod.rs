@@ -23,7 +23,7 @@ mod capped;
 use crate::error::{Result, SolverError};
 use crate::fields::{flat, flat_mut};
 use crate::interface::{Interface, Yield};
-use crate::mean_mode::{MeanMode, Trial};
+use crate::mean_mode::{MeanMode, Solved, Trial};
 use crate::observer::Observer;
 use crate::options::{ContactOptions, Control};
 use crate::report::{ContactReport, Termination, count_clusters};
@@ -96,39 +96,28 @@ pub fn solve_with(
     // Each trial starts from the caller's permanent set, seeded by the last trial's pressure.
     let before = warm.as_ref().and_then(|w| w.permanent_set.clone());
     let guess = warm.as_ref().map_or(0.0, |w| w.pressure.mean().unwrap_or(0.0));
-    let tolerance = options.tolerance * gap_scale(g0);
-    let mean_gap = g0.mean().unwrap_or(0.0);
-    // The trials' work, reported as the solve's.
-    let (mut iterations, mut calls, mut wall, mut history) = (0, 0, 0.0, Vec::new());
-    let mut solution = mean.approach(
+    let bounds = (
+        g0.mean().unwrap_or(0.0),
+        interface.hardness.unwrap_or(f64::INFINITY),
+    );
+    // Load trials after the first: the preconditioned iteration takes loads only. One set of
+    // buffers (and preconditioner) for every trial.
+    let scratch = &mut Scratch::new(op);
+    let solution = mean.approach(
         delta,
         guess,
-        mean_gap,
-        tolerance,
-        interface.hardness.unwrap_or(f64::INFINITY),
+        bounds,
+        options.tolerance * gap_scale(g0),
+        true,
         |control, last: Option<&(ContactState, ContactReport)>| {
             let seed = last.map(|(s, _)| ContactState {
                 permanent_set: before.clone(),
                 ..s.clone()
             });
             let from = seed.as_ref().or(warm.as_ref());
-            let (s, r) = solve_relative(op, g0, interface, control, options, from, observer)?;
-            iterations += r.iterations;
-            calls += r.operator_calls;
-            wall += r.wall_time_s;
-            history.extend_from_slice(&r.residual_history);
-            let trial = Trial {
-                approach: r.approach,
-                mean_pressure: r.mean_pressure,
-                termination: r.termination,
-            };
-            Ok(((s, r), trial))
+            solve_relative_in(scratch, g0, interface, control, options, from, observer)
         },
-        |(_, r), t| r.termination = t,
     )?;
-    let report = &mut solution.1;
-    (report.iterations, report.operator_calls, report.wall_time_s) = (iterations, calls, wall);
-    report.residual_history = history;
     Ok(to_base(solution))
 }
 
@@ -143,6 +132,21 @@ pub(crate) fn solve_relative(
     warm: Option<&ContactState>,
     observer: &mut dyn Observer,
 ) -> Result<(ContactState, ContactReport)> {
+    let scratch = &mut Scratch::new(op);
+    solve_relative_in(scratch, g0, interface, control, options, warm, observer)
+}
+
+/// [`solve_relative`] with the buffers of `scratch` (repeated solves on one grid).
+fn solve_relative_in(
+    scratch: &mut Scratch,
+    g0: ArrayView2<f64>,
+    interface: &Interface,
+    control: Control,
+    options: &ContactOptions,
+    warm: Option<&ContactState>,
+    observer: &mut dyn Observer,
+) -> Result<(ContactState, ContactReport)> {
+    let op = scratch.op;
     interface.validate()?;
     let mut state = match warm {
         Some(w) => w.clone(),
@@ -164,9 +168,8 @@ pub(crate) fn solve_relative(
              (its mean pressure is then unbounded; prescribe a load instead)",
         ));
     }
-    let mut scratch = Scratch::new(op);
     let mut report = solve_in(
-        &mut scratch,
+        scratch,
         g0,
         interface.cap(),
         control,
@@ -863,5 +866,27 @@ fn report(
         termination: Termination::Converged,
         operator_calls: 0,
         wall_time_s: 0.0,
+    }
+}
+
+impl Solved for (ContactState, ContactReport) {
+    fn trial(&self) -> Trial {
+        Trial {
+            approach: self.1.approach,
+            mean_pressure: self.1.mean_pressure,
+            termination: self.1.termination,
+        }
+    }
+
+    fn mark(&mut self, termination: Termination) {
+        self.1.termination = termination;
+    }
+
+    fn add_work(&mut self, earlier: &Self) {
+        let (report, earlier) = (&mut self.1, &earlier.1);
+        report.iterations += earlier.iterations;
+        report.operator_calls += earlier.operator_calls;
+        report.wall_time_s += earlier.wall_time_s;
+        report.residual_history = [earlier.residual_history.as_slice(), &report.residual_history].concat();
     }
 }
