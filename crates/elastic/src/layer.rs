@@ -1,4 +1,5 @@
-//! An elastic layer of finite thickness on a rigid base: its surface compliance by wavenumber.
+//! An elastic layer of finite thickness on a rigid base or an elastic substrate: its surface
+//! compliance by wavenumber.
 //!
 //! A layer of thickness `h` \[m\], Poisson's ratio `nu` and plane-strain modulus
 //! `E* = E / (1 - nu^2)` on a rigid base, loaded by a normal pressure on its frictionless top,
@@ -13,7 +14,9 @@
 //! Both tend to 1 as `x -> oo` (the half-space) and give a finite mean mode: `h / M` bonded, with
 //! `M = E* (1 - nu)^2 / (1 - 2 nu)` the P-wave modulus (0 when incompressible: no volume to
 //! lose), `h / E*` frictionless (every mode is a plane wave, in plane strain along its crests).
-//! Evaluated without overflow at any `x`, and without cancellation as `x -> 0`.
+//! Evaluated without overflow at any `x`, and without cancellation as `x -> 0`. On an elastic
+//! substrate (a coating) the factor is solved a wavenumber from Navier's equations
+//! ([`Base::Substrate`]; docs/method.md section 12).
 
 use crate::error::{ElasticError, Result};
 use std::f64::consts::PI;

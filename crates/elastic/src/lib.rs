@@ -9,11 +9,10 @@
 //! - [`Free`]: Love's exact influence coefficients for rectangular cells, applied as a linear
 //!   convolution on a zero-padded grid (DC-FFT); the displacement vanishes at infinity.
 //!
-//!
 //! Both take a [`Body`] other than the half-space: a [`Layer`] of finite thickness on a rigid
-//! base, bonded or frictionless, whose compliance by wavenumber is the half-space's times a
-//! factor of `q h` (on free grids, Love's coefficients plus the layer's correction in real
-//! space).
+//! base, bonded or frictionless, or on an elastic substrate (periodic grids only), whose
+//! compliance by wavenumber is the half-space's times a factor of `q h` (on free grids, Love's
+//! coefficients plus the layer's correction in real space).
 //!
 //! Both operators are [`Compliance`] operators ([`PeriodicStiffness`] inverts the periodic one,
 //! [`FreeStiffness`] the free one on its padded grid):
