@@ -358,16 +358,18 @@ fn coating_ratio(x: f64, (e1, nu1): (f64, f64), (e2, nu2): (f64, f64)) -> f64 {
         }
     }
     a[0][6] = -1.0;
-    let y = solve6(a);
+    let y = eliminate(a);
     // W(0) = c1 + (c2 + d2 (-x)) e^{-x}, in units of 1 / (E* q); the half-space's is 2.
     let w0 = y[0] + top.1[0][0] * y[2] + top.1[0][1] * y[3];
     w0 / 2.0
 }
 
-/// Gaussian elimination with partial pivoting of a 6 x 6 system (right-hand side last).
-fn solve6(mut a: [[f64; 7]; 6]) -> [f64; 6] {
-    for c in 0..6 {
-        let p = (c..6).fold(c, |p, i| if a[i][c].abs() > a[p][c].abs() { i } else { p });
+/// Gaussian elimination with partial pivoting of an `N` x `N` system, its right-hand side the
+/// last of the `M = N + 1` columns.
+fn eliminate<const N: usize, const M: usize>(mut a: [[f64; M]; N]) -> [f64; N] {
+    debug_assert_eq!(M, N + 1);
+    for c in 0..N {
+        let p = (c..N).fold(c, |p, i| if a[i][c].abs() > a[p][c].abs() { i } else { p });
         a.swap(c, p);
         let pivot = a[c];
         for row in a.iter_mut().skip(c + 1) {
@@ -375,9 +377,9 @@ fn solve6(mut a: [[f64; 7]; 6]) -> [f64; 6] {
             row.iter_mut().zip(&pivot).skip(c).for_each(|(v, p)| *v -= f * p);
         }
     }
-    let mut y = [0.0; 6];
-    for c in (0..6).rev() {
-        y[c] = (a[c][6] - (c + 1..6).map(|k| a[c][k] * y[k]).sum::<f64>()) / a[c][c];
+    let mut y = [0.0; N];
+    for c in (0..N).rev() {
+        y[c] = (a[c][N] - (c + 1..N).map(|k| a[c][k] * y[k]).sum::<f64>()) / a[c][c];
     }
     y
 }
@@ -477,7 +479,7 @@ mod tests {
         let row = |i: usize| [at_base[0][i], at_base[1][i], at_base[2][i], at_base[3][i]];
         // sigma_zz(0) = lambda (-q U + W') + 2 mu W' = -1, sigma_xz(0) ~ U' + q W = 0,
         // W(1) = 0, and U'(1) = 0 (frictionless) or U(1) = 0 (bonded).
-        let mut a = [
+        let a = [
             [-lambda * q, 0.0, 0.0, lambda + 2.0 * mu, -1.0],
             [0.0, 1.0, q, 0.0, 0.0],
             [row(2)[0], row(2)[1], row(2)[2], row(2)[3], 0.0],
@@ -487,24 +489,8 @@ mod tests {
                 Base::Substrate { .. } => unreachable!("rigid bases only"),
             },
         ];
-        // Gaussian elimination with partial pivoting.
-        for c in 0..4 {
-            let p = (c..4)
-                .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
-                .unwrap();
-            a.swap(c, p);
-            let pivot = a[c];
-            for r in a.iter_mut().skip(c + 1) {
-                let m = r[c] / pivot[c];
-                r.iter_mut().zip(&pivot).skip(c).for_each(|(x, p)| *x -= m * p);
-            }
-        }
-        let mut y0 = [0.0; 4];
-        for c in (0..4).rev() {
-            y0[c] = (a[c][4] - (c + 1..4).map(|k| a[c][k] * y0[k]).sum::<f64>()) / a[c][c];
-        }
         // The pressure pushes the surface into the layer, W(0) > 0.
-        y0[2]
+        eliminate(a)[2]
     }
 
     #[test]
