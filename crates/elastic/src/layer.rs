@@ -181,6 +181,9 @@ const GAUSS: [(f64, f64); 8] = [
 /// decays exponentially, below `1e-14 / (pi E* h)` there for every base and `nu` in `[0, 0.5]`.
 const CUT: f64 = 40.0;
 
+/// Cells wider than this many thicknesses see the layer as Winkler's bed ([`RealSpace::thin`]).
+const THIN: f64 = 64.0;
+
 /// Spacing of the tabulated correction in distance over thickness: cubic interpolation on it is
 /// good to about 1e-9 of the correction.
 const TABLE_STEP: f64 = 0.02;
@@ -195,6 +198,8 @@ const TABLE_STEP: f64 = 0.02;
 #[derive(Clone, Debug)]
 pub(crate) struct RealSpace {
     thickness: f64,
+    /// The mean mode's compliance \[m/Pa\] (0 on a substrate, which free grids refuse).
+    winkler: f64,
     /// `F` at `s = k TABLE_STEP`, `k = 0..`, one point past [`CUT`] on either side for the
     /// interpolation.
     table: Vec<f64>,
@@ -230,8 +235,25 @@ impl RealSpace {
             .collect();
         RealSpace {
             thickness: layer.thickness,
+            winkler: layer.mean_compliance(e_star).unwrap_or(0.0),
             table,
         }
+    }
+
+    /// On cells wider than [`THIN`] thicknesses, the coefficient of a cell at offset `(x, y)`
+    /// \[m\] from the loaded one of half-sides `a`, `b`: the mean mode's compliance on itself,
+    /// nothing elsewhere. The layer's influence dies within a few thicknesses, so a cell's own
+    /// centre sinks as under a uniform load to within `exp(-THIN)`-small terms, and its
+    /// neighbours' centres, 32 thicknesses away, not at all (the quadrature would take
+    /// `(8 THIN)^2` points a cell); `None` on thicker layers.
+    pub(crate) fn thin(&self, x: f64, y: f64, a: f64, b: f64) -> Option<f64> {
+        (2.0 * a.max(b) > THIN * self.thickness).then(|| {
+            if x.abs() < a && y.abs() < b {
+                self.winkler
+            } else {
+                0.0
+            }
+        })
     }
 
     /// `F(s)` by cubic interpolation in the table, `s` in `[0, CUT]`.
@@ -255,6 +277,9 @@ impl RealSpace {
     /// the cut (the caller takes zero there).
     pub(crate) fn cell_correction(&self, x: f64, y: f64, a: f64, b: f64, e_star: f64) -> Option<f64> {
         let h = self.thickness;
+        if 2.0 * a.max(b) > THIN * h {
+            return None;
+        }
         // The nearest point of the cell.
         let near = (x.abs() - a).max(0.0).hypot((y.abs() - b).max(0.0));
         if near > CUT * h {

@@ -180,3 +180,26 @@ fn a_thin_layer_under_a_wide_load_is_winklers_foundation() {
     );
     assert!(u[(32, 5)].abs() < 1e-9 * winkler, "{}", u[(32, 5)]);
 }
+
+#[test]
+fn a_layer_far_thinner_than_a_cell_is_winklers_bed_cell_by_cell() {
+    // A hundredth of a cell thick: each cell sinks by h / M under its own pressure alone.
+    let (n, d) = (16, 1e-6);
+    let domain = Domain {
+        nx: n,
+        ny: n,
+        dx: d,
+        dy: d,
+        periodic: false,
+    };
+    let mut p = Array2::zeros((n, n));
+    p[(8, 8)] = 1e6;
+    let layer = Layer::new(d / 100.0, 0.3, Base::Bonded).unwrap();
+    let u = apply(&Free::with_body(domain, E_STAR, Body::Layer(layer)).unwrap(), &p);
+    let own = 1e6 * layer.compliance(0.0, E_STAR);
+    assert!((u[(8, 8)] / own - 1.0).abs() < 1e-12, "{} {own}", u[(8, 8)]);
+    assert!(
+        u.indexed_iter()
+            .all(|((j, i), v)| (j, i) == (8, 8) || v.abs() < 1e-12 * own)
+    );
+}
