@@ -47,12 +47,13 @@ impl MeanMode {
     /// layer's compression takes up the rest). Without adhesion (`repulsive`), `p` after the
     /// first trial too (the non-adhesive iteration is faster under a load; an approach follows
     /// the unstable branches a load cannot), kept at or above zero, and first touch (`x = 0`
-    /// at no load) is a known point of the curve. Load trials stay below `bounds.1` \[Pa\] (a hardness: no
-    /// surface carries more), halfway to it from below where a step would pass it. The first
-    /// trial is at `x = delta - C0 p_guess` (`p_guess` \[Pa\]: the warm start's); then the
+    /// at no load) is a known point of the curve. Load trials stay below `bounds.1` \[Pa\] (a
+    /// hardness: no surface carries more), halfway to it from below where a step would pass
+    /// it. The first trial is at `x = delta - C0 p_guess` (`p_guess` \[Pa\]: the warm
+    /// start's); then the secant through the last two trials where it falls inside the
+    /// bracket, else the chord between the two sides (Illinois' false position), else the
     /// fixed-point step (`x = delta - C0 p`, or `p = (delta - x) / C0`), which crosses the root
-    /// on a rising curve; then the chord between the two sides (Illinois' false position). A
-    /// trial that pulls off counts as too tensile. After [`MAX_STEPS`] trials the last is marked
+    /// on a rising curve. A trial that pulls off counts as too tensile. After [`MAX_STEPS`] trials the last is marked
     /// [`Termination::MaxIterations`]. The solution reports every trial's work
     /// ([`Solved::add_work`]).
     pub(crate) fn approach<S: Solved>(
