@@ -69,24 +69,20 @@ impl Periodic {
             }
         });
         // The circulant's diagonal, the mean of the multiplier over the grid, mean mode included
-        // (the half-space keeps Love's self-coefficient).
+        // (the half-space keeps Love's self-coefficient). The half layout holds the columns
+        // kx = 1 .. (nx - 1) / 2 for their mirror images too.
         let cell = match body {
             Body::HalfSpace => domain.cell_compliance(e_star),
             Body::Layer(_) => {
-                let Domain { dx, dy, .. } = domain;
-                let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
-                let total: f64 = (0..ny)
-                    .flat_map(|ky| (0..nx).map(move |kx| (kx, ky)))
-                    .map(|(kx, ky)| {
-                        let q = wavevector(kx, nx, lx).hypot(wavevector(ky, ny, ly));
-                        if q == 0.0 {
-                            body.mean_compliance(e_star).unwrap_or(0.0)
-                        } else {
-                            2.0 / (e_star * q) * body.compliance_ratio(q, e_star)
-                        }
+                let total: f64 = kernel
+                    .outer_iter()
+                    .enumerate()
+                    .map(|(kx, row)| {
+                        let copies = if kx > 0 && 2 * kx < nx { 2.0 } else { 1.0 };
+                        copies * row.sum()
                     })
                     .sum();
-                total / (nx * ny) as f64
+                (total + body.mean_compliance(e_star).unwrap_or(0.0)) / (nx * ny) as f64
             }
         };
         Ok(Periodic {

@@ -133,6 +133,15 @@ fn the_periodic_layer_scales_each_mode_and_leaves_the_mean_to_its_compliance() {
             .unwrap();
         assert!((&back - &p).iter().all(|v| v.abs() < 1e-9 * 1e5), "k=({kx},{ky})");
     }
+    // A cell's own compliance is the operator's diagonal, the mean mode's share included.
+    let mut impulse = Array2::zeros((ny, nx));
+    impulse[(0, 0)] = 1.0;
+    let diagonal = apply(&op, &impulse)[(0, 0)] + op.mean_compliance() / (nx * ny) as f64;
+    assert!(
+        (op.cell_compliance() / diagonal - 1.0).abs() < 1e-12,
+        "{} {diagonal}",
+        op.cell_compliance()
+    );
     assert_eq!(op.mean_compliance(), layer.compliance(0.0, E_STAR));
     assert!(op.mean_compliance() > 0.0);
     let half_space = Periodic::new(domain, E_STAR).unwrap();

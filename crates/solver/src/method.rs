@@ -87,8 +87,9 @@ impl Method {
     pub const FLOW_ABOVE: f64 = 8.0;
 
     /// The method for `law` under `control` on `domain`, whose cells have the compliance
-    /// `cell_compliance` \[m/Pa\] ([`elastic::Compliance::cell_compliance`]), across `interface`: itself, or for [`Method::Auto`] the energy descent
-    /// for the laws with an energy (local, or of the field without a hardness, which the
+    /// `cell_compliance` \[m/Pa\] ([`elastic::Compliance::cell_compliance`]), across
+    /// `interface`: itself, or for [`Method::Auto`] the energy descent for the laws with an
+    /// energy (local, or of the field without a hardness, which the
     /// descent does not take with it); for the other laws with a flat potential (the line
     /// and surface laws, and the surface-energy law under a hardness) under approach control
     /// Newton where the law's stiffness bound is at most [`Method::FLOW_ABOVE`] times a cell's

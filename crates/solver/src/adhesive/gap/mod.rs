@@ -153,6 +153,9 @@ pub(super) struct Problem<'a> {
     /// without the law's stiffness in closed form; made at the first probe); the cells'
     /// energies (a field energy); empty otherwise.
     probe: (Array2<f64>, Array2<f64>),
+    /// Under a hardness, the block's gaps as the law reads them ([`Problem::close_gaps`]); made
+    /// when a cell first yields.
+    closed: Array2<f64>,
     /// The unknown less the surface displacement \[m\] (up to its mean, periodic): `g0` periodic;
     /// `g0 - delta` on the domain's block and zero in the padding, free.
     base: Array2<f64>,
@@ -374,18 +377,18 @@ impl Problem<'_> {
             .then(|| self.law.stiffness_rows())
             .flatten()
             .filter(|_| self.couple && (mx, self.my) == (nx, ny));
-        // The gaps the law reads here (`law_on_block` makes its own).
-        let closed = if law_rows.is_some() || matches!(energy, Energy::Field(_)) {
-            self.law_gaps(at)
-        } else {
-            None
-        };
+        // The gaps the law reads here (`law_on_block` closes its own).
+        let closed = (law_rows.is_some() || matches!(energy, Energy::Field(_))) && self.close_gaps(at);
         match energy {
             Energy::None if law_rows.is_some() => {}
             Energy::None => self.law_on_block(at)?,
             Energy::Field(field) => {
                 let block = s![..self.ny, ..self.nx];
-                let gap = closed.as_ref().map_or_else(|| at.gap.slice(block), |c| c.view());
+                let gap = if closed {
+                    self.closed.view()
+                } else {
+                    at.gap.slice(block)
+                };
                 field.evaluate_field(
                     gap,
                     &self.cells,
@@ -416,9 +419,11 @@ impl Problem<'_> {
             None => (0..self.my).map(|_| None).collect(),
         };
         let elastic_rows: Vec<&mut [f64]> = flat_mut(&mut at.elastic).chunks_mut(mx).collect();
-        let block_gap = closed
-            .as_ref()
-            .map_or_else(|| at.gap.slice(s![..ny, ..nx]), |c| c.view());
+        let block_gap = if closed {
+            self.closed.view()
+        } else {
+            at.gap.slice(s![..ny, ..nx])
+        };
         let coupling = &at.coupling;
         let shared = &*self;
         let rows: Vec<(RowSums, S)> = flat_mut(&mut at.law)
@@ -531,16 +536,22 @@ impl Problem<'_> {
         }
     }
 
-    /// Under a hardness, with a cell yielded below the wall, the block's gaps as the law sees
-    /// them: closed there (the yielded surface lies on the counterface; a law of the
-    /// neighbours' gaps would otherwise read the overlap as a tilt). Else `None`: the gaps
-    /// themselves.
-    fn law_gaps(&self, at: &Point) -> Option<Array2<f64>> {
+    /// Under a hardness, with a cell yielded below the wall, writes the block's gaps as the law
+    /// sees them into `closed` and returns true: closed there (the yielded surface lies on the
+    /// counterface; a law of the neighbours' gaps would otherwise read the overlap as a tilt).
+    /// Else false: the law reads the gaps themselves.
+    fn close_gaps(&mut self, at: &Point) -> bool {
         let block = at.gap.slice(s![..self.ny, ..self.nx]);
         if !self.cap.is_finite() || !block.iter().any(|&g| g < 0.0) {
-            return None;
+            return false;
         }
-        Some(block.mapv(|g| g.max(0.0)))
+        if self.closed.dim() != block.dim() {
+            self.closed = Array2::zeros(block.dim());
+        }
+        Zip::from(&mut self.closed)
+            .and(&block)
+            .par_for_each(|c, &g| *c = g.max(0.0));
+        true
     }
 
     /// Writes the law's pressure at `at`'s gaps on the domain's block into `at.law`, and its
@@ -551,8 +562,11 @@ impl Problem<'_> {
     /// evaluated as a whole.
     fn law_on_block(&mut self, at: &mut Point) -> Result<()> {
         let block = s![..self.ny, ..self.nx];
-        let closed = self.law_gaps(at);
-        let gap = closed.as_ref().map_or_else(|| at.gap.slice(block), |c| c.view());
+        let gap = if self.close_gaps(at) {
+            self.closed.view()
+        } else {
+            at.gap.slice(block)
+        };
         if self.couple {
             if at.coupling.dim() != (self.ny, self.nx) {
                 at.coupling = Array2::zeros((self.ny, self.nx));

@@ -83,6 +83,7 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
             cells,
             domain,
             probe: (Array2::zeros(energies), Array2::zeros((0, 0))),
+            closed: Array2::zeros((0, 0)),
             couple: false,
             base,
             mx,
