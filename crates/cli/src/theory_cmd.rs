@@ -15,7 +15,7 @@ pub struct TheoryArgs {
     #[arg(short, long, global = true)]
     output: Option<PathBuf>,
     /// Print the model's characteristic numbers instead of the curve (maugis, jkr, dmt,
-    /// greenwood, wavy; sticky prints only those).
+    /// greenwood, wavy, layer; sticky prints only those).
     #[arg(long, global = true)]
     summary: bool,
     /// With --summary: as JSON (snake_case keys).
@@ -81,9 +81,12 @@ enum Model {
         #[arg(long)]
         max_approach: f64,
     },
-    /// Rigid sphere on an elastic layer on a rigid base: Dimitriadis et al. (2002)'s
-    /// correction of Hertz in chi = sqrt(R delta) / h (a fit for chi <~ 0.5), beside Hertz and,
-    /// bonded, the thin compressible layer's Winkler limit P = pi M R delta^2 / h (SI units).
+    /// Rigid sphere on an elastic layer: the exact frictionless contact (Lebedev-Ufliand's
+    /// equation by quadrature) beside Hertz, Dimitriadis et al. (2002)'s fit in
+    /// chi = sqrt(R delta) / h (chi <~ 0.5, rigid bases) and, bonded, the thin compressible
+    /// layer's Winkler limit P = pi M R delta^2 / h; rows step the contact radius. --summary
+    /// with --work-of-adhesion: JKR's pull-off on the layer (SI units).
+    #[command(allow_hyphen_values = true)]
     Layer {
         /// Sphere radius R [m].
         #[arg(long)]
@@ -100,9 +103,18 @@ enum Model {
         /// How the layer meets its base.
         #[arg(long, value_enum, default_value = "bonded")]
         layer_base: case::LayerBase,
-        /// Largest approach on the curve [m].
+        /// With --layer-base elastic: the substrate's plane-strain modulus [Pa].
         #[arg(long)]
-        max_approach: f64,
+        substrate_modulus: Option<f64>,
+        /// With --layer-base elastic: the substrate's Poisson's ratio [-].
+        #[arg(long)]
+        substrate_poisson: Option<f64>,
+        /// Largest approach on the curve [m] (not with --summary).
+        #[arg(long, required_unless_present = "summary")]
+        max_approach: Option<f64>,
+        /// Work of adhesion w [J/m^2]: with --summary, JKR's pull-off on the layer.
+        #[arg(long)]
+        work_of_adhesion: Option<f64>,
     },
     /// Rigid wave A cos(2 pi x / lambda) on an elastic half-space (plane strain): Westergaard's
     /// and Johnson's (1995) JKR mean pressure [Pa] against the contact strip's half-width a
@@ -185,56 +197,132 @@ fn hertz(a: &TheoryArgs, r: f64, e: f64, max: f64) -> Result<()> {
     Ok(())
 }
 
-fn layer(a: &TheoryArgs, (r, e, h, nu): (f64, f64, f64, f64), base: case::LayerBase, max: f64) -> Result<()> {
-    for (name, v) in [
-        ("--radius", r),
-        ("--modulus", e),
-        ("--thickness", h),
-        ("--max-approach", max),
-    ] {
+/// The sphere on a layer: `--radius`, `--modulus`, `--thickness` and `--poisson`, the base,
+/// and the largest approach or (with `--summary`) the work of adhesion.
+struct LayerSphere {
+    r: f64,
+    e: f64,
+    layer: elastic::Layer,
+}
+
+fn layer_of(
+    (r, e, h, nu): (f64, f64, f64, f64),
+    base: case::LayerBase,
+    substrate: (Option<f64>, Option<f64>),
+) -> Result<LayerSphere> {
+    for (name, v) in [("--radius", r), ("--modulus", e)] {
         if !(v.is_finite() && v > 0.0) {
             bail!("{name} must be finite and > 0, got {v}");
         }
     }
-    if !(nu > -1.0 && nu <= 0.5) {
-        bail!("--poisson must lie in (-1, 0.5], got {nu}");
-    }
-    let base = match base {
-        case::LayerBase::Bonded => theory::layer::Base::Bonded,
-        case::LayerBase::Frictionless => theory::layer::Base::Frictionless,
-        case::LayerBase::Elastic => {
-            bail!("--layer-base elastic: Dimitriadis' corrections are for a rigid base")
+    let base = match (base, substrate) {
+        (case::LayerBase::Bonded, (None, None)) => elastic::Base::Bonded,
+        (case::LayerBase::Frictionless, (None, None)) => elastic::Base::Frictionless,
+        (case::LayerBase::Elastic, (Some(e_star), Some(poisson))) => {
+            elastic::Base::Substrate { e_star, poisson }
         }
+        (case::LayerBase::Elastic, _) => {
+            bail!("--layer-base elastic needs --substrate-modulus [Pa] and --substrate-poisson")
+        }
+        _ => bail!("--substrate-modulus and --substrate-poisson are a coating's: give --layer-base elastic"),
     };
+    let layer = elastic::Layer::new(h, nu, base).map_err(|e| match e {
+        elastic::ElasticError::InvalidParameter { name, value, reason } => {
+            anyhow::anyhow!("--{} {reason}, got {value}", name.replace('_', "-"))
+        }
+        other => other.into(),
+    })?;
+    Ok(LayerSphere { r, e, layer })
+}
+
+fn layer(a: &TheoryArgs, s: &LayerSphere, max: Option<f64>, w: Option<f64>) -> Result<()> {
+    let (r, e, h, nu) = (s.r, s.e, s.layer.thickness, s.layer.poisson);
+    let body = theory::layer::LayerContact::new(h, e, |x| s.layer.compliance_ratio(x / h, e));
     let mut out = open(a)?;
+    if a.summary {
+        let Some(w) = w.filter(|w| w.is_finite() && *w > 0.0) else {
+            bail!("--summary for `theory layer` is JKR's pull-off: give --work-of-adhesion > 0 [J/m^2]");
+        };
+        let off = body.pull_off(r, w);
+        let half = theory::jkr_dmt::jkr_pull_off_load_control(r, w);
+        let a_half = (9.0 * std::f64::consts::PI * w * r * r / (8.0 * e)).cbrt();
+        if a.json {
+            let v = json!({
+                "model": "layer", "units": "loads in N (tensile < 0), lengths in m",
+                "pull_off_load": off.load,
+                "pull_off_contact_radius": off.radius,
+                "pull_off_approach": off.approach,
+                "half_space_pull_off_load": half,
+                "half_space_pull_off_contact_radius": a_half,
+            });
+            writeln!(out, "{}", serde_json::to_string_pretty(&v)?)?;
+        } else {
+            writeln!(out, "JKR sphere on a layer (exact Griffith balance)")?;
+            writeln!(
+                out,
+                "pull-off load          {:.6e} N at contact radius {:.4e} m, approach {:.4e} m",
+                off.load, off.radius, off.approach
+            )?;
+            writeln!(
+                out,
+                "on the half-space      {half:.6e} N at contact radius {a_half:.4e} m (the layer's is {:.4} times it)",
+                off.load / half
+            )?;
+        }
+        return Ok(());
+    }
+    if w.is_some() {
+        bail!("--work-of-adhesion gives JKR's pull-off on the layer: add --summary");
+    }
+    let max = max.unwrap_or(f64::NAN);
+    if !(max.is_finite() && max > 0.0) {
+        bail!("--max-approach must be finite and > 0, got {max}");
+    }
+    let rigid = match s.layer.base {
+        elastic::Base::Bonded => Some(theory::layer::Base::Bonded),
+        elastic::Base::Frictionless => Some(theory::layer::Base::Frictionless),
+        elastic::Base::Substrate { .. } => None,
+    };
     writeln!(
         out,
-        "approach_m,chi,dimitriadis_load_n,hertz_load_n,winkler_load_n"
+        "approach_m,chi,dimitriadis_load_n,hertz_load_n,winkler_load_n,load_n,contact_radius_m"
     )?;
-    let (mut layered, mut hertz) = (Vec::new(), Vec::new());
+    let (mut exact, mut fitted, mut hertz) = (Vec::new(), Vec::new(), Vec::new());
+    // Rows step the contact radius: one solve a row (an approach would take a root search).
+    let a_max = body.hertz(max, r).radius;
     for k in 0..a.points() {
-        let d = max * k as f64 / (a.points() - 1) as f64;
+        let c = a_max * k as f64 / (a.points() - 1) as f64;
+        let (d, p) = if k == 0 {
+            (0.0, 0.0)
+        } else {
+            let s = body.sphere(c, r, 0.0);
+            (s.approach, s.load)
+        };
         let chi = (r * d).sqrt() / h;
-        let w = theory::layer::dimitriadis_load(d, r, h, e, nu, base);
+        let fit = rigid.map(|base| theory::layer::dimitriadis_load(d, r, h, e, nu, base));
         let w_h = theory::hertz::load_of_approach(d, r, e);
         // Winkler's bed is the bonded compressible layer's thin limit.
-        let winkler = if base == theory::layer::Base::Bonded && nu < 0.5 {
-            format!("{:e}", theory::layer::winkler_load(d, r, h, e, nu))
-        } else {
-            String::new()
-        };
-        writeln!(out, "{d:e},{chi:e},{w:e},{w_h:e},{winkler}")?;
-        layered.push((d, w));
+        let winkler = (rigid == Some(theory::layer::Base::Bonded) && nu < 0.5)
+            .then(|| theory::layer::winkler_load(d, r, h, e, nu));
+        let blank = |v: Option<f64>| v.map(|v| format!("{v:e}")).unwrap_or_default();
+        writeln!(
+            out,
+            "{d:e},{chi:e},{},{w_h:e},{},{p:e},{c:e}",
+            blank(fit),
+            blank(winkler)
+        )?;
+        exact.push((d, p));
         hertz.push((d, w_h));
+        if let Some(f) = fit {
+            fitted.push((d, f));
+        }
     }
     if let Some(path) = &a.plot {
-        draw_curves(
-            path,
-            "sphere on a layer",
-            "approach [m]",
-            "load [N]",
-            vec![("Dimitriadis", layered), ("Hertz", hertz)],
-        )?;
+        let mut curves = vec![("exact", exact), ("Hertz", hertz)];
+        if !fitted.is_empty() {
+            curves.push(("Dimitriadis", fitted));
+        }
+        draw_curves(path, "sphere on a layer", "approach [m]", "load [N]", curves)?;
     }
     Ok(())
 }
@@ -534,14 +622,17 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
             thickness,
             poisson,
             layer_base,
+            substrate_modulus,
+            substrate_poisson,
             max_approach,
+            work_of_adhesion,
         } => {
-            return layer(
-                &a,
+            let sphere = layer_of(
                 (radius, modulus, thickness, poisson),
                 layer_base,
-                max_approach,
-            );
+                (substrate_modulus, substrate_poisson),
+            )?;
+            return layer(&a, &sphere, max_approach, work_of_adhesion);
         }
         Model::Area { k, max_pressure } => return area(&a, k, max_pressure),
         Model::Wavy {
@@ -613,7 +704,7 @@ fn check_flags(a: &TheoryArgs) -> Result<()> {
     let radius = matches!(a.model, Model::Maugis { .. } | Model::Jkr | Model::Dmt);
     let summarised = !matches!(
         a.model,
-        Model::Hertz { .. } | Model::Layer { .. } | Model::Area { .. } | Model::Sticky { .. }
+        Model::Hertz { .. } | Model::Area { .. } | Model::Sticky { .. }
     );
     for (given, applies, flag) in [
         (a.summary, summarised, "--summary"),

@@ -293,12 +293,14 @@ fn solve(mut m: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
             .expect("a non-empty column");
         m.swap(c, p);
         b.swap(c, p);
-        for i in c + 1..n {
-            let f = m[i][c] / m[c][c];
-            for j in c..n {
-                m[i][j] -= f * m[c][j];
+        let (pivot, below) = m.split_at_mut(c + 1);
+        let pivot = &pivot[c];
+        for (offset, row) in below.iter_mut().enumerate() {
+            let f = row[c] / pivot[c];
+            for (x, p) in row[c..].iter_mut().zip(&pivot[c..]) {
+                *x -= f * p;
             }
-            b[i] -= f * b[c];
+            b[c + 1 + offset] -= f * b[c];
         }
     }
     for c in (0..n).rev() {
