@@ -411,6 +411,13 @@ fn print_cycle(
                     md.pull_off_load_control()
                 );
             }
+            if let elastic::Body::Layer(layer) = problem.operator.body() {
+                let jkr = exact_on(layer, problem.e_star()).pull_off(r, theory.work_of_adhesion);
+                line += &format!(
+                    "; JKR's on the layer, smooth: {:.4}",
+                    jkr.load / unit
+                );
+            }
             say!("{line}");
         }
     }
@@ -423,43 +430,27 @@ fn print_cycle(
     ) && let Some(deep) = cycle.iter().max_by(|a, b| a.approach.total_cmp(&b.approach))
         && deep.approach > 0.0
     {
-        // On a layer on a rigid base, Dimitriadis' correction of Hertz (a fit for
-        // chi = sqrt(R delta) / h <~ 0.5); a coating has none (and no free grid).
+        // On a layer, the exact frictionless sphere (theory::layer::LayerContact).
         let reference = match problem.operator.body() {
-            elastic::Body::Layer(layer) => {
-                let base = match layer.base {
-                    elastic::Base::Bonded => Some(theory::layer::Base::Bonded),
-                    elastic::Base::Frictionless => Some(theory::layer::Base::Frictionless),
-                    elastic::Base::Substrate { .. } => None,
-                };
-                let chi = (r * deep.approach).sqrt() / layer.thickness;
-                base.map(|base| {
-                    (
-                        format!("Dimitriadis (chi = {chi:.3})"),
-                        theory::layer::dimitriadis_load(
-                            deep.approach,
-                            r,
-                            layer.thickness,
-                            problem.e_star(),
-                            layer.poisson,
-                            base,
-                        ),
-                    )
-                })
-            }
-            elastic::Body::HalfSpace => Some((
+            elastic::Body::Layer(layer) => (
+                format!(
+                    "the exact sphere on the layer (chi = {:.3})",
+                    (r * deep.approach).sqrt() / layer.thickness
+                ),
+                exact_on(layer, problem.e_star()).hertz(deep.approach, r).load,
+            ),
+            elastic::Body::HalfSpace => (
                 "Hertz".to_string(),
                 theory::hertz::load_of_approach(deep.approach, r, problem.e_star()),
-            )),
+            ),
         };
-        if let Some((name, reference)) = reference {
-            say!(
-                "{name} at the deepest approach ({:.4e} m): {reference:.6e} N; solved {:.6e} N ({:+.2} %)",
-                deep.approach,
-                deep.load,
-                100.0 * (deep.load / reference - 1.0)
-            );
-        }
+        let (name, reference) = reference;
+        say!(
+            "{name} at the deepest approach ({:.4e} m): {reference:.6e} N; solved {:.6e} N ({:+.2} %)",
+            deep.approach,
+            deep.load,
+            100.0 * (deep.load / reference - 1.0)
+        );
     }
     // Under load control the contact area is the result: a line a step.
     if matches!(first, Control::MeanPressure(_)) {
@@ -502,6 +493,12 @@ fn print_cycle(
         );
     }
     Ok(())
+}
+
+/// A rigid sphere on `layer` of modulus `e_star` \[Pa\], solved exactly.
+fn exact_on(layer: elastic::Layer, e_star: f64) -> theory::layer::LayerContact<impl Fn(f64) -> f64> {
+    let h = layer.thickness;
+    theory::layer::LayerContact::new(h, e_star, move |x| layer.compliance_ratio(x / h, e_star))
 }
 
 /// Whether two resolved cases (TOML) are the same apart from their output directory, which
