@@ -45,7 +45,7 @@ pub enum LayerBase {
     /// Frictionless: the layer slides on the base.
     Frictionless,
     /// An elastic substrate (a coating), bonded: give --substrate-modulus and
-    /// --substrate-poisson. Periodic grids only.
+    /// --substrate-poisson.
     Elastic,
 }
 

@@ -131,22 +131,6 @@ fn bad_layers_are_refused_by_name() {
             ][..],
             "--substrate-poisson must be below 0.5",
         ),
-        // A coating's coefficients are built on periodic grids only: the sphere's grid is free.
-        (
-            &[
-                "--thickness",
-                "1e-4",
-                "--poisson",
-                "0.3",
-                "--layer-base",
-                "elastic",
-                "--substrate-modulus",
-                "1e9",
-                "--substrate-poisson",
-                "0.3",
-            ][..],
-            "periodic grids only",
-        ),
     ] {
         let o = sphere(&d.join("x"), extra);
         assert!(!o.status.success(), "{extra:?}");

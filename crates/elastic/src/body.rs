@@ -66,11 +66,7 @@ impl Influence {
         let love = cell_influence(x, y, a, b, self.e_star);
         match &self.layer {
             None => love,
-            Some(layer) => layer.thin(x, y, a, b).unwrap_or_else(|| {
-                layer
-                    .cell_correction(x, y, a, b, self.e_star)
-                    .map_or(0.0, |c| love + c)
-            }),
+            Some(layer) => layer.coefficient(x, y, a, b, self.e_star, love),
         }
     }
 }

@@ -192,14 +192,23 @@ const TABLE_STEP: f64 = 0.02;
 /// influence coefficients. By the Hankel transform, a point force `P` displaces the surface at
 /// distance `r` by `P G(r)` with `G(r) = [1/r + F(r/h)/h] / (pi E*)`, where
 /// `F(s) = int_0^oo (R(t) - 1) J0(s t) dt` and `R` is [`Layer::compliance_ratio`] at `q = t/h`.
-/// `F` is smooth and tends to `-1/s` (the half-space's tail cancelled) exponentially fast, so
-/// `G` vanishes beyond [`CUT`] thicknesses. `F` is tabulated once by Gauss-Legendre quadrature
-/// (`R - 1` decays as `exp(-2t)`, cut at `t = 30`; panels shorter than half a period of `J0`).
+/// `F` is smooth; it is tabulated once by Gauss-Legendre quadrature (`R - 1` decays as
+/// `exp(-2t)`, cut at `t = 30`; panels shorter than half a period of `J0`) up to [`CUT`]
+/// thicknesses. Beyond, `F` is its tail. With `rho = R(0)`, `F -> (rho - 1)/s`; on a rigid base
+/// `rho = 0` and `R` is odd in `t`, so `F + 1/s` dies exponentially and the whole influence
+/// vanishes. A coating keeps its substrate's `1/r` (`rho = E*/E*_substrate`) and algebraic
+/// terms from `R`'s even powers (`t^2` gives `-1/s^3`, `t^4` `9/s^5`): the tail is
+/// `(rho - 1)/s + A/s^3 + B/s^5`, `A` and `B` through `F` at [`CUT`] and 1.5 [`CUT`].
 #[derive(Clone, Debug)]
 pub(crate) struct RealSpace {
     thickness: f64,
-    /// The mean mode's compliance \[m/Pa\] (0 on a substrate, which free grids refuse).
-    winkler: f64,
+    /// `rho - 1`.
+    far: f64,
+    /// The tail's `A` and `B` ([`RealSpace::beyond`]).
+    tail: [f64; 2],
+    /// The local compliance \[m/Pa\] of wide cells, `2 rho1 h / E*`: on a rigid base the mean
+    /// mode's, Winkler's bed.
+    local: f64,
     /// `F` at `s = k TABLE_STEP`, `k = 0..`, one point past [`CUT`] on either side for the
     /// interpolation.
     table: Vec<f64>,
@@ -211,80 +220,70 @@ impl RealSpace {
         let points = (CUT / TABLE_STEP) as usize + 3;
         let table = (0..points)
             .into_par_iter()
-            .map(|k| {
-                let s = k as f64 * TABLE_STEP;
-                let width = if s > 0.0 { (PI / s).min(0.5) } else { 0.5 };
-                let panels = (30.0 / width).ceil() as usize;
-                let width = 30.0 / panels as f64;
-                (0..panels)
-                    .map(|i| {
-                        let middle = (i as f64 + 0.5) * width;
-                        GAUSS
-                            .iter()
-                            .map(|&(x, w)| {
-                                let t = middle + 0.5 * width * x;
-                                w * (layer.compliance_ratio(t / layer.thickness, e_star) - 1.0)
-                                    * libm::j0(s * t)
-                            })
-                            .sum::<f64>()
-                            * 0.5
-                            * width
-                    })
-                    .sum()
-            })
+            .map(|k| hankel(layer, e_star, k as f64 * TABLE_STEP))
             .collect();
+        let h = layer.thickness;
+        let (far, tail, local) = match layer.base {
+            Base::Substrate { e_star: e_sub, .. } => {
+                let rho = e_star / e_sub;
+                // The tail's two terms after the substrate's 1/s, through F at CUT and 1.5 CUT.
+                let (s1, s2) = (CUT, 1.5 * CUT);
+                let (f1, f2) = (
+                    hankel(layer, e_star, s1) - (rho - 1.0) / s1,
+                    hankel(layer, e_star, s2) - (rho - 1.0) / s2,
+                );
+                let b = (f1 * s1.powi(3) - f2 * s2.powi(3)) / (s1.powi(-2) - s2.powi(-2));
+                let a = f1 * s1.powi(3) - b / (s1 * s1);
+                // R's slope at t = 0, Richardson's from t = 1e-4 and 2e-4.
+                let slope = |t: f64| (layer.compliance_ratio(t / h, e_star) - rho) / t;
+                let rho1 = 2.0 * slope(1e-4) - slope(2e-4);
+                (rho - 1.0, [a, b], 2.0 * rho1 * h / e_star)
+            }
+            _ => (-1.0, [0.0; 2], layer.mean_compliance(e_star).unwrap_or(0.0)),
+        };
         RealSpace {
-            thickness: layer.thickness,
-            winkler: layer.mean_compliance(e_star).unwrap_or(0.0),
+            thickness: h,
+            far,
+            tail,
+            local,
             table,
         }
     }
 
-    /// On cells wider than [`THIN`] thicknesses, the coefficient of a cell at offset `(x, y)`
-    /// \[m\] from the loaded one of half-sides `a`, `b`: the mean mode's compliance on itself,
-    /// nothing elsewhere. The layer's influence dies within a few thicknesses, so a cell's own
-    /// centre sinks as under a uniform load to within `exp(-THIN)`-small terms, and its
-    /// neighbours' centres, 32 thicknesses away, not at all (the quadrature would take
-    /// `(8 THIN)^2` points a cell); `None` on thicker layers.
-    pub(crate) fn thin(&self, x: f64, y: f64, a: f64, b: f64) -> Option<f64> {
-        (2.0 * a.max(b) > THIN * self.thickness).then(|| {
-            if x.abs() < a && y.abs() < b {
-                self.winkler
-            } else {
-                0.0
-            }
-        })
-    }
-
-    /// `F(s)` by cubic interpolation in the table, `s` in `[0, CUT]`.
-    fn correction(&self, s: f64) -> f64 {
-        let at = s / TABLE_STEP;
-        // Four points k-1..k+2 around `at`; the table's evenness about 0 (F is even in s)
-        // supplies the point before the first.
-        let k = (at.floor() as usize).min(self.table.len() - 3);
-        let t = at - k as f64;
-        let f = |i: isize| self.table[i.unsigned_abs()];
-        let k = k as isize;
-        let (a, b, c, d) = (f(k - 1), f(k), f(k + 1), f(k + 2));
-        // Lagrange's cubic through the four.
-        let (tm, tp, t2) = (t - 1.0, t + 1.0, t - 2.0);
-        (-t * tm * t2 * a + 3.0 * tp * tm * t2 * b - 3.0 * tp * t * t2 * c + tp * t * tm * d) / 6.0
-    }
-
-    /// The displacement \[m\] at `(x, y)` \[m\] under unit pressure \[Pa\] on the cell `|x'| <= a`,
-    /// `|y'| <= b`, of the layer of plane-strain modulus `e_star` \[Pa\], less the half-space's
-    /// ([`crate::love::cell_influence`]); `None` where the layer's whole influence is below
-    /// the cut (the caller takes zero there).
-    pub(crate) fn cell_correction(&self, x: f64, y: f64, a: f64, b: f64, e_star: f64) -> Option<f64> {
+    /// The displacement \[m\] at offset `(x, y)` \[m\] from the centre of the loaded cell of
+    /// half-sides `a`, `b` under unit pressure \[Pa\] on it, given the half-space's
+    /// (`love`, [`crate::love::cell_influence`] at `e_star` \[Pa\]).
+    ///
+    /// On cells wider than [`THIN`] thicknesses the layer's influence dies within a fraction of
+    /// a cell: the far field (nothing on a rigid base, the substrate's half-space under a
+    /// coating) plus the local compliance on the loaded cell itself (the quadrature would take
+    /// `(8 THIN)^2` points a cell; the terms left out are of order `h / dx` of the layer's).
+    /// Beyond [`CUT`] thicknesses, the tail alone.
+    pub(crate) fn coefficient(&self, x: f64, y: f64, a: f64, b: f64, e_star: f64, love: f64) -> f64 {
         let h = self.thickness;
+        let far = (1.0 + self.far) * love;
         if 2.0 * a.max(b) > THIN * h {
-            return None;
+            return if x.abs() < a && y.abs() < b {
+                far + self.local
+            } else {
+                far
+            };
         }
         // The nearest point of the cell.
         let near = (x.abs() - a).max(0.0).hypot((y.abs() - b).max(0.0));
         if near > CUT * h {
-            return None;
+            return if self.tail == [0.0; 2] {
+                far
+            } else {
+                far + self.cell_integral(x, y, a, b, e_star, |s| self.beyond(s) - self.far / s)
+            };
         }
+        love + self.cell_integral(x, y, a, b, e_star, |s| self.correction(s))
+    }
+
+    /// `int F(r/h) dA / (pi E* h)` over the cell, `F` given.
+    fn cell_integral(&self, x: f64, y: f64, a: f64, b: f64, e_star: f64, f: impl Fn(f64) -> f64) -> f64 {
+        let h = self.thickness;
         // Panels no wider than the thickness, 8 points each way: `F` varies on the scale `h`.
         let panels = |half: f64| ((2.0 * half / h).ceil() as usize).max(1);
         let (px, py) = (panels(a), panels(b));
@@ -298,17 +297,58 @@ impl RealSpace {
                     let xm = -a + (i as f64 + 0.5) * wx;
                     for &(u, wu) in &GAUSS {
                         let s = (x - (xm + 0.5 * wx * u)).hypot(dy) / h;
-                        if s < CUT {
-                            sum += wu * wv * self.correction(s);
-                        } else {
-                            sum -= wu * wv / s;
-                        }
+                        sum += wu * wv * f(s);
                     }
                 }
             }
         }
-        Some(sum * 0.25 * wx * wy / (PI * e_star * h))
+        sum * 0.25 * wx * wy / (PI * e_star * h)
     }
+
+    /// `F(s)`'s tail, `(rho - 1)/s + A/s^3 + B/s^5`.
+    fn beyond(&self, s: f64) -> f64 {
+        let [a, b] = self.tail;
+        self.far / s + a / s.powi(3) + b / s.powi(5)
+    }
+
+    /// `F(s)`: inside [`CUT`] by cubic interpolation in the table, beyond it the tail.
+    fn correction(&self, s: f64) -> f64 {
+        if s >= CUT {
+            return self.beyond(s);
+        }
+        let at = s / TABLE_STEP;
+        // Four points k-1..k+2 around `at`; the table's evenness about 0 (F is even in s)
+        // supplies the point before the first.
+        let k = (at.floor() as usize).min(self.table.len() - 3);
+        let t = at - k as f64;
+        let f = |i: isize| self.table[i.unsigned_abs()];
+        let k = k as isize;
+        let (a, b, c, d) = (f(k - 1), f(k), f(k + 1), f(k + 2));
+        // Lagrange's cubic through the four.
+        let (tm, tp, t2) = (t - 1.0, t + 1.0, t - 2.0);
+        (-t * tm * t2 * a + 3.0 * tp * tm * t2 * b - 3.0 * tp * t * t2 * c + tp * t * tm * d) / 6.0
+    }
+}
+
+/// `F(s) = int_0^30 (R(t) - 1) J0(s t) dt` ([`RealSpace`]) by composite Gauss-Legendre.
+fn hankel(layer: &Layer, e_star: f64, s: f64) -> f64 {
+    let width = if s > 0.0 { (PI / s).min(0.5) } else { 0.5 };
+    let panels = (30.0 / width).ceil() as usize;
+    let width = 30.0 / panels as f64;
+    (0..panels)
+        .map(|i| {
+            let middle = (i as f64 + 0.5) * width;
+            GAUSS
+                .iter()
+                .map(|&(x, w)| {
+                    let t = middle + 0.5 * width * x;
+                    w * (layer.compliance_ratio(t / layer.thickness, e_star) - 1.0) * libm::j0(s * t)
+                })
+                .sum::<f64>()
+                * 0.5
+                * width
+        })
+        .sum()
 }
 
 /// A coating's compliance ratio at `x = q h`: the layer `(E*, nu)` bonded to the substrate
@@ -445,6 +485,20 @@ mod tests {
             }
             Base::Frictionless => ((2.0 * x).cosh() - 1.0) / ((2.0 * x).sinh() + 2.0 * x),
             Base::Substrate { .. } => unreachable!("rigid bases only"),
+        }
+    }
+
+    #[test]
+    fn a_coatings_tail_continues_its_tabulated_influence() {
+        // Substrates 100 times stiffer to 100 times softer: the tail against the quadrature
+        // out to 200 thicknesses, in units of the influence at the load's centre F(0).
+        for (e_sub, within) in [(1e11, 1e-12), (1e10, 1e-10), (3e8, 1e-7), (1e8, 1e-6), (1e7, 1e-4)] {
+            let l = layer(0.3, Base::Substrate { e_star: e_sub, poisson: 0.45 });
+            let rs = RealSpace::new(&l, E_STAR);
+            for s in [50.0, 80.0, 120.0, 200.0] {
+                let err = (hankel(&l, E_STAR, s) - rs.beyond(s)).abs() / rs.table[0].abs();
+                assert!(err < within, "substrate {e_sub} Pa, s {s}: {err:e}");
+            }
         }
     }
 

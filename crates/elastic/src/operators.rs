@@ -4,7 +4,6 @@
 use crate::body::Body;
 use crate::convolution::{ConvWorkspace, Convolution};
 use crate::error::{ElasticError, Result};
-use crate::layer::{Base, Layer};
 use crate::material::check_modulus;
 use crate::{Compliance, Domain};
 use ndarray::{Array2, ArrayView2, ArrayViewMut2};
@@ -254,18 +253,6 @@ fn free_convolution(
     body: Body,
     output: (usize, usize),
 ) -> Result<(Convolution, f64)> {
-    if let Body::Layer(Layer {
-        base: Base::Substrate { .. },
-        ..
-    }) = body
-    {
-        // Its influence keeps the substrate's 1/r tail and an algebraic correction to it: the
-        // layer's correction, cut at 40 thicknesses, does not hold.
-        return Err(ElasticError::Unsupported(
-            "a coating on a substrate is built on periodic grids only (its real-space \
-             coefficients are not); use the periodic domain or a rigid base",
-        ));
-    }
     let Domain { nx, ny, dx, dy, .. } = *domain;
     let influence = body.influence(dx, dy, e_star);
     let (mx, my) = (2 * nx, 2 * ny);

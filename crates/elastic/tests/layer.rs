@@ -74,33 +74,104 @@ fn the_free_layers_coefficients_are_the_transform_of_its_compliance() {
     let source = (20, 20);
     let mut p = Array2::zeros((n, n));
     p[source] = 1.0;
+    // Coatings: on substrates ten times softer and stiffer, the thin ones' cell (20, 45) past
+    // 40 thicknesses, in the tail.
+    let soft = Base::Substrate {
+        e_star: 0.1 * E_STAR,
+        poisson: 0.45,
+    };
+    let stiff = Base::Substrate {
+        e_star: 10.0 * E_STAR,
+        poisson: 0.3,
+    };
     for (h, nu, base) in [
         (0.5, 0.3, Base::Bonded),
         (2.0, 0.3, Base::Bonded),
         (8.0, 0.3, Base::Bonded),
         (2.0, 0.5, Base::Bonded),
         (2.0, 0.0, Base::Frictionless),
+        (2.0, 0.3, soft),
+        (0.5, 0.3, soft),
+        (0.5, 0.45, stiff),
     ] {
         let layer = Layer::new(h * dx, nu, base).unwrap();
         let free = Free::with_body(domain, E_STAR, Body::Layer(layer)).unwrap();
         let u = apply(&free, &p);
         let scale = u[source];
-        for (j, i) in [(20, 20), (20, 21), (21, 20), (23, 22), (26, 17), (20, 32)] {
+        for (j, i) in [(20, 20), (20, 21), (21, 20), (23, 22), (26, 17), (20, 32), (20, 45)] {
             let (x, y) = ((i as f64 - 20.0) * dx, (j as f64 - 20.0) * dy);
             let want = cell_influence(x, y, 0.5 * dx, 0.5 * dy, E_STAR)
                 + correction_by_transform(&layer, x, y, 0.5 * dx, 0.5 * dy);
+            // A coating's tail beyond 40 thicknesses is fitted (a 1/s^5 term left out): 4e-7
+            // on the substrate ten times softer; its table within them 6e-8.
+            let within = match base {
+                Base::Substrate { .. } => 5e-7,
+                _ => 1e-8,
+            };
             assert!(
-                (u[(j, i)] - want).abs() < 1e-8 * scale,
+                (u[(j, i)] - want).abs() < within * scale,
                 "h {h} cells, nu {nu}, {base:?}, cell ({j}, {i}): {:e} {want:e}",
                 u[(j, i)]
             );
         }
-        // Far beyond 40 thicknesses the influence is nil.
-        if h < 1.0 {
+        // Far beyond 40 thicknesses a layer on a rigid base has no influence.
+        if h < 1.0 && !matches!(base, Base::Substrate { .. }) {
             assert!(u[(20, 45)].abs() < 1e-12 * scale, "{:e}", u[(20, 45)]);
         }
         // The padded stiffness exists (its spectrum is positive).
         FreeStiffness::with_body(domain, E_STAR, Body::Layer(layer)).unwrap();
+    }
+}
+
+#[test]
+fn a_free_coating_on_its_own_material_is_the_half_space_and_a_thin_one_its_substrate() {
+    let (n, d) = (32, 1e-6);
+    let domain = Domain {
+        nx: n,
+        ny: n,
+        dx: d,
+        dy: d,
+        periodic: false,
+    };
+    let mut p = Array2::zeros((n, n));
+    for j in 8..24 {
+        for i in 10..20 {
+            p[(j, i)] = 1e6 * (1.0 + 0.1 * (i * j) as f64);
+        }
+    }
+    let half = apply(&Free::new(domain, E_STAR).unwrap(), &p);
+    let peak = half.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let own = Layer::new(
+        2.0 * d,
+        0.3,
+        Base::Substrate {
+            e_star: E_STAR,
+            poisson: 0.3,
+        },
+    )
+    .unwrap();
+    let u = apply(&Free::with_body(domain, E_STAR, Body::Layer(own)).unwrap(), &p);
+    let worst = (&u - &half).iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(worst < 1e-12 * peak, "{worst:e} {peak:e}");
+    // A coating a thousandth of a cell thick on a substrate ten times softer: the substrate's
+    // half-space plus the coating's own compression, of order h / dx.
+    let thin = Layer::new(
+        1e-3 * d,
+        0.3,
+        Base::Substrate {
+            e_star: 0.1 * E_STAR,
+            poisson: 0.45,
+        },
+    )
+    .unwrap();
+    let u = apply(&Free::with_body(domain, E_STAR, Body::Layer(thin)).unwrap(), &p);
+    let substrate = apply(&Free::new(domain, 0.1 * E_STAR).unwrap(), &p);
+    // The compression: the constant term of the compliance at q -> 0, 2 R'(0) h / E*.
+    let h = thin.thickness;
+    let slope = (thin.compliance_ratio(1e-5 / h, E_STAR) - 10.0) / 1e-5;
+    let own = (&u - &substrate) / (&p.mapv(|v| v.max(1.0)) * (2.0 * slope * h / E_STAR));
+    for (j, i) in [(8, 10), (15, 15), (23, 19)] {
+        assert!((own[(j, i)] - 1.0).abs() < 1e-2, "({j}, {i}): {}", own[(j, i)]);
     }
 }
 

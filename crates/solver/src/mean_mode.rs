@@ -5,8 +5,10 @@
 //! is measured from the mean surface. The approach from the rigid base is that plus the
 //! layer's uniform compression, `delta = delta_mean + C0 p_mean`, and the surface displacement
 //! gains `C0 p_mean`; here a solve's state and report are moved to that frame, a warm start
-//! back to the methods', and a prescribed approach is met by a root search along the methods'
-//! load-approach curve ([`MeanMode::approach`]).
+//! back to the methods'. A prescribed approach is, without adhesion, one solve with the mean
+//! mode put back ([`WithMean`]: the constrained conjugate gradient needs no approach variable);
+//! the adhesive methods meet it by a root search along their load-approach curve
+//! ([`MeanMode::approach`]).
 
 use crate::error::Result;
 use crate::options::Control;
@@ -44,10 +46,7 @@ impl MeanMode {
     /// `miss = x + C0 p - delta` vanishes, to within `tolerance` \[m\]. `solve(control, seed)`
     /// solves in the methods' frame, warm from the seed if any. Trials prescribe `x` below the
     /// mean gap (`bounds.0` \[m\]) and `p` at or past it (full contact, where `x` stops and the
-    /// layer's compression takes up the rest). Without adhesion (`repulsive`), `p` after the
-    /// first trial too (the non-adhesive iteration is faster under a load; an approach follows
-    /// the unstable branches a load cannot), kept at or above zero, and first touch (`x = 0`
-    /// at no load) is a known point of the curve. Load trials stay below `bounds.1` \[Pa\] (a
+    /// layer's compression takes up the rest). Load trials stay below `bounds.1` \[Pa\] (a
     /// hardness: no surface carries more), halfway to it from below where a step would pass
     /// it. The first trial is at `x = delta - C0 p_guess` (`p_guess` \[Pa\]: the warm
     /// start's); then the secant through the last two trials where it falls inside the
@@ -62,14 +61,13 @@ impl MeanMode {
         p_guess: f64,
         (mean_gap, ceiling): (f64, f64),
         tolerance: f64,
-        repulsive: bool,
         mut solve: impl FnMut(Control, Option<&S>) -> Result<S>,
     ) -> Result<S> {
         let c0 = self.compliance;
         // Below the mean gap an approach is well posed; at it, only a load.
         let closes = |x: f64| x >= mean_gap - 1e-9 * mean_gap.abs();
-        let at = |x: f64, p: f64, first: bool| {
-            if closes(x) || (repulsive && !first) {
+        let at = |x: f64, p: f64| {
+            if closes(x) {
                 Control::MeanPressure(p)
             } else {
                 Control::Approach(x)
@@ -78,13 +76,9 @@ impl MeanMode {
         let mut next = at(
             delta - c0 * p_guess,
             ((delta - mean_gap) / c0).max(p_guess).min(0.5 * ceiling),
-            true,
         );
         // The two sides: (x, p, miss); the miss of a side that stays is halved (Illinois).
-        let (mut low, mut high): (Option<[f64; 3]>, Option<[f64; 3]>) = (
-            repulsive.then_some([0.0, 0.0, -delta]).filter(|_| delta > 0.0),
-            None,
-        );
+        let (mut low, mut high): (Option<[f64; 3]>, Option<[f64; 3]>) = (None, None);
         // The last trial: it carries the work of all before it, and seeds the next unless it
         // pulled off (then the next starts where the caller's did).
         let (mut last, mut seeds): (Option<S>, bool) = (None, false);
@@ -139,15 +133,15 @@ impl MeanMode {
             next = match (low, high) {
                 _ if secant.is_some() => {
                     let (xs, ps) = secant.unwrap_or((x, p));
-                    at(xs, ps, false)
+                    at(xs, ps)
                 }
                 (Some([xl, pl, ml]), Some([xh, ph, mh])) if ml.is_finite() => {
                     let t = ml / (ml - mh);
-                    at(xl + t * (xh - xl), pl + t * (ph - pl), false)
+                    at(xl + t * (xh - xl), pl + t * (ph - pl))
                 }
                 // Pulled off below: halfway in load.
                 (Some([_, pl, _]), Some([_, ph, _])) => Control::MeanPressure(0.5 * (pl + ph)),
-                _ if miss.is_finite() => at(delta - c0 * p, (delta - x) / c0, false),
+                _ if miss.is_finite() => at(delta - c0 * p, (delta - x) / c0),
                 // Pulled off with nothing above: half as tensile.
                 _ => Control::MeanPressure(0.5 * p),
             };
@@ -155,12 +149,76 @@ impl MeanMode {
                 let below = low.map_or(0.0, |[_, pl, _]| pl.max(0.0));
                 if q >= ceiling {
                     next = Control::MeanPressure(0.5 * (below + ceiling));
-                } else if repulsive && q < 0.0 {
-                    next = Control::MeanPressure(below);
                 }
             }
         }
         unreachable!("the last step returns")
+    }
+}
+
+/// A periodic body's operator with its mean mode put back: `apply` adds `C0 p_mean` to every
+/// displacement. The layer's approach from its base is then a bound-constrained problem of
+/// its own, solved at once where the methods' frame needs a root search.
+pub(crate) struct WithMean<'a> {
+    op: &'a dyn elastic::Compliance,
+    mean: MeanMode,
+    /// The operator's multiplier with `C0 / (nx ny)` at `q = 0`.
+    multiplier: ndarray::Array2<f64>,
+}
+
+impl<'a> WithMean<'a> {
+    pub(crate) fn new(op: &'a dyn elastic::Compliance, mean: MeanMode) -> Self {
+        let mut multiplier = op.fourier_compliance().to_owned();
+        let d = op.domain();
+        multiplier[(0, 0)] = mean.compliance / (d.nx * d.ny) as f64;
+        WithMean {
+            op,
+            mean,
+            multiplier,
+        }
+    }
+}
+
+impl elastic::Compliance for WithMean<'_> {
+    fn domain(&self) -> &elastic::Domain {
+        self.op.domain()
+    }
+
+    fn e_star(&self) -> f64 {
+        self.op.e_star()
+    }
+
+    fn body(&self) -> elastic::Body {
+        self.op.body()
+    }
+
+    fn cell_compliance(&self) -> f64 {
+        let d = self.op.domain();
+        self.op.cell_compliance() + self.mean.compliance / (d.nx * d.ny) as f64
+    }
+
+    fn mean_compliance(&self) -> f64 {
+        0.0
+    }
+
+    fn make_workspace(&self) -> elastic::Workspace {
+        self.op.make_workspace()
+    }
+
+    fn apply(
+        &self,
+        pressure: ndarray::ArrayView2<f64>,
+        mut displacement: ndarray::ArrayViewMut2<f64>,
+        ws: &mut elastic::Workspace,
+    ) -> elastic::Result<()> {
+        self.op.apply(pressure, displacement.view_mut(), ws)?;
+        let shift = self.mean.compliance * pressure.mean().unwrap_or(0.0);
+        displacement.par_mapv_inplace(|u| u + shift);
+        Ok(())
+    }
+
+    fn fourier_compliance(&self) -> ndarray::ArrayView2<'_, f64> {
+        self.multiplier.view()
     }
 }
 

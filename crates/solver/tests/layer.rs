@@ -82,6 +82,28 @@ fn a_sphere_on_a_layer_is_the_exact_solution_and_tends_to_hertz_at_dimitriadis_r
 }
 
 #[test]
+fn a_sphere_on_a_coating_is_the_exact_solution() {
+    // As above, on coatings over substrates ten times softer and stiffer than themselves.
+    let (n, a) = (128, 1e-4);
+    let (side, delta) = (n as f64 * a / 24.0, a * a / R);
+    let hertz = load(None, delta, n, side);
+    let hertz_exact = theory::hertz::load_of_approach(delta, R, E_STAR);
+    for (e_sub, nu_sub) in [(0.1 * E_STAR, 0.45), (10.0 * E_STAR, 0.3)] {
+        for chi in [0.25, 1.0] {
+            let base = Base::Substrate {
+                e_star: e_sub,
+                poisson: nu_sub,
+            };
+            let layer = Layer::new(a / chi, 0.3, base).unwrap();
+            let got = load(Some(layer), delta, n, side) / hertz;
+            let want = exact(layer, E_STAR).hertz(delta, R).load / hertz_exact;
+            println!("substrate {e_sub:e} Pa, chi {chi}: {got:.5}, exact {want:.5}");
+            assert!((got / want - 1.0).abs() < 1e-3, "{e_sub} {chi}: {got} {want}");
+        }
+    }
+}
+
+#[test]
 fn a_thin_compressible_layer_is_winklers_bed() {
     // a = sqrt(2 R delta) = 20 h, resolved by 24 cells; the load against pi M R delta^2 / h.
     let (n, nu) = (128, 0.3);

@@ -115,7 +115,6 @@ pub(crate) fn solve(
         guess,
         bounds,
         settings.tolerance * parts.law.range(),
-        false,
         |control, last: Option<&(AdhesiveState, AdhesiveReport)>| {
             let seed = last.map(|(s, _)| {
                 let mut s = s.clone();

@@ -23,7 +23,7 @@ mod capped;
 use crate::error::{Result, SolverError};
 use crate::fields::{flat, flat_mut};
 use crate::interface::{Interface, Yield};
-use crate::mean_mode::{MeanMode, Solved, Trial};
+use crate::mean_mode::MeanMode;
 use crate::observer::Observer;
 use crate::options::{ContactOptions, Control};
 use crate::report::{ContactReport, Termination, count_clusters};
@@ -76,7 +76,13 @@ pub fn solve_with(
     let Some(mean) = MeanMode::of(op) else {
         return solve_relative(op, g0, interface, control, options, warm, observer);
     };
-    // The methods' frame: the approach from the mean surface (crate::mean_mode).
+    // An approach from the base: one bound-constrained solve with the mean mode included.
+    if let Control::Approach(_) = control {
+        let whole = crate::mean_mode::WithMean::new(op, mean);
+        return solve_relative(&whole, g0, interface, control, options, warm, observer);
+    }
+    // A load: solved in the methods' frame (the approach from the mean surface), then moved
+    // to the base's.
     let warm = warm.map(|w| {
         let mut w = w.clone();
         let p_mean = w.pressure.mean().unwrap_or(0.0);
@@ -84,41 +90,11 @@ pub fn solve_with(
         w
     });
     let cells = g0.len() as f64 * op.domain().cell_area();
-    let to_base = |(mut state, mut report): (ContactState, ContactReport)| {
-        let p = report.mean_pressure;
-        report.approach += mean.shift(&mut state, p, 1.0);
-        report.elastic_energy += 0.5 * op.mean_compliance() * p * p * cells;
-        (state, report)
-    };
-    let Control::Approach(delta) = control else {
-        return solve_relative(op, g0, interface, control, options, warm.as_ref(), observer).map(to_base);
-    };
-    // Each trial starts from the caller's permanent set, seeded by the last trial's pressure.
-    let before = warm.as_ref().and_then(|w| w.permanent_set.clone());
-    let guess = warm.as_ref().map_or(0.0, |w| w.pressure.mean().unwrap_or(0.0));
-    let bounds = (
-        g0.mean().unwrap_or(0.0),
-        interface.hardness.unwrap_or(f64::INFINITY),
-    );
-    // Load trials after the first: the preconditioned iteration takes loads only. One set of
-    // buffers (and preconditioner) for every trial.
-    let scratch = &mut Scratch::new(op);
-    let solution = mean.approach(
-        delta,
-        guess,
-        bounds,
-        options.tolerance * gap_scale(g0),
-        true,
-        |control, last: Option<&(ContactState, ContactReport)>| {
-            let seed = last.map(|(s, _)| ContactState {
-                permanent_set: before.clone(),
-                ..s.clone()
-            });
-            let from = seed.as_ref().or(warm.as_ref());
-            solve_relative_in(scratch, g0, interface, control, options, from, observer)
-        },
-    )?;
-    Ok(to_base(solution))
+    let (mut state, mut report) = solve_relative(op, g0, interface, control, options, warm.as_ref(), observer)?;
+    let p = report.mean_pressure;
+    report.approach += mean.shift(&mut state, p, 1.0);
+    report.elastic_energy += 0.5 * op.mean_compliance() * p * p * cells;
+    Ok((state, report))
 }
 
 /// [`solve_with`] in the methods' frame: on a periodic body with a mean compliance, the
@@ -133,20 +109,6 @@ pub(crate) fn solve_relative(
     observer: &mut dyn Observer,
 ) -> Result<(ContactState, ContactReport)> {
     let scratch = &mut Scratch::new(op);
-    solve_relative_in(scratch, g0, interface, control, options, warm, observer)
-}
-
-/// [`solve_relative`] with the buffers of `scratch` (repeated solves on one grid).
-fn solve_relative_in(
-    scratch: &mut Scratch,
-    g0: ArrayView2<f64>,
-    interface: &Interface,
-    control: Control,
-    options: &ContactOptions,
-    warm: Option<&ContactState>,
-    observer: &mut dyn Observer,
-) -> Result<(ContactState, ContactReport)> {
-    let op = scratch.op;
     interface.validate()?;
     let mut state = match warm {
         Some(w) => w.clone(),
@@ -158,6 +120,7 @@ fn solve_relative_in(
     // On a periodic half-space the mean gap is the most an elastic surface can close.
     if let Control::Approach(delta) = control
         && op.domain().periodic
+        && op.body() == elastic::Body::HalfSpace
         && interface.hardness.is_none()
         && delta >= g0.mean().unwrap_or(0.0)
     {
@@ -866,27 +829,5 @@ fn report(
         termination: Termination::Converged,
         operator_calls: 0,
         wall_time_s: 0.0,
-    }
-}
-
-impl Solved for (ContactState, ContactReport) {
-    fn trial(&self) -> Trial {
-        Trial {
-            approach: self.1.approach,
-            mean_pressure: self.1.mean_pressure,
-            termination: self.1.termination,
-        }
-    }
-
-    fn mark(&mut self, termination: Termination) {
-        self.1.termination = termination;
-    }
-
-    fn add_work(&mut self, earlier: &Self) {
-        let (report, earlier) = (&mut self.1, &earlier.1);
-        report.iterations += earlier.iterations;
-        report.operator_calls += earlier.operator_calls;
-        report.wall_time_s += earlier.wall_time_s;
-        report.residual_history = [earlier.residual_history.as_slice(), &report.residual_history].concat();
     }
 }
