@@ -492,8 +492,20 @@ mod tests {
     fn a_coatings_tail_continues_its_tabulated_influence() {
         // Substrates 100 times stiffer to 100 times softer: the tail against the quadrature
         // out to 200 thicknesses, in units of the influence at the load's centre F(0).
-        for (e_sub, within) in [(1e11, 1e-12), (1e10, 1e-10), (3e8, 1e-7), (1e8, 1e-6), (1e7, 1e-4)] {
-            let l = layer(0.3, Base::Substrate { e_star: e_sub, poisson: 0.45 });
+        for (e_sub, within) in [
+            (1e11, 1e-12),
+            (1e10, 1e-10),
+            (3e8, 1e-7),
+            (1e8, 1e-6),
+            (1e7, 1e-4),
+        ] {
+            let l = layer(
+                0.3,
+                Base::Substrate {
+                    e_star: e_sub,
+                    poisson: 0.45,
+                },
+            );
             let rs = RealSpace::new(&l, E_STAR);
             for s in [50.0, 80.0, 120.0, 200.0] {
                 let err = (hankel(&l, E_STAR, s) - rs.beyond(s)).abs() / rs.table[0].abs();

@@ -98,7 +98,15 @@ fn the_free_layers_coefficients_are_the_transform_of_its_compliance() {
         let free = Free::with_body(domain, E_STAR, Body::Layer(layer)).unwrap();
         let u = apply(&free, &p);
         let scale = u[source];
-        for (j, i) in [(20, 20), (20, 21), (21, 20), (23, 22), (26, 17), (20, 32), (20, 45)] {
+        for (j, i) in [
+            (20, 20),
+            (20, 21),
+            (21, 20),
+            (23, 22),
+            (26, 17),
+            (20, 32),
+            (20, 45),
+        ] {
             let (x, y) = ((i as f64 - 20.0) * dx, (j as f64 - 20.0) * dy);
             let want = cell_influence(x, y, 0.5 * dx, 0.5 * dy, E_STAR)
                 + correction_by_transform(&layer, x, y, 0.5 * dx, 0.5 * dy);

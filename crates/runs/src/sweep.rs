@@ -168,10 +168,17 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     if let Some(e) = writer.error {
         return Err(e.context("writing the sweep's results"));
     }
-    let warnings: Vec<&String> = problem.warnings.iter().chain(&writer.edge).collect();
     rows.extend(points.iter().map(CyclePoint::from));
     let cycle = rows;
     let summary = summarize(&cycle);
+    let mut warnings: Vec<String> = problem.warnings.iter().chain(&writer.edge).cloned().collect();
+    if summary.pull_off_at_path_end {
+        let w = "the most tensile load is the path's last step, still attached: the pull-off lies \
+                 beyond the path (retract further: a more negative --to, or --pull-off-step)"
+            .to_string();
+        note!("warning: {w}");
+        warnings.push(w);
+    }
     let theory = Theory::of(&case, problem, &summary);
 
     let domain = problem.domain();
@@ -413,10 +420,7 @@ fn print_cycle(
             }
             if let elastic::Body::Layer(layer) = problem.operator.body() {
                 let jkr = exact_on(layer, problem.e_star()).pull_off(r, theory.work_of_adhesion);
-                line += &format!(
-                    "; JKR's on the layer, smooth: {:.4}",
-                    jkr.load / unit
-                );
+                line += &format!("; JKR's on the layer, smooth: {:.4}", jkr.load / unit);
             }
             say!("{line}");
         }

@@ -171,11 +171,7 @@ impl<'a> WithMean<'a> {
         let mut multiplier = op.fourier_compliance().to_owned();
         let d = op.domain();
         multiplier[(0, 0)] = mean.compliance / (d.nx * d.ny) as f64;
-        WithMean {
-            op,
-            mean,
-            multiplier,
-        }
+        WithMean { op, mean, multiplier }
     }
 }
 

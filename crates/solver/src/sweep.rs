@@ -274,6 +274,9 @@ pub struct CycleSummary {
     pub pull_off_force: Option<f64>,
     /// The approach at which it occurred \[m\].
     pub pull_off_approach: Option<f64>,
+    /// Whether that load is the last step's and the surfaces are still attached there: the
+    /// pull-off then lies beyond the path (retract further).
+    pub pull_off_at_path_end: bool,
     /// The first loading step attached after a step apart \[m\] (the jump into contact lies
     /// between it and the step before); attached means some cell within the law's range
     /// ([`CyclePoint::attached_area_fraction`]), so that an adhesive neck without compressive
@@ -333,11 +336,11 @@ impl From<&SweepPoint> for CyclePoint {
 
 /// Summarises a sweep over approaches (see [`CycleSummary`]).
 pub fn summarize(points: &[CyclePoint]) -> CycleSummary {
-    let mut pull_off: Option<(f64, f64)> = None;
+    let mut pull_off: Option<(f64, f64, usize)> = None;
     let (mut jump_in, mut jump_out) = (None, None);
     for (k, p) in points.iter().enumerate() {
-        if p.branch == Branch::Unloading && pull_off.is_none_or(|(w, _)| p.load < w) {
-            pull_off = Some((p.load, p.approach));
+        if p.branch == Branch::Unloading && pull_off.is_none_or(|(w, _, _)| p.load < w) {
+            pull_off = Some((p.load, p.approach, k));
         }
         if k > 0 {
             let prev = &points[k - 1];
@@ -361,9 +364,12 @@ pub fn summarize(points: &[CyclePoint]) -> CycleSummary {
                 && (l.load - u.load).abs() > 1e-4 * max_load
         })
     });
+    let at_end =
+        pull_off.is_some_and(|(_, _, k)| k + 1 == points.len() && points[k].attached_area_fraction > 0.0);
     CycleSummary {
         pull_off_force: pull_off.map(|p| p.0),
         pull_off_approach: pull_off.map(|p| p.1),
+        pull_off_at_path_end: at_end,
         jump_in_approach: jump_in.filter(|_| hysteresis),
         jump_out_approach: jump_out.filter(|_| hysteresis),
         hysteresis_energy: closed_loop_work(points),
@@ -446,6 +452,11 @@ mod tests {
         assert_eq!(s.jump_out_approach, Some(-3.0));
         assert_eq!(s.pull_off_force, Some(-0.8));
         assert_eq!(s.pull_off_approach, Some(-1.0));
+        assert!(!s.pull_off_at_path_end);
+        // Cut short while still attached and pulling harder: the pull-off lies beyond.
+        let s = summarize(&cycle[..6]);
+        assert_eq!(s.pull_off_force, Some(-0.8));
+        assert!(s.pull_off_at_path_end);
     }
 
     #[test]

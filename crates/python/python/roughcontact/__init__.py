@@ -382,7 +382,9 @@ class Sweep:
     ``permanent_set_volume`` [m^3], ``plastic_work`` [J], ``branch`` ('loading' or
     'unloading'), ``iterations``, ``converged``, ``residual``, ``wall_time_s`` [s],
     ``retries``, ``termination`` (in words). The cycle's ``pull_off_force`` [N] and its
-    ``pull_off_approach``, ``jump_in_approach``, ``jump_out_approach`` [m],
+    ``pull_off_approach`` [m] (``pull_off_at_path_end``: it is the last step's, still
+    attached, and the pull-off lies beyond the path), ``jump_in_approach``,
+    ``jump_out_approach`` [m],
     ``hysteresis_energy`` [J], ``plastic_work`` [J] (dissipated by yielding) and
     ``all_converged``; the last state's fields in ``state`` (the permanent set ``plastic``
     [m] with a ``hardness``); every step's full report in ``steps``."""
@@ -400,6 +402,7 @@ class Sweep:
         cycle = summary["cycle"]
         self.pull_off_force: Optional[float] = cycle["pull_off_force"]
         self.pull_off_approach: Optional[float] = cycle["pull_off_approach"]
+        self.pull_off_at_path_end: bool = cycle["pull_off_at_path_end"]
         self.jump_in_approach: Optional[float] = cycle["jump_in_approach"]
         self.jump_out_approach: Optional[float] = cycle["jump_out_approach"]
         self.hysteresis_energy: Optional[float] = cycle["hysteresis_energy"]

@@ -90,7 +90,8 @@ pub fn solve_with(
         w
     });
     let cells = g0.len() as f64 * op.domain().cell_area();
-    let (mut state, mut report) = solve_relative(op, g0, interface, control, options, warm.as_ref(), observer)?;
+    let (mut state, mut report) =
+        solve_relative(op, g0, interface, control, options, warm.as_ref(), observer)?;
     let p = report.mean_pressure;
     report.approach += mean.shift(&mut state, p, 1.0);
     report.elastic_energy += 0.5 * op.mean_compliance() * p * p * cells;
