@@ -125,22 +125,29 @@ impl PeriodicStiffness {
 
     /// The stiffness of `body` (of plane-strain modulus `e_star` \[Pa\]) on `domain`.
     pub fn with_body(domain: Domain, e_star: f64, body: Body) -> Result<Self> {
-        let e_star = check_modulus(e_star)?;
-        domain.validate()?;
+        PeriodicStiffness::of(&Periodic::with_body(domain, e_star, body)?)
+    }
+
+    /// The inverse of the periodic operator `op` on fields of zero mean, from its multiplier
+    /// (nothing of the body recomputed).
+    ///
+    /// # Errors
+    /// [`ElasticError::Unsupported`] if `op` is not periodic.
+    pub fn of(op: &dyn Compliance) -> Result<Self> {
+        let domain = *op.domain();
+        if !domain.periodic {
+            return Err(ElasticError::Unsupported(
+                "a periodic stiffness inverts a periodic operator",
+            ));
+        }
         let Domain { nx, ny, .. } = domain;
-        let kernel = periodic_multiplier(&domain, |q| {
-            if q == 0.0 {
-                0.0
-            } else {
-                0.5 * e_star * q / body.compliance_ratio(q, e_star)
-            }
-        });
-        let inverse = kernel.mapv(|k| if k > 0.0 { 1.0 / k } else { 0.0 });
+        // The operator's multiplier is stored divided by `nx ny`; the mean mode is left out.
+        let scale = (nx * ny) as f64;
+        let mut inverse = op.fourier_compliance().mapv(|k| k * scale);
+        inverse[(0, 0)] = 0.0;
+        let kernel = inverse.mapv(|k| if k > 0.0 { 1.0 / k } else { 0.0 });
         Ok(PeriodicStiffness {
-            domain: Domain {
-                periodic: true,
-                ..domain
-            },
+            domain,
             conv: Convolution::new(nx, ny, kernel, (ny, nx), (ny, nx)),
             inverse: Convolution::new(nx, ny, inverse, (ny, nx), (ny, nx)),
         })
@@ -312,13 +319,25 @@ impl FreeStiffness {
     /// # Errors
     /// As [`FreeStiffness::new`].
     pub fn with_body(domain: Domain, e_star: f64, body: Body) -> Result<Self> {
-        let e_star = check_modulus(e_star)?;
-        domain.validate()?;
+        FreeStiffness::of(&Free::with_body(domain, e_star, body)?)
+    }
+
+    /// The inverse of the free operator `op`'s padded circulant, from its multiplier (no
+    /// influence coefficient recomputed).
+    ///
+    /// # Errors
+    /// As [`FreeStiffness::new`]; [`ElasticError::Unsupported`] if `op` is periodic.
+    pub fn of(op: &dyn Compliance) -> Result<Self> {
+        let domain = *op.domain();
+        if domain.periodic {
+            return Err(ElasticError::Unsupported(
+                "a free stiffness inverts a free operator",
+            ));
+        }
         let padded = (2 * domain.ny, 2 * domain.nx);
-        let (compliance, _) = free_convolution(&domain, e_star, body, padded)?;
         // The compliance's multiplier is stored divided by `mx my`; the stiffness's unscaled one
         // is its reciprocal.
-        let kernel = compliance.kernel();
+        let kernel = op.fourier_compliance();
         if let Some(&smallest) = kernel.iter().find(|&&k| k.is_nan() || k <= 0.0) {
             return Err(ElasticError::InvalidParameter {
                 name: "compliance eigenvalue",
@@ -326,17 +345,16 @@ impl FreeStiffness {
                 reason: "the padded free kernel is not positive definite on this grid",
             });
         }
-        let mut stiffness = Convolution::without_kernel(padded.1, padded.0, padded, padded);
         let scale = (padded.0 * padded.1) as f64;
+        let plan = |input| Convolution::without_kernel(padded.1, padded.0, input, padded);
+        let (mut stiffness, mut compliance, mut padded_compliance) =
+            (plan(padded), plan((domain.ny, domain.nx)), plan(padded));
         stiffness.set_kernel(kernel.mapv(|k| 1.0 / (k * scale)));
-        let mut padded_compliance = Convolution::without_kernel(padded.1, padded.0, padded, padded);
+        compliance.set_kernel(kernel.mapv(|k| k * scale));
         padded_compliance.set_kernel(kernel.mapv(|k| k * scale));
         Ok(FreeStiffness {
-            domain: Domain {
-                periodic: false,
-                ..domain
-            },
-            e_star,
+            domain,
+            e_star: op.e_star(),
             stiffness,
             compliance,
             padded_compliance,

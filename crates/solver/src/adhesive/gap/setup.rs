@@ -99,7 +99,7 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
         }
     };
     let (mut problem, first, hold) = if domain.periodic {
-        let stiffness = PeriodicStiffness::with_body(domain, op.e_star(), op.body())?;
+        let stiffness = PeriodicStiffness::of(op)?;
         let first = match start {
             // A first step from the rigid overlap (or, under load control, where the rigid
             // shift has no elastic stiffness, from a point contact) would snap far more of
@@ -136,7 +136,7 @@ pub(in crate::adhesive) fn setup<'a>(job: &Job<'a>, energy: Energy<'a>) -> Resul
         let hold = matches!(start, Start::Warm(_)).then(|| law.range());
         (problem, first, hold)
     } else {
-        let stiffness = FreeStiffness::with_body(domain, op.e_star(), op.body())?;
+        let stiffness = FreeStiffness::of(op)?;
         let padded = stiffness.padded_shape();
         let mut ws = stiffness.make_workspace();
         let mut base = Array2::zeros(padded);
