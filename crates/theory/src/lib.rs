@@ -12,6 +12,7 @@ pub mod jkr_dmt;
 pub mod layer;
 pub mod maugis;
 pub mod rough;
+pub mod viscoelastic;
 pub mod wavy;
 
 /// Tabor parameter `mu = (R w0^2 / (E*^2 z0^3))^(1/3)` of a sphere of radius `r` \[m\] with
