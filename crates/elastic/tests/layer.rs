@@ -8,6 +8,17 @@ use std::f64::consts::PI;
 
 const E_STAR: f64 = 1e9;
 
+/// A free square grid of `n`^2 cells `d` \[m\] wide.
+fn free_square(n: usize, d: f64) -> Domain {
+    Domain {
+        nx: n,
+        ny: n,
+        dx: d,
+        dy: d,
+        periodic: false,
+    }
+}
+
 fn apply(op: &dyn Compliance, p: &Array2<f64>) -> Array2<f64> {
     let mut u = Array2::zeros(p.dim());
     op.apply(p.view(), u.view_mut(), &mut op.make_workspace())
@@ -134,13 +145,7 @@ fn the_free_layers_coefficients_are_the_transform_of_its_compliance() {
 #[test]
 fn a_free_coating_on_its_own_material_is_the_half_space_and_a_thin_one_its_substrate() {
     let (n, d) = (32, 1e-6);
-    let domain = Domain {
-        nx: n,
-        ny: n,
-        dx: d,
-        dy: d,
-        periodic: false,
-    };
+    let domain = free_square(n, d);
     let mut p = Array2::zeros((n, n));
     for j in 8..24 {
         for i in 10..20 {
@@ -243,13 +248,7 @@ fn a_thin_layer_under_a_wide_load_is_winklers_foundation() {
     // surface sinks by h / M times the pressure, as a bed of springs; outside, not at all.
     let (n, d, h, nu) = (64, 1e-6, 1e-7, 0.3);
     let layer = Layer::new(h, nu, Base::Bonded).unwrap();
-    let domain = Domain {
-        nx: n,
-        ny: n,
-        dx: d,
-        dy: d,
-        periodic: false,
-    };
+    let domain = free_square(n, d);
     let free = Free::with_body(domain, E_STAR, Body::Layer(layer)).unwrap();
     let p = Array2::from_shape_fn((n, n), |(j, i)| {
         if (12..52).contains(&j) && (12..52).contains(&i) {
@@ -273,13 +272,7 @@ fn a_thin_layer_under_a_wide_load_is_winklers_foundation() {
 fn a_layer_far_thinner_than_a_cell_is_winklers_bed_cell_by_cell() {
     // A hundredth of a cell thick: each cell sinks by h / M under its own pressure alone.
     let (n, d) = (16, 1e-6);
-    let domain = Domain {
-        nx: n,
-        ny: n,
-        dx: d,
-        dy: d,
-        periodic: false,
-    };
+    let domain = free_square(n, d);
     let mut p = Array2::zeros((n, n));
     p[(8, 8)] = 1e6;
     let layer = Layer::new(d / 100.0, 0.3, Base::Bonded).unwrap();
