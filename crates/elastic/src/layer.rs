@@ -177,8 +177,10 @@ const GAUSS: [(f64, f64); 8] = [
     (0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
 ];
 
-/// Beyond this distance over the thickness the layer's point influence is taken as zero: it
-/// decays exponentially, below `1e-14 / (pi E* h)` there for every base and `nu` in `[0, 0.5]`.
+/// Beyond this distance over the thickness the layer's correction is its tail
+/// ([`RealSpace`]): on a rigid base nothing (the influence decays exponentially, below
+/// `1e-14 / (pi E* h)` there for every base and `nu` in `[0, 0.5]`), under a coating the
+/// substrate's half-space and algebraic terms.
 const CUT: f64 = 40.0;
 
 /// Cells wider than this many thicknesses see the layer as Winkler's bed ([`RealSpace::thin`]).
@@ -257,7 +259,8 @@ impl RealSpace {
     /// On cells wider than [`THIN`] thicknesses the layer's influence dies within a fraction of
     /// a cell: the far field (nothing on a rigid base, the substrate's half-space under a
     /// coating) plus the local compliance on the loaded cell itself (the quadrature would take
-    /// `(8 THIN)^2` points a cell; the terms left out are of order `h / dx` of the layer's).
+    /// `(8 THIN)^2` points a cell; the terms left out are `exp(-THIN/2)`-small on a rigid base,
+    /// of order `h / dx` of the coating's own correction).
     /// Beyond [`CUT`] thicknesses, the tail alone.
     pub(crate) fn coefficient(&self, x: f64, y: f64, a: f64, b: f64, e_star: f64, love: f64) -> f64 {
         let h = self.thickness;
