@@ -123,19 +123,33 @@ impl<F: Fn(f64) -> f64> LayerContact<F> {
 
     /// Hertz on the layer at approach `delta` \[m\] of a sphere of radius `r` \[m\]: the contact
     /// radius where the edge pressure vanishes (Illinois' regula falsi to 1e-12 of it, from a
-    /// bracket around the half-space's radius).
+    /// bracket around the half-space's radius; not a number where none brackets it).
     pub fn hertz(&self, delta: f64, r: f64) -> SphereContact {
         let miss = |a: f64| self.sphere(a, r, 0.0).approach / delta - 1.0;
         let a0 = (r * delta).sqrt();
         let (mut lo, mut hi) = (0.5 * a0, 2.0 * a0);
         let (mut f_lo, mut f_hi) = (miss(lo), miss(hi));
-        while f_lo > 0.0 {
+        // The bracket widens by halves and doubles, 20 of each at most (a million-fold).
+        for _ in 0..20 {
+            if f_lo <= 0.0 {
+                break;
+            }
             (hi, f_hi, lo) = (lo, f_lo, 0.5 * lo);
             f_lo = miss(lo);
         }
-        while f_hi < 0.0 {
+        for _ in 0..20 {
+            if f_hi >= 0.0 {
+                break;
+            }
             (lo, f_lo, hi) = (hi, f_hi, 2.0 * hi);
             f_hi = miss(hi);
+        }
+        if !(f_lo <= 0.0 && f_hi >= 0.0) {
+            return SphereContact {
+                radius: f64::NAN,
+                approach: delta,
+                load: f64::NAN,
+            };
         }
         let mut side = 0;
         for _ in 0..100 {
