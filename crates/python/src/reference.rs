@@ -255,7 +255,123 @@ fn wave<'py>(
     Ok(d)
 }
 
+/// The layer `(thickness [m], poisson, base, substrate modulus [Pa], substrate poisson)`,
+/// checked, with the error naming its keyword.
+fn layer_of(
+    thickness: f64,
+    poisson: f64,
+    layer_base: &str,
+    substrate: (Option<f64>, Option<f64>),
+) -> PyResult<elastic::Layer> {
+    let base = match (layer_base, substrate) {
+        ("bonded", (None, None)) => elastic::Base::Bonded,
+        ("frictionless", (None, None)) => elastic::Base::Frictionless,
+        ("elastic", (Some(e_star), Some(poisson))) => elastic::Base::Substrate { e_star, poisson },
+        ("elastic", _) => {
+            return Err(PyValueError::new_err(
+                "layer_base 'elastic' needs substrate_modulus [Pa] and substrate_poisson",
+            ));
+        }
+        ("bonded" | "frictionless", _) => {
+            return Err(PyValueError::new_err(
+                "substrate_modulus and substrate_poisson are a coating's: give layer_base='elastic'",
+            ));
+        }
+        (other, _) => {
+            return Err(PyValueError::new_err(format!(
+                "layer_base must be 'bonded', 'frictionless' or 'elastic', got {other:?}"
+            )));
+        }
+    };
+    elastic::Layer::new(thickness, poisson, base).map_err(|e| match e {
+        elastic::ElasticError::InvalidParameter { name, value, reason } => {
+            PyValueError::new_err(format!("{name} {reason}, got {value}"))
+        }
+        other => PyValueError::new_err(other.to_string()),
+    })
+}
+
+/// The exact frictionless sphere on a layer at the contact radii: loads [N] and approaches
+/// [m] (JKR's on the layer with a work of adhesion, Hertz's without).
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+fn layer(
+    py: Python<'_>,
+    contact_radius: Vec<f64>,
+    radius: f64,
+    modulus: f64,
+    thickness: f64,
+    poisson: f64,
+    layer_base: &str,
+    substrate_modulus: Option<f64>,
+    substrate_poisson: Option<f64>,
+    work_of_adhesion: f64,
+) -> PyResult<(Vec<f64>, Vec<f64>)> {
+    let (r, e) = (positive("radius", radius)?, positive("modulus", modulus)?);
+    if !(work_of_adhesion.is_finite() && work_of_adhesion >= 0.0) {
+        return Err(PyValueError::new_err(format!(
+            "work_of_adhesion must be finite and >= 0, got {work_of_adhesion}"
+        )));
+    }
+    if let Some(a) = contact_radius.iter().find(|a| !(a.is_finite() && **a > 0.0)) {
+        return Err(PyValueError::new_err(format!(
+            "a contact radius must be finite and > 0, got {a}"
+        )));
+    }
+    let layer = layer_of(
+        thickness,
+        poisson,
+        layer_base,
+        (substrate_modulus, substrate_poisson),
+    )?;
+    let h = layer.thickness;
+    let body = theory::layer::LayerContact::new(h, e, |x| layer.compliance_ratio(x / h, e));
+    let points: Vec<_> = py.detach(|| {
+        contact_radius
+            .iter()
+            .map(|&a| body.sphere(a, r, work_of_adhesion))
+            .collect()
+    });
+    Ok((
+        points.iter().map(|p| p.load).collect(),
+        points.iter().map(|p| p.approach).collect(),
+    ))
+}
+
+/// JKR's pull-off on a layer: load [N], contact radius [m] and approach [m] at it.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+fn layer_pull_off(
+    py: Python<'_>,
+    radius: f64,
+    work_of_adhesion: f64,
+    modulus: f64,
+    thickness: f64,
+    poisson: f64,
+    layer_base: &str,
+    substrate_modulus: Option<f64>,
+    substrate_poisson: Option<f64>,
+) -> PyResult<(f64, f64, f64)> {
+    let (r, w, e) = (
+        positive("radius", radius)?,
+        positive("work_of_adhesion", work_of_adhesion)?,
+        positive("modulus", modulus)?,
+    );
+    let layer = layer_of(
+        thickness,
+        poisson,
+        layer_base,
+        (substrate_modulus, substrate_poisson),
+    )?;
+    let h = layer.thickness;
+    let body = theory::layer::LayerContact::new(h, e, |x| layer.compliance_ratio(x / h, e));
+    let off = py.detach(|| body.pull_off(r, w));
+    Ok((off.load, off.radius, off.approach))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(layer, m)?)?;
+    m.add_function(wrap_pyfunction!(layer_pull_off, m)?)?;
     m.add_function(wrap_pyfunction!(tabor_parameter, m)?)?;
     m.add_function(wrap_pyfunction!(hertz, m)?)?;
     m.add_function(wrap_pyfunction!(jkr, m)?)?;

@@ -155,6 +155,26 @@ def test_threads_do_not_change_the_result():
     assert all(np.array_equal(a.fields[k], b.fields[k]) for k in a.fields)
 
 
+def test_theory_sphere_on_a_layer():
+    r, w0, e = 1e-6, 0.089, 1e9
+    # A thick layer is the half-space: Hertz's load, JKR's pull-off.
+    a = np.array([2e-8, 5e-8])
+    thick = theory.layer(a, r, e, thickness=1e-4, poisson=0.45)
+    assert thick["load"] == pytest.approx(4 * e * a**3 / (3 * r), rel=1e-6)
+    assert thick["approach"] == pytest.approx(a**2 / r, rel=1e-6)
+    off = theory.layer_pull_off(r, w0, e, thickness=1e-4, poisson=0.45)
+    assert off["load"] == pytest.approx(-1.5 * np.pi * r * w0, rel=1e-6)
+    # A film as thick as the contact radius pulls off harder (docs/validation.md: 1.176 times).
+    film = theory.layer_pull_off(r, w0, e, thickness=6.8e-8, poisson=0.45)
+    assert film["load"] / off["load"] == pytest.approx(1.176, abs=2e-3)
+    coat = theory.layer(a, r, e, 6.8e-8, 0.3, "elastic", substrate_modulus=1e8, substrate_poisson=0.45)
+    assert np.all(coat["load"] < thick["load"])
+    with pytest.raises(ValueError, match="substrate_modulus"):
+        theory.layer(a, r, e, 6.8e-8, 0.3, "elastic")
+    with pytest.raises(ValueError, match="thickness"):
+        theory.layer(a, r, e, -1.0, 0.3)
+
+
 def test_theory_against_closed_forms():
     r, w0, e = 1e-6, 0.05, 1e9
     pull = theory.jkr_pull_off(r, w0)

@@ -58,3 +58,24 @@ def ciavarella(rms_height: float, modulus: float, longest_wavelength: float, wor
 def wave(
     half_width: List[float], amplitude: float, wavelength: float, modulus: float, work_of_adhesion: float
 ) -> Dict[str, Any]: ...
+def layer(
+    contact_radius: List[float],
+    radius: float,
+    modulus: float,
+    thickness: float,
+    poisson: float,
+    layer_base: str,
+    substrate_modulus: Optional[float],
+    substrate_poisson: Optional[float],
+    work_of_adhesion: float,
+) -> Tuple[List[float], List[float]]: ...
+def layer_pull_off(
+    radius: float,
+    work_of_adhesion: float,
+    modulus: float,
+    thickness: float,
+    poisson: float,
+    layer_base: str,
+    substrate_modulus: Optional[float],
+    substrate_poisson: Optional[float],
+) -> Tuple[float, float, float]: ...

@@ -10,7 +10,7 @@ when compressive, approaches when pushing together.
 
 from __future__ import annotations
 
-from typing import Any, Dict, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
@@ -196,3 +196,59 @@ def wave(
     d["westergaard"] = _shaped(d["westergaard"], shape)
     d["jkr"] = _shaped(d["jkr"], shape)
     return d
+
+
+def layer(
+    contact_radius: Any,
+    radius: float,
+    modulus: float,
+    thickness: float,
+    poisson: float,
+    layer_base: str = "bonded",
+    substrate_modulus: Optional[float] = None,
+    substrate_poisson: Optional[float] = None,
+    work_of_adhesion: float = 0.0,
+) -> Dict[str, np.ndarray]:
+    """A rigid sphere of ``radius`` [m] on an elastic layer ``thickness`` [m] thick (its
+    plane-strain ``modulus`` E* [Pa] and ``poisson`` ratio; ``layer_base`` 'bonded' or
+    'frictionless' on a rigid base, or 'elastic' on a substrate of ``substrate_modulus`` [Pa]
+    and ``substrate_poisson``), solved exactly at the contact radii [m]: ``load`` [N] and
+    ``approach`` [m], Hertz's on the layer or, with a ``work_of_adhesion`` [J/m^2], JKR's."""
+    x, shape = _flat(contact_radius)
+    load, approach = _native.layer(
+        x,
+        _scalar("radius", radius),
+        _scalar("modulus", modulus),
+        _scalar("thickness", thickness),
+        _scalar("poisson", poisson),
+        layer_base,
+        None if substrate_modulus is None else _scalar("substrate_modulus", substrate_modulus),
+        None if substrate_poisson is None else _scalar("substrate_poisson", substrate_poisson),
+        _scalar("work_of_adhesion", work_of_adhesion),
+    )
+    return {"load": _shaped(load, shape), "approach": _shaped(approach, shape)}
+
+
+def layer_pull_off(
+    radius: float,
+    work_of_adhesion: float,
+    modulus: float,
+    thickness: float,
+    poisson: float,
+    layer_base: str = "bonded",
+    substrate_modulus: Optional[float] = None,
+    substrate_poisson: Optional[float] = None,
+) -> Dict[str, float]:
+    """JKR's pull-off of a sphere on a layer (the parameters of :func:`layer`): ``load`` [N]
+    (negative: tensile), ``contact_radius`` [m] and ``approach`` [m] at it."""
+    load, a, approach = _native.layer_pull_off(
+        _scalar("radius", radius),
+        _scalar("work_of_adhesion", work_of_adhesion),
+        _scalar("modulus", modulus),
+        _scalar("thickness", thickness),
+        _scalar("poisson", poisson),
+        layer_base,
+        None if substrate_modulus is None else _scalar("substrate_modulus", substrate_modulus),
+        None if substrate_poisson is None else _scalar("substrate_poisson", substrate_poisson),
+    )
+    return {"load": load, "contact_radius": a, "approach": approach}
