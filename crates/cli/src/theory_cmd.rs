@@ -134,6 +134,37 @@ enum Model {
         #[arg(long, default_value_t = 0.0)]
         work_of_adhesion: f64,
     },
+    /// Rigid sphere on a viscoelastic half-space without adhesion (a generalized Maxwell
+    /// solid): pressed in at --rate until --rise-time and drawn back at the same rate (Lee &
+    /// Radok while the contact grows, Ting after), or with --load a load put on at once (Lee &
+    /// Radok's creep); beside the relaxed and glassy Hertz loads (SI units).
+    #[command(allow_hyphen_values = true)]
+    Viscoelastic {
+        /// Sphere radius R [m].
+        #[arg(long)]
+        radius: f64,
+        /// Relaxed (long-time) plane-strain modulus E*_inf [Pa].
+        #[arg(long)]
+        modulus: f64,
+        /// The branches' moduli E_k [Pa], comma-separated.
+        #[arg(long, value_delimiter = ',', required = true)]
+        maxwell_moduli: Vec<f64>,
+        /// The branches' relaxation times tau_k [s], comma-separated.
+        #[arg(long, value_delimiter = ',', required = true)]
+        maxwell_times: Vec<f64>,
+        /// Approach rate [m/s] (with --rise-time).
+        #[arg(long, requires = "rise_time", conflicts_with = "load")]
+        rate: Option<f64>,
+        /// Time of the deepest approach [s]; the curve runs to twice it.
+        #[arg(long, requires = "rate")]
+        rise_time: Option<f64>,
+        /// A load [N] put on at time 0 and held (creep), instead of a rate.
+        #[arg(long, required_unless_present = "rate")]
+        load: Option<f64>,
+        /// With --load: the curve's end [s] [default: ten times the slowest creep time].
+        #[arg(long, requires = "load")]
+        duration: Option<f64>,
+    },
     /// Relative contact area of a nominally flat rough surface against the reduced pressure
     /// p/(E* g_bar): Persson's erf law and Müser's formula (the paper's Eq. 14, corrected).
     Area {
@@ -325,6 +356,77 @@ fn layer(a: &TheoryArgs, s: &LayerSphere, max: Option<f64>, w: Option<f64>) -> R
         draw_curves(path, "sphere on a layer", "approach [m]", "load [N]", curves)?;
     }
     Ok(())
+}
+
+fn viscoelastic(
+    a: &TheoryArgs,
+    r: f64,
+    solid: &theory::viscoelastic::Maxwell,
+    history: History,
+) -> Result<()> {
+    use theory::viscoelastic::hertz_limit;
+    let (relaxed, glassy) = (solid.relaxed, solid.glassy());
+    let mut out = open(a)?;
+    let (mut curve, mut slow, mut fast) = (Vec::new(), Vec::new(), Vec::new());
+    match history {
+        History::Rate { rate, rise } => {
+            writeln!(
+                out,
+                "time_s,approach_m,contact_radius_m,load_n,relaxed_hertz_n,glassy_hertz_n"
+            )?;
+            for k in 0..a.points() {
+                let t = 2.0 * rise * k as f64 / (a.points() - 1) as f64;
+                let d = rate * if t <= rise { t } else { 2.0 * rise - t };
+                let (c, p) = solid.triangle(t, r, rate, rise);
+                let (p_slow, p_fast) = (hertz_limit(d, r, relaxed), hertz_limit(d, r, glassy));
+                writeln!(out, "{t:e},{d:e},{c:e},{p:e},{p_slow:e},{p_fast:e}")?;
+                curve.push((d, p));
+                slow.push((d, p_slow));
+                fast.push((d, p_fast));
+            }
+        }
+        History::Load { load, duration } => {
+            writeln!(
+                out,
+                "time_s,contact_radius_m,approach_m,relaxed_radius_m,glassy_radius_m"
+            )?;
+            let hertz = |e: f64| (0.75 * load * r / e).cbrt();
+            for k in 0..a.points() {
+                let t = duration * k as f64 / (a.points() - 1) as f64;
+                let c = solid.creep_radius(t, r, load);
+                writeln!(
+                    out,
+                    "{t:e},{c:e},{:e},{:e},{:e}",
+                    c * c / r,
+                    hertz(relaxed),
+                    hertz(glassy)
+                )?;
+                curve.push((t, c * c / r));
+            }
+        }
+    }
+    if let Some(path) = &a.plot {
+        match history {
+            History::Rate { .. } => draw_curves(
+                path,
+                "viscoelastic sphere",
+                "approach [m]",
+                "load [N]",
+                vec![("Lee-Radok / Ting", curve), ("relaxed", slow), ("glassy", fast)],
+            )?,
+            History::Load { .. } => draw(path, "creep of a sphere", "time [s]", "approach [m]", curve)?,
+        }
+    }
+    Ok(())
+}
+
+/// What `theory viscoelastic` traces.
+#[derive(Clone, Copy)]
+enum History {
+    /// In at `rate` \[m/s\] until `rise` \[s\], out at the same rate until `2 rise`.
+    Rate { rate: f64, rise: f64 },
+    /// `load` \[N\] held from 0 to `duration` \[s\].
+    Load { load: f64, duration: f64 },
 }
 
 fn area(a: &TheoryArgs, k: f64, max: f64) -> Result<()> {
@@ -582,6 +684,7 @@ impl Model {
             Model::Layer { .. } => "layer",
             Model::Wavy { .. } => "wavy",
             Model::Area { .. } => "area",
+            Model::Viscoelastic { .. } => "viscoelastic",
             Model::Sticky { .. } => "sticky",
         }
     }
@@ -635,6 +738,57 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
             return layer(&a, &sphere, max_approach, work_of_adhesion);
         }
         Model::Area { k, max_pressure } => return area(&a, k, max_pressure),
+        Model::Viscoelastic {
+            radius,
+            modulus,
+            ref maxwell_moduli,
+            ref maxwell_times,
+            rate,
+            rise_time,
+            load,
+            duration,
+        } => {
+            if !(radius.is_finite() && radius > 0.0) {
+                bail!("--radius must be finite and > 0, got {radius}");
+            }
+            let solid =
+                theory::viscoelastic::Maxwell::new(modulus, maxwell_moduli, maxwell_times).map_err(|e| {
+                    anyhow::anyhow!(
+                        "{}",
+                        e.replace("the relaxed modulus", "--modulus (the relaxed modulus)")
+                            .replace("a branch modulus", "a --maxwell-moduli value")
+                            .replace("a relaxation time", "a --maxwell-times value")
+                            .replace("branch moduli but", "--maxwell-moduli values but")
+                            .replace("relaxation times", "--maxwell-times values")
+                    )
+                })?;
+            let positive = |name: &str, v: f64| {
+                if v.is_finite() && v > 0.0 {
+                    Ok(v)
+                } else {
+                    Err(anyhow::anyhow!("{name} must be finite and > 0, got {v}"))
+                }
+            };
+            let history = match (rate, rise_time, load) {
+                (Some(rate), Some(rise), None) => History::Rate {
+                    rate: positive("--rate", rate)?,
+                    rise: positive("--rise-time", rise)?,
+                },
+                (None, None, Some(load)) => {
+                    let slowest = solid
+                        .retardation()
+                        .iter()
+                        .map(|&(_, lambda)| lambda)
+                        .fold(0.0, f64::max);
+                    History::Load {
+                        load: positive("--load", load)?,
+                        duration: positive("--duration", duration.unwrap_or(10.0 * slowest))?,
+                    }
+                }
+                _ => bail!("give --rate with --rise-time, or --load"),
+            };
+            return viscoelastic(&a, radius, &solid, history);
+        }
         Model::Wavy {
             amplitude,
             wavelength,
@@ -690,6 +844,7 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
         | Model::Layer { .. }
         | Model::Area { .. }
         | Model::Sticky { .. }
+        | Model::Viscoelastic { .. }
         | Model::Wavy { .. } => {
             unreachable!("handled above")
         }
@@ -704,7 +859,7 @@ fn check_flags(a: &TheoryArgs) -> Result<()> {
     let radius = matches!(a.model, Model::Maugis { .. } | Model::Jkr | Model::Dmt);
     let summarised = !matches!(
         a.model,
-        Model::Hertz { .. } | Model::Area { .. } | Model::Sticky { .. }
+        Model::Hertz { .. } | Model::Area { .. } | Model::Sticky { .. } | Model::Viscoelastic { .. }
     );
     for (given, applies, flag) in [
         (a.summary, summarised, "--summary"),

@@ -721,6 +721,80 @@ fn theory_curves_and_pull_offs() {
     assert!(!o.status.success());
 }
 
+#[test]
+fn theory_viscoelastic_creeps_and_unloads_between_the_relaxed_and_glassy_hertz() {
+    let solid = [
+        "theory",
+        "viscoelastic",
+        "--radius",
+        "1e-3",
+        "--modulus",
+        "1e6",
+        "--maxwell-moduli",
+        "9e6",
+        "--maxwell-times",
+        "1",
+    ];
+    // A step load on E0 / E_inf = 10: from the glassy Hertz radius to the relaxed one,
+    // 10^(1/3) wider.
+    let o = roughcontact(
+        &[
+            &solid[..],
+            &["--load", "1e-2", "--duration", "1e4", "--points", "3"],
+        ]
+        .concat(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows: Vec<Vec<f64>> = stdout(&o)
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let (first, last) = (&rows[0], &rows[2]);
+    assert!((first[1] / first[4] - 1.0).abs() < 1e-12, "{first:?}");
+    assert!((last[1] / last[3] - 1.0).abs() < 1e-12, "{last:?}");
+    assert!((last[1] / first[1] - 10f64.cbrt()).abs() < 1e-9);
+    // In at a rate and out: the load lies between the relaxed and glassy Hertz loads while
+    // the contact grows, and the contact opens before the approach returns to zero.
+    let o = roughcontact(
+        &[
+            &solid[..],
+            &["--rate", "1e-6", "--rise-time", "3", "--points", "5"],
+        ]
+        .concat(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows: Vec<Vec<f64>> = stdout(&o)
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let top = &rows[2];
+    assert!(top[3] > top[4] && top[3] < top[5], "{top:?}");
+    assert_eq!((rows[3][2], rows[3][3]), (0.0, 0.0));
+    for (extra, says) in [
+        (
+            &["--maxwell-times", "-1", "--load", "1"][..],
+            "a --maxwell-times value must be",
+        ),
+        (
+            &["--maxwell-times", "1,2", "--load", "1"][..],
+            "1 --maxwell-moduli values but 2",
+        ),
+        (
+            &["--maxwell-times", "1", "--rate", "-1", "--rise-time", "1"][..],
+            "--rate must be",
+        ),
+    ] {
+        let o = roughcontact(&[&solid[..8], extra].concat());
+        assert!(
+            !o.status.success() && stderr(&o).contains(says),
+            "{extra:?}: {}",
+            stderr(&o)
+        );
+    }
+}
+
 fn json(path: &std::path::Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
