@@ -320,14 +320,26 @@ fn layer(a: &TheoryArgs, s: &LayerSphere, max: Option<f64>, w: Option<f64>) -> R
     )?;
     let (mut exact, mut fitted, mut hertz) = (Vec::new(), Vec::new(), Vec::new());
     // Rows step the contact radius: one solve a row (an approach would take a root search).
+    // Past the widest contact the exact solution evaluates, the rest of the rows step the
+    // approach with its columns left empty.
+    let points = a.points();
     let a_max = body.hertz(max, r).radius;
-    for k in 0..a.points() {
-        let c = a_max * k as f64 / (a.points() - 1) as f64;
-        let (d, p) = if k == 0 {
-            (0.0, 0.0)
-        } else {
+    let (radial, reach) = if a_max.is_nan() {
+        (points / 2, theory::layer::REACH * h)
+    } else {
+        (points, a_max)
+    };
+    let d_reach = body.sphere(reach, r, 0.0).approach;
+    for k in 0..points {
+        let (c, d, p) = if k == 0 {
+            (0.0, 0.0, 0.0)
+        } else if k < radial {
+            let c = reach * k as f64 / (radial - 1) as f64;
             let s = body.sphere(c, r, 0.0);
-            (s.approach, s.load)
+            (c, s.approach, s.load)
+        } else {
+            let f = (k + 1 - radial) as f64 / (points - radial) as f64;
+            (f64::NAN, d_reach + f * (max - d_reach), f64::NAN)
         };
         let chi = (r * d).sqrt() / h;
         let fit = rigid.map(|base| theory::layer::dimitriadis_load(d, r, h, e, nu, base));
@@ -336,13 +348,18 @@ fn layer(a: &TheoryArgs, s: &LayerSphere, max: Option<f64>, w: Option<f64>) -> R
         let winkler = (rigid == Some(theory::layer::Base::Bonded) && nu < 0.5)
             .then(|| theory::layer::winkler_load(d, r, h, e, nu));
         let blank = |v: Option<f64>| v.map(|v| format!("{v:e}")).unwrap_or_default();
+        let number = |v: f64| (!v.is_nan()).then_some(v);
         writeln!(
             out,
-            "{d:e},{chi:e},{},{w_h:e},{},{p:e},{c:e}",
+            "{d:e},{chi:e},{},{w_h:e},{},{},{}",
             blank(fit),
-            blank(winkler)
+            blank(winkler),
+            blank(number(p)),
+            blank(number(c))
         )?;
-        exact.push((d, p));
+        if !p.is_nan() {
+            exact.push((d, p));
+        }
         hertz.push((d, w_h));
         if let Some(f) = fit {
             fitted.push((d, f));

@@ -422,7 +422,7 @@ fn print_cycle(
                 let a = (9.0 * std::f64::consts::PI * theory.work_of_adhesion * r * r
                     / (8.0 * problem.e_star()))
                 .cbrt();
-                if a <= EXACT_REACH * layer.thickness {
+                if a <= theory::layer::REACH * layer.thickness {
                     let jkr = exact_on(layer, problem.e_star()).pull_off(r, theory.work_of_adhesion);
                     line += &format!("; JKR's on the layer, smooth: {:.4}", jkr.load / unit);
                 }
@@ -442,7 +442,7 @@ fn print_cycle(
         // On a layer, the exact frictionless sphere (theory::layer::LayerContact).
         let chi = |layer: &elastic::Layer| (r * deep.approach).sqrt() / layer.thickness;
         let reference = match problem.operator.body() {
-            elastic::Body::Layer(layer) if chi(&layer) <= EXACT_REACH => Some((
+            elastic::Body::Layer(layer) if chi(&layer) <= theory::layer::REACH => Some((
                 format!("the exact sphere on the layer (chi = {:.3})", chi(&layer)),
                 exact_on(layer, problem.e_star()).hertz(deep.approach, r).load,
             )),
@@ -503,10 +503,6 @@ fn print_cycle(
     }
     Ok(())
 }
-
-/// The widest contact, in layer thicknesses, that a sweep sets beside the exact sphere on its
-/// layer: the quadrature's work grows as the square of it (JKR's pull-off takes about 4 s at 50).
-const EXACT_REACH: f64 = 50.0;
 
 /// A rigid sphere on `layer` of modulus `e_star` \[Pa\], solved exactly.
 fn exact_on(layer: elastic::Layer, e_star: f64) -> theory::layer::LayerContact<impl Fn(f64) -> f64> {

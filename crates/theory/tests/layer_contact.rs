@@ -65,3 +65,17 @@ fn a_thin_compressible_layer_is_winklers_bed() {
     let bed = PI * a * a * tl::p_wave_modulus(E, nu) / h;
     assert!((stiffness / bed - 1.0).abs() < 0.15, "{stiffness} {bed}");
 }
+
+#[test]
+fn past_its_reach_it_gives_no_number() {
+    let h = 1e-6;
+    let body = on(h, 0.45, Base::Bonded);
+    assert!(body.sphere(0.99 * tl::REACH * h, R, 0.0).load.is_finite());
+    assert!(body.sphere(1.01 * tl::REACH * h, R, 0.0).load.is_nan());
+    assert!(body.punch_stiffness(1.01 * tl::REACH * h).is_nan());
+    // A pull-off whose least load lies past the reach: a film 1e-4 of JKR's radius.
+    let (w, e_film) = (0.05, E);
+    let a_jkr = (9.0 * PI * w * R * R / (8.0 * e_film)).cbrt();
+    let thin = on(a_jkr / 1e4, 0.3, Base::Bonded).pull_off(R, w);
+    assert!(thin.load.is_nan(), "{thin:?}");
+}
