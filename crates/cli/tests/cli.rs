@@ -735,43 +735,29 @@ fn theory_viscoelastic_creeps_and_unloads_between_the_relaxed_and_glassy_hertz()
         "--maxwell-times",
         "1",
     ];
+    // The curve's rows of numbers, for the history `extra`.
+    let rows = |extra: &[&str]| -> Vec<Vec<f64>> {
+        let o = roughcontact(&[&solid[..], extra].concat());
+        assert!(o.status.success(), "{}", stderr(&o));
+        stdout(&o)
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect()
+    };
     // A step load on E0 / E_inf = 10: from the glassy Hertz radius to the relaxed one,
     // 10^(1/3) wider.
-    let o = roughcontact(
-        &[
-            &solid[..],
-            &["--load", "1e-2", "--duration", "1e4", "--points", "3"],
-        ]
-        .concat(),
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
-    let rows: Vec<Vec<f64>> = stdout(&o)
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
-        .collect();
-    let (first, last) = (&rows[0], &rows[2]);
+    let creep = rows(&["--load", "1e-2", "--duration", "1e4", "--points", "3"]);
+    let (first, last) = (&creep[0], &creep[2]);
     assert!((first[1] / first[4] - 1.0).abs() < 1e-12, "{first:?}");
     assert!((last[1] / last[3] - 1.0).abs() < 1e-12, "{last:?}");
     assert!((last[1] / first[1] - 10f64.cbrt()).abs() < 1e-9);
     // In at a rate and out: the load lies between the relaxed and glassy Hertz loads while
     // the contact grows, and the contact opens before the approach returns to zero.
-    let o = roughcontact(
-        &[
-            &solid[..],
-            &["--rate", "1e-6", "--rise-time", "3", "--points", "5"],
-        ]
-        .concat(),
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
-    let rows: Vec<Vec<f64>> = stdout(&o)
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
-        .collect();
-    let top = &rows[2];
+    let cycle = rows(&["--rate", "1e-6", "--rise-time", "3", "--points", "5"]);
+    let top = &cycle[2];
     assert!(top[3] > top[4] && top[3] < top[5], "{top:?}");
-    assert_eq!((rows[3][2], rows[3][3]), (0.0, 0.0));
+    assert_eq!((cycle[3][2], cycle[3][3]), (0.0, 0.0));
     for (extra, says) in [
         (
             &["--maxwell-times", "-1", "--load", "1"][..],

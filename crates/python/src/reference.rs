@@ -291,6 +291,12 @@ fn layer_of(
     })
 }
 
+/// The exact sphere on `layer` of plane-strain modulus `e` \[Pa\].
+fn exact(layer: &elastic::Layer, e: f64) -> theory::layer::LayerContact<impl Fn(f64) -> f64 + '_> {
+    let h = layer.thickness;
+    theory::layer::LayerContact::new(h, e, move |x| layer.compliance_ratio(x / h, e))
+}
+
 /// The exact frictionless sphere on a layer at the contact radii: loads [N] and approaches
 /// [m] (JKR's on the layer with a work of adhesion, Hertz's without).
 #[pyfunction]
@@ -324,8 +330,7 @@ fn layer(
         layer_base,
         (substrate_modulus, substrate_poisson),
     )?;
-    let h = layer.thickness;
-    let body = theory::layer::LayerContact::new(h, e, |x| layer.compliance_ratio(x / h, e));
+    let body = exact(&layer, e);
     let points: Vec<_> = py.detach(|| {
         contact_radius
             .iter()
@@ -363,9 +368,7 @@ fn layer_pull_off(
         layer_base,
         (substrate_modulus, substrate_poisson),
     )?;
-    let h = layer.thickness;
-    let body = theory::layer::LayerContact::new(h, e, |x| layer.compliance_ratio(x / h, e));
-    let off = py.detach(|| body.pull_off(r, w));
+    let off = py.detach(|| exact(&layer, e).pull_off(r, w));
     Ok((off.load, off.radius, off.approach))
 }
 
