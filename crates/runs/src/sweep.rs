@@ -441,11 +441,13 @@ fn print_cycle(
     {
         // On a layer, the exact frictionless sphere (theory::layer::LayerContact).
         let chi = |layer: &elastic::Layer| (r * deep.approach).sqrt() / layer.thickness;
+        // (Not a number where the contact is wider than the solution's reach.)
         let reference = match problem.operator.body() {
             elastic::Body::Layer(layer) if chi(&layer) <= theory::layer::REACH => Some((
                 format!("the exact sphere on the layer (chi = {:.3})", chi(&layer)),
                 exact_on(layer, problem.e_star()).hertz(deep.approach, r).load,
-            )),
+            ))
+            .filter(|(_, load)| load.is_finite()),
             elastic::Body::Layer(_) => None,
             elastic::Body::HalfSpace => Some((
                 "Hertz".to_string(),
