@@ -372,7 +372,74 @@ fn layer_pull_off(
     Ok((off.load, off.radius, off.approach))
 }
 
+/// A generalized Maxwell solid from its relaxed modulus \[Pa\] and branches.
+fn maxwell(modulus: f64, moduli: &[f64], times: &[f64]) -> PyResult<theory::viscoelastic::Maxwell> {
+    theory::viscoelastic::Maxwell::new(modulus, moduli, times).map_err(|e| {
+        PyValueError::new_err(
+            e.replace("the relaxed modulus", "modulus (the relaxed modulus)")
+                .replace("a branch modulus", "a maxwell_moduli value")
+                .replace("a relaxation time", "a maxwell_times value")
+                .replace("branch moduli but", "maxwell_moduli values but")
+                .replace("relaxation times", "maxwell_times values"),
+        )
+    })
+}
+
+/// A sphere on a generalized Maxwell solid pressed in at `rate` until `rise_time` and drawn
+/// back: contact radii [m] and loads [N] at the times [s] (Lee & Radok, then Ting).
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+fn viscoelastic_indentation(
+    time: Vec<f64>,
+    radius: f64,
+    modulus: f64,
+    maxwell_moduli: Vec<f64>,
+    maxwell_times: Vec<f64>,
+    rate: f64,
+    rise_time: f64,
+) -> PyResult<(Vec<f64>, Vec<f64>)> {
+    let solid = maxwell(modulus, &maxwell_moduli, &maxwell_times)?;
+    let (r, v, rise) = (
+        positive("radius", radius)?,
+        positive("rate", rate)?,
+        positive("rise_time", rise_time)?,
+    );
+    if let Some(t) = time.iter().find(|t| !(t.is_finite() && **t >= 0.0)) {
+        return Err(PyValueError::new_err(format!(
+            "a time must be finite and >= 0 s, got {t}"
+        )));
+    }
+    let points: Vec<(f64, f64)> = time.iter().map(|&t| solid.triangle(t, r, v, rise)).collect();
+    Ok((
+        points.iter().map(|p| p.0).collect(),
+        points.iter().map(|p| p.1).collect(),
+    ))
+}
+
+/// Lee & Radok's creep of a sphere under a load [N] put on at time 0: contact radii [m] at the
+/// times [s].
+#[pyfunction]
+fn viscoelastic_creep(
+    time: Vec<f64>,
+    radius: f64,
+    modulus: f64,
+    maxwell_moduli: Vec<f64>,
+    maxwell_times: Vec<f64>,
+    load: f64,
+) -> PyResult<Vec<f64>> {
+    let solid = maxwell(modulus, &maxwell_moduli, &maxwell_times)?;
+    let (r, p) = (positive("radius", radius)?, positive("load", load)?);
+    if let Some(t) = time.iter().find(|t| !(t.is_finite() && **t >= 0.0)) {
+        return Err(PyValueError::new_err(format!(
+            "a time must be finite and >= 0 s, got {t}"
+        )));
+    }
+    Ok(map(&time, |t| solid.creep_radius(t, r, p)))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(viscoelastic_indentation, m)?)?;
+    m.add_function(wrap_pyfunction!(viscoelastic_creep, m)?)?;
     m.add_function(wrap_pyfunction!(layer, m)?)?;
     m.add_function(wrap_pyfunction!(layer_pull_off, m)?)?;
     m.add_function(wrap_pyfunction!(tabor_parameter, m)?)?;

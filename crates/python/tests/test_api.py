@@ -175,6 +175,23 @@ def test_theory_sphere_on_a_layer():
         theory.layer(a, r, e, -1.0, 0.3)
 
 
+def test_theory_viscoelastic_sphere():
+    solid = dict(radius=1e-3, modulus=1e6, maxwell_moduli=[9e6], maxwell_times=[1.0])
+    # Creep under a held load on E0 / E_inf = 10: the radius grows by 10^(1/3).
+    a = theory.viscoelastic_creep(np.array([0.0, 1e4]), load=1e-2, **solid)
+    assert a[1] / a[0] == pytest.approx(10 ** (1 / 3), rel=1e-9)
+    # Pressed in fast, it is the glassy Hertz; the contact grows as sqrt(R delta).
+    t = np.array([1e-6])
+    fast = theory.viscoelastic_indentation(t, rate=1e-3, rise_time=1.0, **solid)
+    delta = 1e-3 * t
+    assert fast["load"] == pytest.approx(4 / 3 * 1e7 * np.sqrt(1e-3) * delta**1.5, rel=1e-4)
+    assert fast["contact_radius"] == pytest.approx(np.sqrt(1e-3 * delta), rel=1e-12)
+    with pytest.raises(ValueError, match="maxwell_times"):
+        theory.viscoelastic_creep([1.0], 1e-3, 1e6, [9e6], [-1.0], 1e-2)
+    with pytest.raises(ValueError, match="maxwell_moduli values but"):
+        theory.viscoelastic_creep([1.0], 1e-3, 1e6, [9e6, 1e6], [1.0], 1e-2)
+
+
 def test_theory_against_closed_forms():
     r, w0, e = 1e-6, 0.05, 1e9
     pull = theory.jkr_pull_off(r, w0)

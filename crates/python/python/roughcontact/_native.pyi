@@ -79,3 +79,15 @@ def layer_pull_off(
     substrate_modulus: Optional[float],
     substrate_poisson: Optional[float],
 ) -> Tuple[float, float, float]: ...
+def viscoelastic_indentation(
+    time: List[float],
+    radius: float,
+    modulus: float,
+    maxwell_moduli: List[float],
+    maxwell_times: List[float],
+    rate: float,
+    rise_time: float,
+) -> Tuple[List[float], List[float]]: ...
+def viscoelastic_creep(
+    time: List[float], radius: float, modulus: float, maxwell_moduli: List[float], maxwell_times: List[float], load: float
+) -> List[float]: ...

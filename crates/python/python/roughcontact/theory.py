@@ -252,3 +252,47 @@ def layer_pull_off(
         None if substrate_poisson is None else _scalar("substrate_poisson", substrate_poisson),
     )
     return {"load": load, "contact_radius": a, "approach": approach}
+
+
+def viscoelastic_indentation(
+    time: Any,
+    radius: float,
+    modulus: float,
+    maxwell_moduli: Any,
+    maxwell_times: Any,
+    rate: float,
+    rise_time: float,
+) -> Dict[str, np.ndarray]:
+    """A rigid sphere of ``radius`` [m] on a generalized Maxwell solid (relaxed plane-strain
+    ``modulus`` E*_inf [Pa], branches of ``maxwell_moduli`` [Pa] relaxing in
+    ``maxwell_times`` [s]), pressed in at ``rate`` [m/s] until ``rise_time`` [s] and drawn back
+    at the same rate, without adhesion, at the times [s]: ``contact_radius`` [m] and ``load``
+    [N] (Lee & Radok while the contact grows, Ting after)."""
+    x, shape = _flat(time)
+    a, load = _native.viscoelastic_indentation(
+        x,
+        _scalar("radius", radius),
+        _scalar("modulus", modulus),
+        _flat(maxwell_moduli)[0],
+        _flat(maxwell_times)[0],
+        _scalar("rate", rate),
+        _scalar("rise_time", rise_time),
+    )
+    return {"contact_radius": _shaped(a, shape), "load": _shaped(load, shape)}
+
+
+def viscoelastic_creep(
+    time: Any, radius: float, modulus: float, maxwell_moduli: Any, maxwell_times: Any, load: float
+) -> np.ndarray:
+    """Lee & Radok's contact radius [m] of a sphere (the solid of
+    :func:`viscoelastic_indentation`) under a ``load`` [N] put on at time 0, at the times [s]."""
+    x, shape = _flat(time)
+    a = _native.viscoelastic_creep(
+        x,
+        _scalar("radius", radius),
+        _scalar("modulus", modulus),
+        _flat(maxwell_moduli)[0],
+        _flat(maxwell_times)[0],
+        _scalar("load", load),
+    )
+    return _shaped(a, shape)
