@@ -770,14 +770,7 @@ pub fn theory(a: TheoryArgs) -> Result<()> {
             }
             let solid =
                 theory::viscoelastic::Maxwell::new(modulus, maxwell_moduli, maxwell_times).map_err(|e| {
-                    anyhow::anyhow!(
-                        "{}",
-                        e.replace("the relaxed modulus", "--modulus (the relaxed modulus)")
-                            .replace("a branch modulus", "a --maxwell-moduli value")
-                            .replace("a relaxation time", "a --maxwell-times value")
-                            .replace("branch moduli but", "--maxwell-moduli values but")
-                            .replace("relaxation times", "--maxwell-times values")
-                    )
+                    anyhow::anyhow!("--{} {}, got {}", e.name.replace('_', "-"), e.reason, e.value)
                 })?;
             let positive = |name: &str, v: f64| {
                 if v.is_finite() && v > 0.0 {

@@ -761,11 +761,11 @@ fn theory_viscoelastic_creeps_and_unloads_between_the_relaxed_and_glassy_hertz()
     for (extra, says) in [
         (
             &["--maxwell-times", "-1", "--load", "1"][..],
-            "a --maxwell-times value must be",
+            "--maxwell-times values must be",
         ),
         (
             &["--maxwell-times", "1,2", "--load", "1"][..],
-            "1 --maxwell-moduli values but 2",
+            "--maxwell-times must hold one time a branch modulus (1 given), got 2",
         ),
         (
             &["--maxwell-times", "1", "--rate", "-1", "--rise-time", "1"][..],

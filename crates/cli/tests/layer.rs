@@ -193,23 +193,18 @@ fn theory_layer_gives_the_exact_load_beside_dimitriadis_hertz_and_winkler() {
 
 #[test]
 fn theory_layer_summary_is_jkr_pull_off_and_a_thick_layer_is_the_half_space() {
+    let sphere = [
+        "theory",
+        "layer",
+        "--radius",
+        "1e-6",
+        "--modulus",
+        "1e9",
+        "--summary",
+    ];
     let summary = |thickness: &str| {
-        let o = run(&[
-            "theory",
-            "layer",
-            "--radius",
-            "1e-6",
-            "--modulus",
-            "1e9",
-            "--thickness",
-            thickness,
-            "--poisson",
-            "0.45",
-            "--work-of-adhesion",
-            "0.089",
-            "--summary",
-            "--json",
-        ]);
+        let film = ["--thickness", thickness, "--poisson", "0.45"];
+        let o = run(&[&sphere[..], &film, &["--work-of-adhesion", "0.089", "--json"]].concat());
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         let get = |k: &str| v[k].as_f64().unwrap();
@@ -221,19 +216,7 @@ fn theory_layer_summary_is_jkr_pull_off_and_a_thick_layer_is_the_half_space() {
     // A film as thick as the contact radius pulls off harder.
     let (thin, _) = summary("6.8e-8");
     assert!(thin / half > 1.1, "{thin} {half}");
-    let o = run(&[
-        "theory",
-        "layer",
-        "--radius",
-        "1e-6",
-        "--modulus",
-        "1e9",
-        "--thickness",
-        "1e-7",
-        "--poisson",
-        "0.3",
-        "--summary",
-    ]);
+    let o = run(&[&sphere[..], &["--thickness", "1e-7", "--poisson", "0.3"]].concat());
     assert!(String::from_utf8_lossy(&o.stderr).contains("--work-of-adhesion"));
 }
 

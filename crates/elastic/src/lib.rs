@@ -10,9 +10,9 @@
 //!   convolution on a zero-padded grid (DC-FFT); the displacement vanishes at infinity.
 //!
 //! Both take a [`Body`] other than the half-space: a [`Layer`] of finite thickness on a rigid
-//! base, bonded or frictionless, or on an elastic substrate, whose
-//! compliance by wavenumber is the half-space's times a factor of `q h` (on free grids, Love's
-//! coefficients plus the layer's correction in real space).
+//! base, bonded or frictionless, or on an elastic substrate, whose compliance by wavenumber is
+//! the half-space's times a factor of `q h` (on free grids, Love's coefficients plus the
+//! layer's correction in real space).
 //!
 //! Both operators are [`Compliance`] operators ([`PeriodicStiffness`] inverts the periodic one,
 //! [`FreeStiffness`] the free one on its padded grid):

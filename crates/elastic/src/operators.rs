@@ -238,7 +238,7 @@ impl Free {
     pub fn with_body(domain: Domain, e_star: f64, body: Body) -> Result<Self> {
         let e_star = check_modulus(e_star)?;
         domain.validate()?;
-        let (conv, cell) = free_convolution(&domain, e_star, body, (domain.ny, domain.nx))?;
+        let (conv, cell) = free_convolution(&domain, e_star, body)?;
         Ok(Free {
             domain: Domain {
                 periodic: false,
@@ -252,14 +252,9 @@ impl Free {
     }
 }
 
-/// The DC-FFT convolution of the free `body` from `(ny, nx)` pressures to `output`
-/// displacements (at most the padded `(2ny, 2nx)`), and its self-coefficient \[m/Pa\].
-fn free_convolution(
-    domain: &Domain,
-    e_star: f64,
-    body: Body,
-    output: (usize, usize),
-) -> Result<(Convolution, f64)> {
+/// The DC-FFT convolution of the free `body` from `(ny, nx)` pressures to `(ny, nx)`
+/// displacements, and its self-coefficient \[m/Pa\].
+fn free_convolution(domain: &Domain, e_star: f64, body: Body) -> Result<(Convolution, f64)> {
     let Domain { nx, ny, dx, dy, .. } = *domain;
     let influence = body.influence(dx, dy, e_star);
     let (mx, my) = (2 * nx, 2 * ny);
@@ -278,7 +273,7 @@ fn free_convolution(
         let q = &quadrant[fold(j, ny) * (nx + 1)..][..nx + 1];
         out.iter_mut().enumerate().for_each(|(i, o)| *o = q[fold(i, nx)]);
     };
-    let mut conv = Convolution::without_kernel(mx, my, (ny, nx), output);
+    let mut conv = Convolution::without_kernel(mx, my, (ny, nx), (ny, nx));
     let kernel = conv.real_spectrum(wrapped_row, &mut conv.make_workspace());
     let diagonal = quadrant[0];
     drop(quadrant);
@@ -350,8 +345,9 @@ impl FreeStiffness {
         let (mut stiffness, mut compliance, mut padded_compliance) =
             (plan(padded), plan((domain.ny, domain.nx)), plan(padded));
         stiffness.set_kernel(kernel.mapv(|k| 1.0 / (k * scale)));
-        compliance.set_kernel(kernel.mapv(|k| k * scale));
-        padded_compliance.set_kernel(kernel.mapv(|k| k * scale));
+        let unscaled = kernel.mapv(|k| k * scale);
+        compliance.set_kernel(unscaled.clone());
+        padded_compliance.set_kernel(unscaled);
         Ok(FreeStiffness {
             domain,
             e_star: op.e_star(),

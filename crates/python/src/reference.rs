@@ -374,15 +374,8 @@ fn layer_pull_off(
 
 /// A generalized Maxwell solid from its relaxed modulus \[Pa\] and branches.
 fn maxwell(modulus: f64, moduli: &[f64], times: &[f64]) -> PyResult<theory::viscoelastic::Maxwell> {
-    theory::viscoelastic::Maxwell::new(modulus, moduli, times).map_err(|e| {
-        PyValueError::new_err(
-            e.replace("the relaxed modulus", "modulus (the relaxed modulus)")
-                .replace("a branch modulus", "a maxwell_moduli value")
-                .replace("a relaxation time", "a maxwell_times value")
-                .replace("branch moduli but", "maxwell_moduli values but")
-                .replace("relaxation times", "maxwell_times values"),
-        )
-    })
+    theory::viscoelastic::Maxwell::new(modulus, moduli, times)
+        .map_err(|e| PyValueError::new_err(e.to_string()))
 }
 
 /// A sphere on a generalized Maxwell solid pressed in at `rate` until `rise_time` and drawn

@@ -52,9 +52,9 @@ impl MeanMode {
     /// start's); then the secant through the last two trials where it falls inside the
     /// bracket, else the chord between the two sides (Illinois' false position), else the
     /// fixed-point step (`x = delta - C0 p`, or `p = (delta - x) / C0`), which crosses the root
-    /// on a rising curve. A trial that pulls off counts as too tensile. After [`MAX_STEPS`] trials the last is marked
-    /// [`Termination::MaxIterations`]. The solution reports every trial's work
-    /// ([`Solved::add_work`]).
+    /// on a rising curve. A trial that pulls off counts as too tensile. After [`MAX_STEPS`]
+    /// trials the last is marked [`Termination::MaxIterations`]. The solution reports every
+    /// trial's work ([`Solved::add_work`]).
     pub(crate) fn approach<S: Solved>(
         &self,
         delta: f64,
@@ -130,26 +130,23 @@ impl MeanMode {
                     low.is_none_or(|[_, pl, _]| ps > pl) && high.is_none_or(|[_, ph, _]| ps < ph)
                 });
             previous = Some([x, p, miss]);
-            next = match (low, high) {
-                _ if secant.is_some() => {
-                    let (xs, ps) = secant.unwrap_or((x, p));
-                    at(xs, ps)
-                }
-                (Some([xl, pl, ml]), Some([xh, ph, mh])) if ml.is_finite() => {
+            next = match (secant, low, high) {
+                (Some((xs, ps)), _, _) => at(xs, ps),
+                (None, Some([xl, pl, ml]), Some([xh, ph, mh])) if ml.is_finite() => {
                     let t = ml / (ml - mh);
                     at(xl + t * (xh - xl), pl + t * (ph - pl))
                 }
                 // Pulled off below: halfway in load.
-                (Some([_, pl, _]), Some([_, ph, _])) => Control::MeanPressure(0.5 * (pl + ph)),
+                (None, Some([_, pl, _]), Some([_, ph, _])) => Control::MeanPressure(0.5 * (pl + ph)),
                 _ if miss.is_finite() => at(delta - c0 * p, (delta - x) / c0),
                 // Pulled off with nothing above: half as tensile.
                 _ => Control::MeanPressure(0.5 * p),
             };
-            if let Control::MeanPressure(q) = next {
+            if let Control::MeanPressure(q) = next
+                && q >= ceiling
+            {
                 let below = low.map_or(0.0, |[_, pl, _]| pl.max(0.0));
-                if q >= ceiling {
-                    next = Control::MeanPressure(0.5 * (below + ceiling));
-                }
+                next = Control::MeanPressure(0.5 * (below + ceiling));
             }
         }
         unreachable!("the last step returns")

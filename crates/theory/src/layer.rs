@@ -229,7 +229,7 @@ impl<F: Fn(f64) -> f64> LayerContact<F> {
                 load: f64::NAN,
             };
         }
-        let (mut lo, mut hi) = (scan[k.max(1) - 1].0, scan[(k + 1).min(scan.len() - 1)].0);
+        let (mut lo, mut hi) = (scan[k.max(1) - 1].0, scan[k + 1].0);
         let golden = 0.5 * (5f64.sqrt() - 1.0);
         let (mut x1, mut x2) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
         let (mut f1, mut f2) = (load(x1), load(x2));
@@ -250,8 +250,8 @@ impl<F: Fn(f64) -> f64> LayerContact<F> {
     /// `(g(a), load)` of the flat punch at unit approach and of the cap `-t^2 / r` alone.
     fn edge_and_load(&self, a: f64, r: f64) -> ((f64, f64), (f64, f64)) {
         // The layer's boundary layer at the edge is h wide: more nodes on thin layers (the
-        // load moves by 1e-13 when the nodes and the panels are doubled, a = 0.2-20 h; JKR's
-        // pull-off at a = 18 h by under 1e-7 when the cap of 200 nodes is doubled).
+        // load moves by 1e-13 when the nodes and the panels are doubled, a = 0.2-20 h; the
+        // cap: REACH).
         let n = (24 + 4 * (a / self.h).ceil() as usize).min(200);
         let (t, wt) = gauss_legendre(n, 0.0, a);
         // K(t, s) = (2/pi) int (ratio - 1) cos(q t) cos(q s) dq = sum_k d_k c_k(t) c_k(s):

@@ -19,28 +19,54 @@ pub struct Maxwell {
     pub branches: Vec<(f64, f64)>,
 }
 
+/// A solid [`Maxwell::new`] refuses: the parameter by the name the front ends give it
+/// (`modulus`, `maxwell_moduli`, `maxwell_times`), the value, and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BadSolid {
+    /// The parameter.
+    pub name: &'static str,
+    /// The value refused (a list's count for a list of the wrong length).
+    pub value: f64,
+    /// Why.
+    pub reason: String,
+}
+
+impl std::fmt::Display for BadSolid {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} {}, got {}", self.name, self.reason, self.value)
+    }
+}
+
+impl std::error::Error for BadSolid {}
+
 impl Maxwell {
     /// The solid of relaxed modulus `relaxed` \[Pa\] and branches of `moduli` \[Pa\] relaxing in
     /// `times` \[s\]: all finite and > 0, the lists of one length.
     ///
     /// # Errors
-    /// A message naming the bad value.
-    pub fn new(relaxed: f64, moduli: &[f64], times: &[f64]) -> Result<Maxwell, String> {
+    /// [`BadSolid`] naming the bad value.
+    pub fn new(relaxed: f64, moduli: &[f64], times: &[f64]) -> Result<Maxwell, BadSolid> {
         if !(relaxed.is_finite() && relaxed > 0.0) {
-            return Err(format!(
-                "the relaxed modulus must be finite and > 0 Pa, got {relaxed}"
-            ));
+            return Err(BadSolid {
+                name: "modulus",
+                value: relaxed,
+                reason: "(the relaxed modulus) must be finite and > 0 Pa".into(),
+            });
         }
         if moduli.len() != times.len() {
-            return Err(format!(
-                "{} branch moduli but {} relaxation times",
-                moduli.len(),
-                times.len()
-            ));
+            return Err(BadSolid {
+                name: "maxwell_times",
+                value: times.len() as f64,
+                reason: format!("must hold one time a branch modulus ({} given)", moduli.len()),
+            });
         }
-        for (name, list, unit) in [("branch modulus", moduli, "Pa"), ("relaxation time", times, "s")] {
-            if let Some(v) = list.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
-                return Err(format!("a {name} must be finite and > 0 {unit}, got {v}"));
+        for (name, list, unit) in [("maxwell_moduli", moduli, "Pa"), ("maxwell_times", times, "s")] {
+            if let Some(&value) = list.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+                return Err(BadSolid {
+                    name,
+                    value,
+                    reason: format!("values must be finite and > 0 {unit}"),
+                });
             }
         }
         Ok(Maxwell {
