@@ -209,7 +209,7 @@ fn nested_start() -> Result<()> {
                 gap: Array2::zeros((n, n)),
                 displacement: Array2::zeros((n, n)),
                 approach: state.approach,
-                permanent_set: None,
+                ..ContactState::unloaded((n, n))
             })
         } else {
             None

@@ -394,7 +394,7 @@ fn viscoelastic(
             for k in 0..a.points() {
                 let t = 2.0 * rise * k as f64 / (a.points() - 1) as f64;
                 let d = rate * if t <= rise { t } else { 2.0 * rise - t };
-                let (c, p) = solid.triangle(t, r, rate, rise);
+                let (c, p) = theory::viscoelastic::triangle(solid, t, r, rate, rise);
                 let (p_slow, p_fast) = (hertz_limit(d, r, relaxed), hertz_limit(d, r, glassy));
                 writeln!(out, "{t:e},{d:e},{c:e},{p:e},{p_slow:e},{p_fast:e}")?;
                 curve.push((d, p));
@@ -410,7 +410,7 @@ fn viscoelastic(
             let hertz = |e: f64| (0.75 * load * r / e).cbrt();
             for k in 0..a.points() {
                 let t = duration * k as f64 / (a.points() - 1) as f64;
-                let c = solid.creep_radius(t, r, load);
+                let c = theory::viscoelastic::creep_radius(solid, t, r, load);
                 writeln!(
                     out,
                     "{t:e},{c:e},{:e},{:e},{:e}",

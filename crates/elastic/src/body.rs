@@ -4,7 +4,7 @@
 //! ([`Body::compliance_ratio`]), and, on free grids, the same in real space cell by cell. A new
 //! body is a variant here and its two forms.
 
-use crate::layer::{Layer, RealSpace};
+use crate::layer::{Base, Layer, RealSpace};
 use crate::love::cell_influence;
 
 /// The elastic body under the surface, of plane-strain modulus `E*` (the operators').
@@ -34,6 +34,26 @@ impl Body {
         match self {
             Body::HalfSpace => None,
             Body::Layer(layer) => layer.mean_compliance(e_star),
+        }
+    }
+
+    /// The body with every modulus times `ratio` (a coating's substrate's: the layer's own is
+    /// the operator's).
+    pub(crate) fn with_modulus_scaled(self, ratio: f64) -> Body {
+        match self {
+            Body::Layer(Layer {
+                base: Base::Substrate { e_star, poisson },
+                thickness,
+                poisson: nu,
+            }) => Body::Layer(Layer {
+                thickness,
+                poisson: nu,
+                base: Base::Substrate {
+                    e_star: e_star * ratio,
+                    poisson,
+                },
+            }),
+            other => other,
         }
     }
 

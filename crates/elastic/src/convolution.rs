@@ -58,6 +58,11 @@ impl Convolution {
         self.kernel = kernel * (1.0 / (mx * my) as f64);
     }
 
+    /// Multiplies the kernel by `factor` (a change of modulus).
+    pub fn scale_kernel(&mut self, factor: f64) {
+        self.kernel *= factor;
+    }
+
     /// A workspace for this convolution (one per concurrent caller).
     pub fn make_workspace(&self) -> ConvWorkspace {
         self.fft.make_workspace()

@@ -42,12 +42,14 @@ pub mod layer;
 pub mod love;
 pub mod material;
 mod operators;
+pub mod viscoelastic;
 
 pub use body::Body;
 pub use error::{ElasticError, Result};
 pub use layer::{Base, Layer};
 pub use material::{Material, composite_modulus};
 pub use operators::{Free, FreeStiffness, Periodic, PeriodicStiffness, Workspace};
+pub use viscoelastic::Maxwell;
 
 use ndarray::{ArrayView2, ArrayViewMut2, Zip};
 
@@ -132,6 +134,15 @@ pub trait Compliance: Sync + Send {
             0.0
         }
     }
+
+    /// The same body on the same grid with every modulus scaled so that its plane-strain
+    /// modulus is `e_star` \[Pa\] (a coating's substrate scaled alike): the compliance times
+    /// `self.e_star() / e_star`, nothing recomputed but the kernel's scale. A viscoelastic
+    /// step's effective body.
+    ///
+    /// # Errors
+    /// A modulus that is not finite and positive.
+    fn with_modulus(&self, e_star: f64) -> Result<Box<dyn Compliance>>;
 
     /// Buffers for [`Compliance::apply`]; make one per concurrent caller and reuse it.
     fn make_workspace(&self) -> Workspace;

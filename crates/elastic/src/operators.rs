@@ -464,6 +464,16 @@ macro_rules! impl_compliance {
             fn cell_compliance(&self) -> f64 {
                 self.cell
             }
+            fn with_modulus(&self, e_star: f64) -> Result<Box<dyn Compliance>> {
+                let e_star = check_modulus(e_star)?;
+                let factor = self.e_star / e_star;
+                let mut scaled = self.clone();
+                scaled.conv.scale_kernel(factor);
+                scaled.cell *= factor;
+                scaled.e_star = e_star;
+                scaled.body = self.body.with_modulus_scaled(1.0 / factor);
+                Ok(Box::new(scaled))
+            }
             fn make_workspace(&self) -> Workspace {
                 Workspace(self.conv.make_workspace())
             }

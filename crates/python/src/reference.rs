@@ -402,7 +402,10 @@ fn viscoelastic_indentation(
             "a time must be finite and >= 0 s, got {t}"
         )));
     }
-    let points: Vec<(f64, f64)> = time.iter().map(|&t| solid.triangle(t, r, v, rise)).collect();
+    let points: Vec<(f64, f64)> = time
+        .iter()
+        .map(|&t| theory::viscoelastic::triangle(&solid, t, r, v, rise))
+        .collect();
     Ok((
         points.iter().map(|p| p.0).collect(),
         points.iter().map(|p| p.1).collect(),
@@ -427,7 +430,9 @@ fn viscoelastic_creep(
             "a time must be finite and >= 0 s, got {t}"
         )));
     }
-    Ok(map(&time, |t| solid.creep_radius(t, r, p)))
+    Ok(map(&time, |t| {
+        theory::viscoelastic::creep_radius(&solid, t, r, p)
+    }))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -395,10 +395,13 @@ fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
     std::fs::create_dir_all(&new).with_context(|| format!("creating {}", new.display()))?;
     let mut fields = serde_json::Map::new();
     for (name, field) in state_fields(state) {
-        crate::output::field(&new, name, field)?;
-        fields.insert(name.to_string(), Value::String(fingerprint(field)));
+        crate::output::field(&new, &name, field)?;
+        fields.insert(name, Value::String(fingerprint(field)));
     }
-    let manifest = serde_json::json!({ "approach": state.contact.approach, "fields": fields });
+    let mut manifest = serde_json::json!({ "approach": state.contact.approach, "fields": fields });
+    if let Some(h) = &state.contact.history {
+        manifest["time"] = h.time.into();
+    }
     crate::output::text(
         &new.join(MANIFEST),
         &(serde_json::to_string_pretty(&manifest)? + "\n"),
@@ -420,15 +423,30 @@ fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
 const MANIFEST: &str = "manifest.json";
 
 /// The fields a saved state holds, by file name: the permanent set (`plastic`) once the
-/// surface has a hardness.
-fn state_fields(state: &AdhesiveState) -> Vec<(&'static str, &Array2<f64>)> {
+/// surface has a hardness, a viscoelastic body's branch fields (`branch_K`, its time in the
+/// manifest).
+fn state_fields(state: &AdhesiveState) -> Vec<(String, &Array2<f64>)> {
     let mut fields = vec![
-        ("compressive_pressure", &state.contact.pressure),
-        ("adhesive_pressure", &state.adhesive_pressure),
-        ("gap", &state.contact.gap),
-        ("displacement", &state.contact.displacement),
+        ("compressive_pressure".to_string(), &state.contact.pressure),
+        ("adhesive_pressure".to_string(), &state.adhesive_pressure),
+        ("gap".to_string(), &state.contact.gap),
+        ("displacement".to_string(), &state.contact.displacement),
     ];
-    fields.extend(state.contact.permanent_set.as_ref().map(|s| ("plastic", s)));
+    fields.extend(
+        state
+            .contact
+            .permanent_set
+            .as_ref()
+            .map(|s| ("plastic".to_string(), s)),
+    );
+    if let Some(h) = &state.contact.history {
+        fields.extend(
+            h.branches
+                .iter()
+                .enumerate()
+                .map(|(k, b)| (format!("branch_{k}"), b)),
+        );
+    }
     fields
 }
 
@@ -490,6 +508,18 @@ pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
             approach,
             permanent_set: match manifest["fields"].get("plastic") {
                 Some(_) => Some(read("plastic")?),
+                None => None,
+            },
+            history: match manifest["time"].as_f64() {
+                Some(time) => {
+                    let count = (0..)
+                        .take_while(|k| manifest["fields"].get(format!("branch_{k}")).is_some())
+                        .count();
+                    let branches = (0..count)
+                        .map(|k| read(&format!("branch_{k}")))
+                        .collect::<Result<_>>()?;
+                    Some(solver::History { time, branches })
+                }
                 None => None,
             },
         },

@@ -57,6 +57,7 @@ pub mod report;
 pub mod state;
 mod sum;
 pub mod sweep;
+pub mod time;
 
 pub use adhesive::{AdhesiveReport, AdhesiveState, Iterations, Start};
 pub use error::{Result, SolverError};
@@ -69,8 +70,10 @@ pub use pull_off::{PullOff, PullOffSearch};
 pub use report::{ContactReport, Termination};
 pub use state::ContactState;
 pub use sweep::{
-    CyclePoint, CycleSummary, MAX_SUBSTEPS, RETRIES, approach_cycle, count_substeps, substeps, summarize,
+    CyclePoint, CycleSummary, MAX_SUBSTEPS, Path, RETRIES, approach_cycle, count_substeps, substeps,
+    summarize,
 };
+pub use time::History;
 
 /// The README's library example, run as a doctest.
 #[cfg(doctest)]

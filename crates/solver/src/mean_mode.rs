@@ -194,6 +194,13 @@ impl elastic::Compliance for WithMean<'_> {
         0.0
     }
 
+    fn with_modulus(&self, _: f64) -> elastic::Result<Box<dyn elastic::Compliance>> {
+        // A viscoelastic step scales the problem's operator before any solve wraps it.
+        Err(elastic::ElasticError::Unsupported(
+            "a borrowed operator with its mean mode is not rescaled",
+        ))
+    }
+
     fn make_workspace(&self) -> elastic::Workspace {
         self.op.make_workspace()
     }

@@ -69,6 +69,8 @@ impl Branch {
 pub struct SweepPoint {
     /// The control of this step.
     pub control: Control,
+    /// The time it was reached at \[s\], on a path with times.
+    pub time: Option<f64>,
     /// Its direction.
     pub branch: Branch,
     /// The solve's report. When the step was split (see [`crate::ContactProblem::sweep`]), its iteration counts and

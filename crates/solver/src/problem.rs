@@ -51,6 +51,10 @@ pub struct ContactProblem {
     pub law: Arc<dyn AdhesionLaw>,
     /// The interface: elastic, or capped by a hardness.
     pub interface: Interface,
+    /// A viscoelastic body: the generalized Maxwell solid whose relaxed modulus is the
+    /// operator's E* ([`crate::time`]); its answers depend on the path, so it is swept along
+    /// times. `None`: elastic.
+    pub solid: Option<elastic::Maxwell>,
     /// Things the user should know before trusting the result: a grid too coarse for the law,
     /// attraction cut off at a free grid's edge.
     pub warnings: Vec<String>,
@@ -96,6 +100,7 @@ impl ContactProblem {
             initial_gap,
             law,
             interface: Interface::default(),
+            solid: None,
             warnings: Vec::new(),
         };
         problem.warnings = problem.check();
@@ -142,6 +147,7 @@ impl ContactProblem {
         start: Start,
         observer: &mut dyn Observer,
     ) -> Result<(AdhesiveState, AdhesiveReport)> {
+        self.elastic_only("a single solve")?;
         crate::adhesive::solve(self.parts(), control, settings, start, &mut |i, r| {
             crate::observer::heard(observer, 0, i, r)
         })
@@ -160,6 +166,7 @@ impl ContactProblem {
         warm: Option<&ContactState>,
         observer: &mut dyn Observer,
     ) -> Result<(ContactState, ContactReport)> {
+        self.elastic_only("a single solve")?;
         crate::cg::solve_with(
             self.operator.as_ref(),
             self.initial_gap.view(),
@@ -169,6 +176,17 @@ impl ContactProblem {
             warm,
             observer,
         )
+    }
+
+    /// Refuses `what` on a viscoelastic body, whose answer depends on the path: it is swept
+    /// along times ([`ContactProblem::sweep`]).
+    pub(crate) fn elastic_only(&self, what: &str) -> Result<()> {
+        match self.solid {
+            Some(_) => Err(SolverError::Unsupported(format!(
+                "{what} on a viscoelastic body: its answer depends on the load history; sweep a                  path with a time for each step (a hold is a repeated value)"
+            ))),
+            None => Ok(()),
+        }
     }
 
     /// On a free grid, a warning when a solution's contact (compressive pressure > 0) or, with
@@ -314,6 +332,7 @@ pub struct ProblemBuilder {
     law: Option<Arc<dyn AdhesionLaw>>,
     interface: Interface,
     body: Body,
+    maxwell: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl ProblemBuilder {
@@ -376,6 +395,14 @@ impl ProblemBuilder {
     /// it ([`crate::interface`]); elastic by default.
     pub fn hardness(mut self, hardness: f64) -> Self {
         self.interface.hardness = Some(hardness);
+        self
+    }
+
+    /// A viscoelastic body: branches of `moduli` \[Pa\] relaxing in `times` \[s\] beside the
+    /// relaxed modulus ([`ProblemBuilder::modulus`]), a generalized Maxwell solid
+    /// ([`crate::time`]); elastic by default.
+    pub fn maxwell(mut self, moduli: &[f64], times: &[f64]) -> Self {
+        self.maxwell = Some((moduli.to_vec(), times.to_vec()));
         self
     }
 
@@ -457,8 +484,23 @@ impl ProblemBuilder {
         self.interface.validate()?;
         let law = self.law.unwrap_or_else(|| Arc::new(NoAdhesion));
         self.interface.check_law(law.as_ref())?;
+        let solid = match &self.maxwell {
+            Some((moduli, times)) => {
+                let solid = elastic::Maxwell::new(e_star, moduli, times).map_err(|e| {
+                    SolverError::InvalidParameter {
+                        name: e.name,
+                        value: e.value,
+                        reason: e.reason,
+                    }
+                })?;
+                crate::time::check(&solid, operator.as_ref())?;
+                Some(solid)
+            }
+            None => None,
+        };
         let mut problem = ContactProblem::from_shared(operator, initial_gap, law)?;
         problem.interface = self.interface;
+        problem.solid = solid;
         Ok(problem)
     }
 }

@@ -17,6 +17,9 @@ pub struct ContactState {
     /// ([`crate::Interface`]), added to the initial gap of every solve started from this
     /// state. `None` for a surface that never had a hardness.
     pub permanent_set: Option<Array2<f64>>,
+    /// What a viscoelastic body remembers of its path ([`crate::time`]): the time and the
+    /// branches' fields. `None` for an elastic body.
+    pub history: Option<crate::time::History>,
 }
 
 impl ContactState {
@@ -28,6 +31,7 @@ impl ContactState {
             displacement: Array2::zeros(shape),
             approach: 0.0,
             permanent_set: None,
+            history: None,
         }
     }
 }

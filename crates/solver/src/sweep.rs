@@ -10,6 +10,76 @@ use crate::options::Control;
 use crate::problem::ContactProblem;
 use crate::report::Termination;
 
+/// A sweep's path: the controls in order, and the time \[s\] each is reached at (a
+/// viscoelastic body needs them, [`crate::time`]; an elastic one ignores them). A hold is a
+/// repeated control at later times.
+#[derive(Clone, Copy, Debug)]
+pub struct Path<'a> {
+    /// The controls.
+    pub controls: &'a [Control],
+    /// One time a control \[s\], never decreasing; `None`: no times.
+    pub times: Option<&'a [f64]>,
+}
+
+impl<'a> Path<'a> {
+    /// The controls reached at `times` \[s\].
+    pub fn timed(controls: &'a [Control], times: &'a [f64]) -> Path<'a> {
+        Path {
+            controls,
+            times: Some(times),
+        }
+    }
+
+    /// Refuses times of another count than the controls', not finite, or going backwards.
+    fn validate(&self) -> Result<()> {
+        let Some(times) = self.times else {
+            return Ok(());
+        };
+        if times.len() != self.controls.len() {
+            return Err(invalid(
+                "times",
+                times.len() as f64,
+                format!(
+                    "must hold one time a step of the path ({} steps)",
+                    self.controls.len()
+                ),
+            ));
+        }
+        if let Some(&t) = times.iter().find(|t| !t.is_finite()) {
+            return Err(invalid("times", t, "must be finite [s]"));
+        }
+        if let Some(w) = times.windows(2).find(|w| w[1] < w[0]) {
+            return Err(invalid(
+                "times",
+                w[1],
+                format!("go backwards: the step before is at {:e} s", w[0]),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl<'a> From<&'a [Control]> for Path<'a> {
+    fn from(controls: &'a [Control]) -> Self {
+        Path {
+            controls,
+            times: None,
+        }
+    }
+}
+
+impl<'a> From<&'a Vec<Control>> for Path<'a> {
+    fn from(controls: &'a Vec<Control>) -> Self {
+        Path::from(controls.as_slice())
+    }
+}
+
+impl<'a, const N: usize> From<&'a [Control; N]> for Path<'a> {
+    fn from(controls: &'a [Control; N]) -> Self {
+        Path::from(controls.as_slice())
+    }
+}
+
 /// Times [`ContactProblem::sweep`] halves the substeps of a step that does not converge.
 pub const RETRIES: usize = 3;
 
@@ -52,7 +122,7 @@ pub fn branches(path: &[Control]) -> Vec<Branch> {
 }
 
 impl ContactProblem {
-    /// Solves every control of `path` in order (each warm-started from the previous
+    /// Solves every control of `path` in order, at its time if it has one (each warm-started from the previous
     /// step; the first from `start`, else from apart), telling `observer` every iteration and
     /// every step; its [`Observer::step`] returns `false` to stop early. Returns the solved points.
     ///
@@ -74,17 +144,40 @@ impl ContactProblem {
     /// How fine is fine enough depends on the problem (`docs/decisions.md`). Load-controlled
     /// steps are never split.
     ///
+    /// On a viscoelastic body every step needs a time; a substep's is interpolated linearly
+    /// between its step's and the one before (the start state's history gives the first).
+    ///
     /// # Errors
-    /// As [`ContactProblem::solve`]; a `max_step` that is not positive and finite.
-    pub fn sweep(
+    /// As [`ContactProblem::solve`]; a `max_step` that is not positive and finite; times
+    /// that do not match the path or go backwards, or none on a viscoelastic body.
+    pub fn sweep<'a>(
         &self,
-        path: &[Control],
+        path: impl Into<Path<'a>>,
         max_step: Option<f64>,
         settings: &Settings,
         start: Option<AdhesiveState>,
         observer: &mut dyn Observer,
     ) -> Result<Vec<SweepPoint>> {
         let problem = self;
+        let Path {
+            controls: path,
+            times,
+        } = path.into();
+        Path {
+            controls: path,
+            times,
+        }
+        .validate()?;
+        if self.solid.is_some() && times.is_none() {
+            return Err(SolverError::Incomplete(
+                "the time of each step [s] on a viscoelastic body (a step time or a list of times)",
+            ));
+        }
+        let times = times.filter(|_| self.solid.is_some());
+        let mut previous_time = start
+            .as_ref()
+            .and_then(|s| s.contact.history.as_ref())
+            .map(|h| h.time);
         if let Some(h) = max_step
             && !(h.is_finite() && h > 0.0)
         {
@@ -129,7 +222,8 @@ impl ContactProblem {
                 // A retry's solves share one iteration limit, so that a step no substeps can save
                 // costs at most `1 + RETRIES` limits.
                 let mut budget = settings.max_iterations;
-                let mut solve = |sub: Control, current: &Option<AdhesiveState>| {
+                let time = times.map(|t| t[k]);
+                let mut solve = |sub: Control, at: Option<f64>, current: &Option<AdhesiveState>| {
                     let from = current
                         .as_ref()
                         .or(state.as_ref())
@@ -139,8 +233,9 @@ impl ContactProblem {
                         ..*settings
                     };
                     let used = if retries == 0 { settings } else { &limited };
+                    let solid = problem.solid.as_ref();
                     let (next, report) =
-                        crate::adhesive::solve(problem.parts(), sub, used, from, &mut |i, r| {
+                        crate::time::solve(problem.parts(), solid, sub, at, used, from, &mut |i, r| {
                             crate::observer::heard(observer, k, i, r)
                         })?;
                     budget = budget.saturating_sub(report.iterations.count());
@@ -154,12 +249,18 @@ impl ContactProblem {
                     }
                     Ok::<_, SolverError>((next, report))
                 };
-                for &sub in &between {
-                    let (next, report) = solve(sub, &current)?;
+                let parts = between.len() + 1;
+                for (i, &sub) in between.iter().enumerate() {
+                    // Substeps' times between the step's and the one before (at it, without one).
+                    let at = time.map(|t| {
+                        let t0 = previous_time.unwrap_or(t);
+                        t0 + (t - t0) * (i + 1) as f64 / parts as f64
+                    });
+                    let (next, report) = solve(sub, at, &current)?;
                     unconverged_substeps += usize::from(!report.converged());
                     current = Some(next);
                 }
-                let (next, report) = solve(control, &current)?;
+                let (next, report) = solve(control, time, &current)?;
                 // Halve the substeps of a step that did not converge, from the state before it.
                 let length = previous.and_then(|p| retried_length(p, control)).unwrap_or(0.0);
                 let interrupted = report.termination == Termination::Interrupted;
@@ -176,6 +277,7 @@ impl ContactProblem {
             }
             let point = SweepPoint {
                 control,
+                time: times.map(|t| t[k]),
                 branch: branch[k],
                 report,
                 substeps: between.len(),
@@ -187,6 +289,7 @@ impl ContactProblem {
             points.push(point);
             state = Some(next);
             previous = Some(control);
+            previous_time = times.map(|t| t[k]);
             if !go_on {
                 break;
             }

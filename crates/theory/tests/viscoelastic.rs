@@ -10,7 +10,7 @@ fn a_standard_linear_solid_creeps_as_lee_and_radok_say() {
     let solid = Maxwell::new(1e6, &[9e6], &[1.0]).unwrap();
     let tc = creep_time(&solid).unwrap();
     assert!((tc - 10.0).abs() < 1e-12);
-    let a = |t: f64| solid.creep_radius(t, 1e-3, 1e-2);
+    let a = |t: f64| theory::viscoelastic::creep_radius(&solid, t, 1e-3, 1e-2);
     let (start, end) = (a(0.0), a(1e6 * tc));
     assert!((end / start - 10f64.cbrt()).abs() < 1e-12, "{}", end / start);
     assert!((a(tc) / end - 0.8746).abs() < 5e-5, "{}", a(tc) / end);
@@ -56,7 +56,7 @@ fn constant_rate_indentation_runs_from_the_glassy_to_the_relaxed_hertz() {
     // Fast: 1e-4 of the quickest time; slow: 1e5 times the slowest (the corrections are of
     // order t / tau and tau / t).
     for (t, modulus) in [(1e-5, solid.glassy()), (1e6, solid.relaxed)] {
-        let (a, p) = solid.triangle(t, r, rate, 2.0 * t);
+        let (a, p) = theory::viscoelastic::triangle(&solid, t, r, rate, 2.0 * t);
         let delta = rate * t;
         assert!((a / (r * delta).sqrt() - 1.0).abs() < 1e-12);
         let want = hertz_limit(delta, r, modulus);
@@ -64,7 +64,7 @@ fn constant_rate_indentation_runs_from_the_glassy_to_the_relaxed_hertz() {
     }
     // In between: the hereditary integral against a direct quadrature.
     let t = 3.0;
-    let (_, p) = solid.triangle(t, r, rate, 2.0 * t);
+    let (_, p) = theory::viscoelastic::triangle(&solid, t, r, rate, 2.0 * t);
     let n = 400_000;
     let h = t.sqrt() / n as f64;
     // s = u^2: int_0^t E(t - s) sqrt(s) ds = int_0^sqrt(t) E(t - u^2) 2 u^2 du.
@@ -94,7 +94,7 @@ fn tings_unloading_is_elastic_in_either_limit_and_opens_before_the_approach_retu
         // The corrections are of order (E_k / E_inf) tau / (t - t_max) and (t / tau): 1e-4
         // at t = 1.9 on the fast-relaxing solid, 1e-5 on the slow one.
         for t in [1.2, 1.5, 1.9] {
-            let (a, p) = solid.triangle(t, r, rate, t_max);
+            let (a, p) = theory::viscoelastic::triangle(&solid, t, r, rate, t_max);
             let delta = rate * (2.0 * t_max - t);
             assert!((a / (r * delta).sqrt() - 1.0).abs() < 1e-4, "t {t}: {a}");
             assert!(
@@ -107,10 +107,10 @@ fn tings_unloading_is_elastic_in_either_limit_and_opens_before_the_approach_retu
     // the approach is still positive (the surface lags behind the sphere), and the radius
     // shrinks continuously from its largest.
     let solid = Maxwell::new(1e6, &[9e6], &[0.3]).unwrap();
-    let (a_top, p_top) = solid.triangle(t_max, r, rate, t_max);
-    let (a_next, p_next) = solid.triangle(t_max + 1e-9, r, rate, t_max);
+    let (a_top, p_top) = theory::viscoelastic::triangle(&solid, t_max, r, rate, t_max);
+    let (a_next, p_next) = theory::viscoelastic::triangle(&solid, t_max + 1e-9, r, rate, t_max);
     assert!((a_next / a_top - 1.0).abs() < 1e-6 && (p_next / p_top - 1.0).abs() < 1e-5);
-    let (a_late, p_late) = solid.triangle(1.9, r, rate, t_max);
+    let (a_late, p_late) = theory::viscoelastic::triangle(&solid, 1.9, r, rate, t_max);
     assert_eq!((a_late, p_late), (0.0, 0.0));
 }
 

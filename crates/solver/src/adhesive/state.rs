@@ -42,6 +42,10 @@ impl AdhesiveState {
                 displacement: standard(&self.contact.displacement),
                 approach: self.contact.approach,
                 permanent_set: self.contact.permanent_set.as_ref().map(standard),
+                history: self.contact.history.as_ref().map(|h| crate::time::History {
+                    time: h.time,
+                    branches: h.branches.iter().map(standard).collect(),
+                }),
             },
             adhesive_pressure: standard(&self.adhesive_pressure),
         }

@@ -274,6 +274,7 @@ pub(in crate::adhesive) fn state(
         displacement,
         approach,
         permanent_set: None,
+        history: None,
     };
     AdhesiveState {
         contact,
