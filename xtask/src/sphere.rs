@@ -179,6 +179,7 @@ impl Path {
             floor: self.values[self.values.len() - 1] * Z0,
             recovery: None,
             refinement: 10,
+            rate: None,
         };
         let pull = p.pull_off(&search, &settings, top.expect("a loading step"), &mut ())?;
         steps.extend(pull.coarse.iter().map(|q| self.step(q)));

@@ -178,6 +178,23 @@ impl Case {
             }
             builder = builder.hardness(h);
         }
+        match (&self.maxwell_moduli, &self.maxwell_times) {
+            (Some(moduli), Some(times)) => {
+                // The solid's own checks, worded for the keys (the relaxed modulus is E*'s).
+                elastic::Maxwell::new(e_star, moduli, times).map_err(|e| {
+                    Error::Key(format!(
+                        "--{} {}, got {}",
+                        e.name.replace('_', "-"),
+                        e.reason,
+                        e.value
+                    ))
+                })?;
+                builder = builder.maxwell(moduli, times);
+            }
+            (None, None) => {}
+            (Some(_), None) => bail!("--maxwell-moduli needs the branches' --maxwell-times [s]"),
+            (None, Some(_)) => bail!("--maxwell-times needs the branches' --maxwell-moduli [Pa]"),
+        }
         if let Some(h) = self.thickness {
             let nu = self
                 .poisson

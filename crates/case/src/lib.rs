@@ -149,6 +149,14 @@ pub struct Case {
     /// overlap as permanent set (default: elastic).
     #[cfg_attr(feature = "clap", arg(long))]
     pub hardness: Option<f64>,
+    /// A viscoelastic body (generalized Maxwell solid): the moduli E_k [Pa] of its branches,
+    /// comma-separated, beside the relaxed --modulus; the glassy modulus is their sum with it.
+    /// Needs --maxwell-times, and times for a sweep's steps (--step-time or `times`).
+    #[cfg_attr(feature = "clap", arg(long, value_delimiter = ','))]
+    pub maxwell_moduli: Option<Vec<f64>>,
+    /// The relaxation times tau_k [s] of the branches, comma-separated, one a --maxwell-moduli.
+    #[cfg_attr(feature = "clap", arg(long, value_delimiter = ','))]
+    pub maxwell_times: Option<Vec<f64>>,
     /// Adhesive law (default: surface when --work-of-adhesion is given, none otherwise).
     #[cfg_attr(feature = "clap", arg(long, value_enum))]
     pub law: Option<LawKind>,

@@ -105,6 +105,17 @@ pub struct SweepPath {
     /// lowest, in (0, 1] [default: 0.5].
     #[cfg_attr(feature = "clap", arg(long))]
     pub pull_off_recovery: Option<f64>,
+    /// How long each step of the path lasts [s] on a viscoelastic body: step k is reached at
+    /// k times it (a pull-off search's steps last as long, its finer ones in proportion).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub step_time: Option<f64>,
+    /// The time each step of the path is reached at [s] on a viscoelastic body, comma-separated,
+    /// never decreasing (a hold: a repeated approach or load at later times).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_delimiter = ',', conflicts_with = "step_time")
+    )]
+    pub times: Option<Vec<f64>>,
     /// Steps (counted from 0, comma-separated) whose fields are also kept in
     /// states/step-NNNN, as --save-states keeps every step's.
     #[cfg_attr(feature = "clap", arg(long, value_delimiter = ','))]
@@ -199,6 +210,50 @@ impl SweepPath {
         Ok(controls)
     }
 
+    /// The times of the `steps` steps of the path on `problem` [s]: none on an elastic body
+    /// (which refuses them: they would change nothing), required on a viscoelastic one.
+    pub fn times(&self, problem: &ContactProblem, steps: usize) -> Result<Option<Vec<f64>>> {
+        let given = if self.step_time.is_some() {
+            "--step-time"
+        } else {
+            "--times"
+        };
+        if problem.solid.is_none() {
+            if self.step_time.is_some() || self.times.is_some() {
+                bail!(
+                    "{given} times a viscoelastic body's steps, and this body is elastic (give \
+                 --maxwell-moduli [Pa] and --maxwell-times [s])"
+                );
+            }
+            return Ok(None);
+        }
+        let times = match (self.step_time, &self.times) {
+            (Some(dt), None) => {
+                if !(dt.is_finite() && dt > 0.0) {
+                    bail!("--step-time must be a finite duration > 0 s, got {dt}");
+                }
+                (0..steps).map(|k| k as f64 * dt).collect()
+            }
+            (None, Some(t)) => {
+                if t.len() != steps {
+                    bail!(
+                        "--times gives {} times for a path of {steps} steps: give one a step",
+                        t.len()
+                    );
+                }
+                if let Some(w) = t.windows(2).find(|w| w[1] < w[0]) {
+                    bail!("--times go backwards: {:e} s after {:e} s", w[1], w[0]);
+                }
+                t.clone()
+            }
+            _ => bail!(
+                "a viscoelastic body (--maxwell-moduli) remembers its path: give each step a time, \
+                 --step-time S or --times T,T,... [s]"
+            ),
+        };
+        Ok(Some(times))
+    }
+
     /// The pull-off search after the path, if asked for (`pull_off_step`), checked.
     pub fn pull_off(&self) -> Result<Option<solver::PullOffSearch>> {
         let Some(step) = self.pull_off_step else {
@@ -227,11 +282,18 @@ impl SweepPath {
         if !(recovery > 0.0 && recovery <= 1.0) {
             bail!("--pull-off-recovery must be in (0, 1], got {recovery}");
         }
+        if self.times.is_some() {
+            bail!(
+                "the pull-off search's steps on a viscoelastic body last --step-time each: give \
+                 --step-time [s] rather than --times"
+            );
+        }
         Ok(Some(solver::PullOffSearch {
             step,
             floor,
             recovery: Some(recovery),
             refinement,
+            rate: self.step_time.map(|dt| step / dt),
         }))
     }
 

@@ -1704,6 +1704,7 @@ fn sweep_pull_off_search_is_the_library_search_and_resumes() {
         floor: -8e-9,
         recovery: Some(0.5),
         refinement: 5,
+        rate: None,
     };
     let direct = problem
         .pull_off(&search, &settings, last.unwrap(), &mut ())

@@ -32,7 +32,7 @@ pub fn read_progress(dir: &Path) -> Option<String> {
 /// The columns of `curve.csv`.
 const HEADER: &str = "step,approach,load,mean_pressure,contact_area_fraction,attractive_area_fraction,\
 attached_area_fraction,central_gap,branch,iterations,inner_iterations,converged,residual,wall_time_s,\
-retries,plastic_area_fraction,permanent_set_volume,plastic_work";
+retries,plastic_area_fraction,permanent_set_volume,plastic_work,time";
 
 /// The files and directories a run writes: what makes a directory "another run's", and what
 /// `--overwrite` removes (nothing else in the directory is touched).
@@ -244,14 +244,20 @@ impl RunDir {
     }
 
     /// The steps of `curve.csv`, as much as a summary and a plot need. A curve written before
-    /// the plastic columns is rewritten with them (zeros), so that the rows a resumed sweep
-    /// appends match it.
+    /// the plastic columns or the time column is rewritten with them (zeros, no time), so that
+    /// the rows a resumed sweep appends match it.
     pub fn read_curve(&self) -> Result<Vec<CyclePoint>> {
         let path = self.curve_path();
         let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
         let columns = text.lines().next().map_or(0, |h| h.split(',').count());
-        if columns == HEADER.split(',').count() - 3 {
-            let body: String = text.lines().skip(1).map(|l| format!("{l},0,0e0,0e0\n")).collect();
+        // Curves written before the plastic columns, or before the time column.
+        let missing = match HEADER.split(',').count() - columns {
+            4 => Some(",0,0e0,0e0,"),
+            1 => Some(","),
+            _ => None,
+        };
+        if let Some(missing) = missing {
+            let body: String = text.lines().skip(1).map(|l| format!("{l}{missing}\n")).collect();
             let upgraded = format!("{HEADER}\n{body}");
             let rows = parse_curve(&upgraded)?;
             crate::output::text(&path, &upgraded)?;
@@ -322,7 +328,7 @@ impl CurveWriter {
     pub fn append(&mut self, k: usize, p: &SweepPoint) -> Result<()> {
         let r = &p.report;
         let line = format!(
-            "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3},{},{},{:e},{:e}\n",
+            "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3},{},{},{:e},{:e},{}\n",
             k,
             r.approach,
             r.load,
@@ -341,6 +347,7 @@ impl CurveWriter {
             r.yielding.plastic_area_fraction,
             r.yielding.permanent_set_volume,
             r.yielding.plastic_work,
+            p.time.map_or(String::new(), |t| format!("{t:e}")),
         );
         self.0.write_all(line.as_bytes())?;
         self.0.flush()?;

@@ -100,6 +100,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         None => None,
     };
     let max_step = path.max_step(problem, &controls)?;
+    let times = path.times(problem, controls.len())?;
     case.validate_settings(problem.adhesive())?;
     let settings = case.settings();
     let reuse = match (args.resume, args.overwrite) {
@@ -148,7 +149,11 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         .collect();
     let mut writer = StepWriter::new(&run, (done, total), args.save_states, keep, &bar, problem)?;
     let mut points = if done < controls.len() {
-        on_workers(|| problem.sweep(&controls[done..], max_step, &settings, start, &mut writer))?
+        let rest = solver::Path {
+            controls: &controls[done..],
+            times: times.as_ref().map(|t| &t[done..]),
+        };
+        on_workers(|| problem.sweep(rest, max_step, &settings, start, &mut writer))?
     } else {
         Vec::new()
     };
@@ -190,7 +195,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             "jump_out_approach": "m", "hysteresis_energy": "J", "plastic_work": "J", "lengths": "m",
             "pressures": "Pa", "plastic.npy": "m (the permanent set after the last step)",
             "curve.csv": "approach m, load N, mean_pressure Pa, central_gap m, wall_time_s s, \
-                          permanent_set_volume m^3, plastic_work J"
+                          permanent_set_volume m^3, plastic_work J, time s"
         },
         "law": problem.law.name(),
         "method": problem

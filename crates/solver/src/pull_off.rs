@@ -24,6 +24,9 @@ pub struct PullOffSearch {
     pub recovery: Option<f64>,
     /// Fine steps per coarse step around the coarse minimum (1: no refinement).
     pub refinement: usize,
+    /// The unloading speed \[m/s\] on a viscoelastic body (each step lasts its length over
+    /// it); an elastic body ignores it.
+    pub rate: Option<f64>,
 }
 
 /// What [`ContactProblem::pull_off`] found.
@@ -72,6 +75,15 @@ impl PullOffSearch {
                 "recovery",
                 r,
                 "the recovered fraction of the minimum load must be in (0, 1]",
+            ));
+        }
+        if let Some(v) = self.rate
+            && !(v.is_finite() && v > 0.0)
+        {
+            return Err(invalid(
+                "rate",
+                v,
+                "the unloading speed must be finite and > 0 m/s",
             ));
         }
         if self.refinement == 0 {
@@ -148,7 +160,37 @@ impl ContactProblem {
             last: start.clone(),
             before_lowest: None,
         };
-        let coarse = self.sweep(&path, None, settings, Some(start), &mut tracker)?;
+        // On a viscoelastic body each step takes its length over the unloading speed.
+        let clock = match (&self.solid, search.rate) {
+            (Some(_), Some(rate)) => Some((rate, start.contact.history.as_ref().map_or(0.0, |h| h.time))),
+            (Some(_), None) => {
+                return Err(crate::error::SolverError::Incomplete(
+                    "the unloading speed [m/s] of a pull-off search on a viscoelastic body",
+                ));
+            }
+            (None, _) => None,
+        };
+        let timed = |path: &[Control], from: f64, t0: f64| -> Option<Vec<f64>> {
+            clock.map(|(rate, _)| {
+                path.iter()
+                    .map(|c| match c {
+                        Control::Approach(a) => t0 + (from - a).abs() / rate,
+                        _ => t0,
+                    })
+                    .collect()
+            })
+        };
+        let times = timed(&path, from, clock.map_or(0.0, |c| c.1));
+        let coarse = self.sweep(
+            crate::sweep::Path {
+                controls: &path,
+                times: times.as_deref(),
+            },
+            None,
+            settings,
+            Some(start),
+            &mut tracker,
+        )?;
         let (lowest, before) = (tracker.lowest, tracker.before_lowest);
         let mut refined = Vec::new();
         if let (Some((k, _)), Some(before), true) = (lowest, before, search.refinement > 1) {
@@ -164,7 +206,13 @@ impl ContactProblem {
             let fine: Vec<Control> = (1..parts)
                 .map(|j| Control::Approach(a + (b - a) * j as f64 / parts as f64))
                 .collect();
-            refined = self.sweep(&fine, None, settings, Some(before), observer)?;
+            let t0 = before.contact.history.as_ref().map_or(0.0, |h| h.time);
+            let times = timed(&fine, a, t0);
+            let path = crate::sweep::Path {
+                controls: &fine,
+                times: times.as_deref(),
+            };
+            refined = self.sweep(path, None, settings, Some(before), observer)?;
         }
         let (force, approach) = coarse
             .iter()

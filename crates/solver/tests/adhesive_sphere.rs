@@ -95,6 +95,7 @@ fn pull_off_search_resolves_the_minimum_between_coarse_steps() {
             floor: -30.0 * Z0,
             recovery: Some(0.5),
             refinement: 4,
+            rate: None,
         };
         let pull = p.pull_off(&search, &settings, top.unwrap(), &mut ()).unwrap();
         let all: Vec<_> = pull.coarse.iter().chain(&pull.refined).collect();
