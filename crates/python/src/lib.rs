@@ -403,6 +403,7 @@ fn sweep<'py>(
     let problem = &built.problem;
     let controls = path.controls().py()?;
     let max_step = path.max_step(problem, &controls).py()?;
+    let times = path.times(problem, controls.len()).py()?;
     case.validate_settings(problem.adhesive()).py()?;
     let settings = case.settings();
     let mut observer = Progress::new(progress, cancel);
@@ -434,7 +435,16 @@ fn sweep<'py>(
     let outcome = py.detach(|| {
         on_pool(threads, || {
             let mut points = problem
-                .sweep(&controls, max_step, &settings, None, &mut last)
+                .sweep(
+                    solver::Path {
+                        controls: &controls,
+                        times: times.as_deref(),
+                    },
+                    max_step,
+                    &settings,
+                    None,
+                    &mut last,
+                )
                 .context("sweeping")?;
             // The pull-off search from the path's last state, when asked for and reached.
             if let (Some(search), Some(from)) = (&search, last.state.clone())

@@ -271,6 +271,26 @@ def test_a_hardness_caps_the_pressure_and_leaves_a_permanent_set():
         rc.solve(**exponential, law="exponential", range=1e-9, hardness=2e7, approach=1e-9)
 
 
+def test_a_viscoelastic_sphere_is_swept_in_time_between_its_elastic_limits():
+    solid = dict(maxwell_moduli=[9e9], maxwell_times=[1.0])
+    path = dict(from_=-3e-9, to=1e-9, steps=8)
+    # Much slower and much faster than the branch: the relaxed and the glassy elastic sphere.
+    for step_time, modulus in ((1e4, 1e9), (1e-6, 1e10)):
+        swept = rc.sweep(**SPHERE, **solid, **path, step_time=step_time)
+        assert np.array_equal(swept.curve["time"], step_time * np.arange(17))
+        elastic = rc.sweep(**dict(SPHERE, modulus=modulus), **path)
+        assert np.isnan(elastic.curve["time"]).all()
+        assert abs(swept.pull_off_force / elastic.pull_off_force - 1) < 1e-3
+    with pytest.raises(ValueError, match="give each step a time"):
+        rc.sweep(**SPHERE, **solid, **path)
+    with pytest.raises(ValueError, match="this body is elastic"):
+        rc.sweep(**SPHERE, **path, step_time=1.0)
+    with pytest.raises(ValueError, match="maxwell_times must hold one time a branch modulus"):
+        rc.sweep(**SPHERE, maxwell_moduli=[9e9], maxwell_times=[1.0, 2.0], **path, step_time=1.0)
+    with pytest.raises(ValueError, match="on a viscoelastic body"):
+        rc.solve(**SPHERE, **solid, approach=1e-9)
+
+
 def test_a_film_takes_its_keywords_and_bad_ones_are_refused():
     smooth = {k: v for k, v in SPHERE.items() if k not in ("work_of_adhesion", "z0")}
     half = rc.solve(**smooth, approach=1e-9)

@@ -379,8 +379,8 @@ class Sweep:
     """A quasi-static path of solves. ``curve`` holds one array a column, one row a step
     (ready for ``pandas.DataFrame(sweep.curve)``): ``approach`` [m], ``load`` [N],
     ``mean_pressure`` [Pa], area fractions [-] (the plastic one too), ``central_gap`` [m],
-    ``permanent_set_volume`` [m^3], ``plastic_work`` [J], ``branch`` ('loading' or
-    'unloading'), ``iterations``, ``converged``, ``residual``, ``wall_time_s`` [s],
+    ``permanent_set_volume`` [m^3], ``plastic_work`` [J], ``time`` [s] (NaN on an elastic
+    body), ``branch`` ('loading' or 'unloading'), ``iterations``, ``converged``, ``residual``, ``wall_time_s`` [s],
     ``retries``, ``termination`` (in words). The cycle's ``pull_off_force`` [N] and its
     ``pull_off_approach`` [m] (``pull_off_at_path_end``: it is the last step's, still
     attached, and the pull-off lies beyond the path), ``jump_in_approach``,
@@ -416,6 +416,10 @@ class Sweep:
         curve["converged"] = np.array(summary["converged"], dtype=bool)
         curve["termination"] = np.array(summary["termination"], dtype=str)
         curve["retries"] = np.array([s["retries"] for s in self.steps], dtype=np.int64)
+        # NaN where the path has no times (an elastic body).
+        curve["time"] = np.array(
+            [np.nan if s["time"] is None else s["time"] for s in self.steps], dtype=np.float64
+        )
         self.curve = curve
         self.all_converged: bool = bool(curve["converged"].all())
 
@@ -443,6 +447,7 @@ def solve(
     ``layer_base`` (``"bonded"``, default, ``"frictionless"``, or ``"elastic"`` with the
     substrate's ``substrate_modulus`` [Pa] and ``substrate_poisson``: a coating, periodic
     grids only); ``modulus`` is then the layer's E / (1 - nu^2) [Pa]. A ``hardness`` [Pa] caps the compressive pressure.
+    A viscoelastic body (``maxwell_moduli``) is swept, not solved: its answer depends on the path.
     ``progress(info)`` is called after every iteration with ``{'step', 'iteration',
     'residual'}``; an exception it raises stops the solve. ``threads``: threads of this
     solve's own pool (None: all cores, shared). The GIL is released while solving; Ctrl-C
@@ -477,7 +482,11 @@ def sweep(
     is the case file's ``from``, a Python keyword), or ``approaches`` [m], ``mean_pressures`` [Pa] or
     ``central_gaps`` [m] as lists; ``max_step`` [m] splits longer steps. With ``pull_off_step``
     [m] and ``pull_off_floor`` [m] the path goes in only and the pull-off search follows it
-    (``pull_off_refinement``, ``pull_off_recovery``; the result's ``pull_off_force`` [N]). The other keys,
+    (``pull_off_refinement``, ``pull_off_recovery``; the result's ``pull_off_force`` [N]).
+    A viscoelastic body (``maxwell_moduli`` [Pa] and ``maxwell_times`` [s], a generalized
+    Maxwell solid beside the relaxed ``modulus``) needs each step's time: ``step_time`` [s]
+    or ``times`` [s] (a list, one a step); a pull-off search then unloads at
+    ``pull_off_step / step_time`` [m/s]. The other keys,
     ``case``, ``progress`` (also called with ``{'step', 'done': True, 'approach', 'load',
     'converged'}`` after every step), ``threads``, Ctrl-C and errors as in :func:`solve`.
     """
