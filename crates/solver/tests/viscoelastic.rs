@@ -159,3 +159,117 @@ fn very_slow_and_very_fast_paths_are_the_relaxed_and_glassy_elastic_answers() {
         assert!((got / want - 1.0).abs() < 0.005, "{got} {want}");
     }
 }
+
+#[test]
+fn a_flat_punch_creeps_with_the_creep_compliance_to_second_order_in_the_step() {
+    // A punch's contact is its face at every time, so the grid's answer is the elastic one
+    // times E_inf J(t) (the correspondence principle) and what remains is the time step's error.
+    let solid = Maxwell::new(E_INF, &[9.0 * E_INF], &[1.0]).unwrap();
+    let (n, cell) = (64, 1e-6_f64);
+    let domain = elastic::Domain {
+        nx: n,
+        ny: n,
+        dx: cell,
+        dy: cell,
+        periodic: false,
+    };
+    let radius = 16.0 * cell;
+    let centre = n as f64 / 2.0 - 0.5;
+    let face = ndarray::Array2::from_shape_fn((n, n), |(j, i)| {
+        let r = (i as f64 - centre).hypot(j as f64 - centre) * cell;
+        if r < radius { 0.0 } else { 1e-4 }
+    });
+    let op = elastic::Free::new(domain, E_INF).unwrap();
+    let mut problem = ContactProblem::new(op, face, ljadhesion::NoAdhesion).unwrap();
+    problem.solid = Some(solid.clone());
+    let load = 1e-3;
+    let approach_at = |dt: f64, t: f64| {
+        let steps = (t / dt).round() as usize;
+        let times: Vec<f64> = (0..=steps).map(|k| k as f64 * dt).collect();
+        let controls = vec![Control::Force(load); times.len()];
+        sweep(&problem, &controls, &times).last().unwrap().1
+    };
+    let relaxed = approach_at(1e6, 1e6);
+    let t = 4.0;
+    let errors: Vec<f64> = [1.0, 0.5, 0.25]
+        .iter()
+        .map(|&dt| (approach_at(dt, t) / relaxed - E_INF * solid.creep(t)).abs())
+        .collect();
+    println!("errors at t = 4 s for steps of 1, 1/2, 1/4 s: {errors:?}");
+    for w in errors.windows(2) {
+        let order = (w[0] / w[1]).log2();
+        assert!((order - 2.0).abs() < 0.15, "order {order}: {errors:?}");
+    }
+    assert!(errors[2] < 2e-3, "{errors:?}");
+}
+
+/// A periodic rough surface (64^2, seed 7) on the half-space or on a bonded layer of
+/// thickness `layer` \[m\], viscoelastic with `branches` or elastic of modulus `e`.
+fn rough(branches: Option<&[(f64, f64)]>, e: f64, layer: Option<f64>) -> ContactProblem {
+    let grid = surfgen::Grid::square(64, 64e-6).unwrap();
+    let spec = surfgen::SurfaceSpec {
+        grid,
+        psd: surfgen::Psd::self_affine(0.8, 16e-6, 4.0 * grid.dx()),
+        normalization: surfgen::Normalization::RmsGradient(0.1),
+        amplitudes: surfgen::Amplitudes::Exact,
+        seed: 7,
+    };
+    let heights = surfgen::generate(&spec).unwrap().heights;
+    let mut builder = ContactProblem::builder()
+        .roughness(heights, 64e-6, 64e-6)
+        .modulus(e);
+    if let Some(h) = layer {
+        builder = builder.layer(elastic::Layer::new(h, 0.45, elastic::Base::Bonded).unwrap());
+    }
+    if let Some(b) = branches {
+        let (moduli, times): (Vec<f64>, Vec<f64>) = b.iter().copied().unzip();
+        builder = builder.maxwell(&moduli, &times);
+    }
+    builder.build().unwrap()
+}
+
+#[test]
+fn slow_and_fast_rough_contacts_are_the_relaxed_and_glassy_elastic_ones_on_any_body() {
+    let branches = [(2.0 * E_INF, 0.1), (3.0 * E_INF, 1.0)];
+    let glassy = 6.0 * E_INF;
+    // Load control on the half-space, approach control on a layer (measured from its base).
+    let loads: Vec<Control> = (1..=5).map(|k| Control::MeanPressure(2e4 * k as f64)).collect();
+    for (layer, controls) in [(None, loads), (Some(8e-6), Vec::new())] {
+        let controls = if controls.is_empty() {
+            let top = rough(None, E_INF, layer).initial_gap.mean().unwrap();
+            (1..=5).map(|k| Control::Approach(0.1 * top * k as f64)).collect()
+        } else {
+            controls
+        };
+        for (scale, e) in [(1e-6, glassy), (1e6, E_INF)] {
+            let times: Vec<f64> = (0..controls.len()).map(|k| scale * k as f64).collect();
+            let problem = rough(Some(&branches), E_INF, layer);
+            let got = problem
+                .sweep(Path::timed(&controls, &times), None, &settings(), None, &mut ())
+                .unwrap();
+            let want = rough(None, e, layer)
+                .sweep(&controls, None, &settings(), None, &mut ())
+                .unwrap();
+            // The first step is a jump from rest (glassy on every path): the slow path relaxes after it.
+            for (g, w) in got.iter().zip(&want).skip(usize::from(scale > 1.0)) {
+                let (g, w) = (&g.report, &w.report);
+                println!(
+                    "layer {layer:?}, steps of {scale:e} s: load {:e} / {:e}, area {} / {}, {:?} {:?}",
+                    g.load,
+                    w.load,
+                    g.contact_area_fraction,
+                    w.contact_area_fraction,
+                    g.termination,
+                    w.termination
+                );
+                for (a, b) in [
+                    (g.load, w.load),
+                    (g.approach, w.approach),
+                    (g.contact_area_fraction, w.contact_area_fraction),
+                ] {
+                    assert!((a / b - 1.0).abs() < 0.005, "{a} {b}");
+                }
+            }
+        }
+    }
+}

@@ -109,12 +109,19 @@ pub(crate) fn solve(
         parts.g0.mean().unwrap_or(0.0),
         parts.interface.hardness.unwrap_or(f64::INFINITY),
     );
+    // The approach's tolerance: relative to the law's range, or without adhesion (whose range
+    // means nothing) to the mean initial gap.
+    let length = if parts.law.work_of_adhesion() > 0.0 {
+        parts.law.range()
+    } else {
+        bounds.0
+    };
     // Approach trials below the mean gap: they follow the branches loads cannot.
     let solution = mean.approach(
         delta,
         guess,
         bounds,
-        settings.tolerance * parts.law.range(),
+        settings.tolerance * length,
         |control, last: Option<&(AdhesiveState, AdhesiveReport)>| {
             let seed = last.map(|(s, _)| {
                 let mut s = s.clone();
