@@ -317,3 +317,53 @@ fn a_rough_contact_loaded_at_once_is_tamaas_first_viscoelastic_step() {
     println!("contact area at {t} s: ours {ours:.6}, Tamaas {tamaas:.6}");
     assert!((ours / tamaas - 1.0).abs() < 2e-3, "{ours} {tamaas}");
 }
+
+#[test]
+fn a_lennard_jones_sphere_pulls_off_as_the_relaxed_or_glassy_elastic_one_at_the_ends_of_the_rates() {
+    // mu = 1 and 5 at E_inf (0.46 and 2.3 at E_0 = 10 E_inf); a cycle from apart to 1 z0 in
+    // and back, in steps of z0 / 2.
+    let (r, e, z0) = (1e-6_f64, 1e9, 1e-9_f64);
+    let (n, side) = (64, 1.2e-7);
+    for mu in [1.0, 5.0_f64] {
+        let w = mu.powf(1.5) * e * z0.powf(1.5) / r.sqrt();
+        let build = |branches: Option<(f64, f64)>, modulus: f64| {
+            let mut b = ContactProblem::builder()
+                .grid(n, n, side, side)
+                .sphere(r)
+                .modulus(modulus)
+                .law(ljadhesion::SurfaceLaw(ljadhesion::LennardJones::new(w, z0).unwrap()));
+            if let Some((ek, tau)) = branches {
+                b = b.maxwell(&[ek], &[tau]);
+            }
+            b.build().unwrap()
+        };
+        // Far enough out that the surfaces have come apart at the path's end.
+        let apart = if mu > 2.0 { 16.0 } else { 3.0 };
+        let path = solver::approach_cycle(-apart * z0, z0, 2 * (apart as usize + 1));
+        let pull_off = |problem: &ContactProblem, times: Option<&[f64]>| {
+            let points = problem
+                .sweep(
+                    Path {
+                        controls: &path,
+                        times,
+                    },
+                    Some(z0 / 2.0),
+                    &settings(),
+                    None,
+                    &mut (),
+                )
+                .unwrap();
+            assert!(points.iter().all(|p| p.report.converged()));
+            assert_eq!(points.last().unwrap().report.attached_area_fraction, 0.0, "still attached");
+            -points.iter().map(|p| p.report.load).fold(0.0, f64::min)
+        };
+        let problem = build(Some((9.0 * e, 1.0)), e);
+        for (step, modulus) in [(1e-9, 10.0 * e), (1e9, e)] {
+            let times: Vec<f64> = (0..path.len()).map(|k| step * k as f64).collect();
+            let got = pull_off(&problem, Some(&times));
+            let want = pull_off(&build(None, modulus), None);
+            println!("mu {mu}, steps of {step:e} s: pull-off {got:e} N, elastic E* = {modulus:e}: {want:e} N");
+            assert!((got / want - 1.0).abs() < 0.01, "{got} {want}");
+        }
+    }
+}
