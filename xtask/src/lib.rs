@@ -50,6 +50,7 @@ pub fn tabor_colour(mu: f64) -> plotters::style::RGBColor {
 pub mod series;
 pub mod sphere;
 pub mod study;
+pub mod viscoelastic;
 
 use anyhow::{Context as _, Result, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};

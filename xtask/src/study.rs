@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 /// The studies, by name, with what each shows.
-pub const STUDIES: [(&str, &str); 7] = [
+pub const STUDIES: [(&str, &str); 8] = [
     (
         "pull-off-mesh",
         "a sphere's pull-off at mu = 1 against the cell size, point, line, surface and surface-energy laws (minutes)",
@@ -45,6 +45,12 @@ pub const STUDIES: [(&str, &str); 7] = [
          elastoplastic theory, with the iterations against the elastic solve's (N=1024; minutes)",
     ),
     (
+        "rate-pull-off",
+        "the pull-off of a Lennard-Jones sphere (mu = 1 and 5) on a standard linear solid (E0 = 10 E_inf) \
+         against the speed it is pressed in and drawn back at, 1e-3 to 1e3 z0 per relaxation time, beside the \
+         relaxed and glassy elastic spheres (MU=1,5; half an hour)",
+    ),
+    (
         "plastic-pull-off",
         "the pull-off of a Lennard-Jones sphere (mu = 5) loaded past yield, against the depth and the hardness, \
          beside the elastic sphere's and Mesarovic & Johnson's flattened sphere (N=256; HALF=256 z0; \
@@ -62,6 +68,7 @@ pub fn run(name: &str) -> Result<()> {
         "rough-sphere-mesh" => rough_sphere_mesh(),
         "plastic-rough" => crate::plastic::plastic_rough(),
         "plastic-pull-off" => crate::plastic::plastic_pull_off(),
+        "rate-pull-off" => crate::viscoelastic::rate_pull_off(),
         _ => {
             let names: Vec<_> = STUDIES.iter().map(|(n, _)| *n).collect();
             bail!("unknown study `{name}`; the studies are {}", names.join(", "))

@@ -413,15 +413,22 @@ fn print_cycle(
             let mut line = format!("                      = {:.4} pi R w0", w / unit);
             if let Some(mu) = theory.tabor {
                 let md = theory::maugis::MaugisDugdale::new(theory::maugis_parameter_of_tabor(mu));
-                let on = if case.thickness.is_some() {
-                    ", half-space"
-                } else {
-                    ""
+                let on = match (case.thickness.is_some(), problem.solid.is_some()) {
+                    (true, _) => ", half-space",
+                    (false, true) => ", relaxed",
+                    _ => "",
                 };
                 line += &format!(
-                    " (Maugis-Dugdale's least load at lambda = 1.157 mu{on}: {:.4})",
+                    " (Maugis-Dugdale's least load at lambda = 1.157 mu{on}: {:.4}",
                     md.pull_off_load_control()
                 );
+                // A viscoelastic body: also the glassy sphere's, mu scaling as E*^(-2/3).
+                if let Some(solid) = &problem.solid {
+                    let glassy = mu * (solid.relaxed / solid.glassy()).powf(2.0 / 3.0);
+                    let md = theory::maugis::MaugisDugdale::new(theory::maugis_parameter_of_tabor(glassy));
+                    line += &format!("; glassy, mu {glassy:.3}: {:.4}", md.pull_off_load_control());
+                }
+                line += ")";
             }
             if let elastic::Body::Layer(layer) = problem.operator.body() {
                 let a = (9.0 * std::f64::consts::PI * theory.work_of_adhesion * r * r

@@ -331,7 +331,9 @@ fn a_lennard_jones_sphere_pulls_off_as_the_relaxed_or_glassy_elastic_one_at_the_
                 .grid(n, n, side, side)
                 .sphere(r)
                 .modulus(modulus)
-                .law(ljadhesion::SurfaceLaw(ljadhesion::LennardJones::new(w, z0).unwrap()));
+                .law(ljadhesion::SurfaceLaw(
+                    ljadhesion::LennardJones::new(w, z0).unwrap(),
+                ));
             if let Some((ek, tau)) = branches {
                 b = b.maxwell(&[ek], &[tau]);
             }
@@ -354,7 +356,11 @@ fn a_lennard_jones_sphere_pulls_off_as_the_relaxed_or_glassy_elastic_one_at_the_
                 )
                 .unwrap();
             assert!(points.iter().all(|p| p.report.converged()));
-            assert_eq!(points.last().unwrap().report.attached_area_fraction, 0.0, "still attached");
+            assert_eq!(
+                points.last().unwrap().report.attached_area_fraction,
+                0.0,
+                "still attached"
+            );
             -points.iter().map(|p| p.report.load).fold(0.0, f64::min)
         };
         let problem = build(Some((9.0 * e, 1.0)), e);
@@ -362,7 +368,9 @@ fn a_lennard_jones_sphere_pulls_off_as_the_relaxed_or_glassy_elastic_one_at_the_
             let times: Vec<f64> = (0..path.len()).map(|k| step * k as f64).collect();
             let got = pull_off(&problem, Some(&times));
             let want = pull_off(&build(None, modulus), None);
-            println!("mu {mu}, steps of {step:e} s: pull-off {got:e} N, elastic E* = {modulus:e}: {want:e} N");
+            println!(
+                "mu {mu}, steps of {step:e} s: pull-off {got:e} N, elastic E* = {modulus:e}: {want:e} N"
+            );
             assert!((got / want - 1.0).abs() < 0.01, "{got} {want}");
         }
     }
