@@ -375,3 +375,44 @@ fn a_lennard_jones_sphere_pulls_off_as_the_relaxed_or_glassy_elastic_one_at_the_
         }
     }
 }
+
+#[test]
+fn a_capped_sphere_paths_fast_and_slow_yield_as_the_glassy_and_relaxed_elastic_ones() {
+    // A hardness of 0.02 E_inf, half Hertz's peak on the relaxed solid at the deepest step
+    // (a contact 16 cells wide); in and out again in 12 steps.
+    let (n, cell) = (64, 4e-6_f64);
+    let hardness = 0.02 * E_INF;
+    let delta = (16.0 * cell).powi(2) / R;
+    let controls = solver::approach_cycle(0.0, delta, 6);
+    let capped = |branches: Option<(f64, f64)>, e: f64| {
+        let mut b = ContactProblem::builder()
+            .grid(n, n, n as f64 * cell, n as f64 * cell)
+            .sphere(R)
+            .modulus(e)
+            .hardness(hardness);
+        if let Some((ek, tau)) = branches {
+            b = b.maxwell(&[ek], &[tau]);
+        }
+        b.build().unwrap()
+    };
+    let problem = capped(Some((9.0 * E_INF, 1.0)), E_INF);
+    for (scale, e) in [(1e-6, 10.0 * E_INF), (1e6, E_INF)] {
+        let times: Vec<f64> = (0..controls.len()).map(|k| scale * (k + 1) as f64).collect();
+        let got = problem
+            .sweep(Path::timed(&controls, &times), None, &settings(), None, &mut ())
+            .unwrap();
+        let want = capped(None, e).sweep(&controls, None, &settings(), None, &mut ()).unwrap();
+        let (g, w) = (&got.last().unwrap().report, &want.last().unwrap().report);
+        let deepest = |p: &[solver::SweepPoint]| p.iter().map(|p| p.report.load).fold(0.0, f64::max);
+        println!(
+            "steps of {scale:e} s: deepest load {:e} / {:e}, permanent set {:e} / {:e} m^3",
+            deepest(&got),
+            deepest(&want),
+            g.yielding.permanent_set_volume,
+            w.yielding.permanent_set_volume
+        );
+        assert!(w.yielding.permanent_set_volume > 0.0);
+        assert!((deepest(&got) / deepest(&want) - 1.0).abs() < 0.005);
+        assert!((g.yielding.permanent_set_volume / w.yielding.permanent_set_volume - 1.0).abs() < 0.005);
+    }
+}
