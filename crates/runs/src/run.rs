@@ -378,6 +378,7 @@ fn parse_curve(text: &str) -> Result<Vec<CyclePoint>> {
             },
             converged: f[11] == "true",
             plastic_work: num(17)?,
+            time: if f[18].is_empty() { None } else { Some(num(18)?) },
         });
     }
     Ok(rows)

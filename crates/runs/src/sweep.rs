@@ -593,10 +593,40 @@ fn plot_cycle(path: &Path, cycle: &[CyclePoint], summary: &CycleSummary) -> Resu
     let (loading, unloading) = (branch(Branch::Loading), branch(Branch::Unloading));
     chart.curves = vec![
         Curve::new("", line(&loading), Mark::Line, PALETTE[0]),
-        Curve::solved("loading", loading, Mark::Dots, PALETTE[0]),
         Curve::new("", line(&unloading), Mark::Dashed, PALETTE[3]),
-        Curve::solved("unloading", unloading, Mark::Triangles, PALETTE[3]),
     ];
+    let times: Option<Vec<f64>> = cycle.iter().map(|p| p.time).collect();
+    match times.filter(|t| t.last() > t.first()) {
+        // A path in time: its steps coloured by when they were reached, in five bands.
+        Some(t) => {
+            let (first, last) = (t[0], t[t.len() - 1]);
+            const BANDS: usize = 5;
+            let band = |time: f64| (((time - first) / (last - first) * BANDS as f64) as usize).min(BANDS - 1);
+            for b in 0..BANDS {
+                let (from, to) = (
+                    first + (last - first) * b as f64 / BANDS as f64,
+                    first + (last - first) * (b + 1) as f64 / BANDS as f64,
+                );
+                let points: Vec<(f64, f64, bool)> = cycle
+                    .iter()
+                    .zip(&t)
+                    .filter(|(_, time)| band(**time) == b)
+                    .map(|(p, _)| (p.approach * lf, p.load * ff, p.converged))
+                    .collect();
+                let label = format!("t {from:.2e} - {to:.2e} s");
+                let color = plot::viridis(b as f64 / (BANDS - 1) as f64);
+                chart.curves.push(Curve::solved(label, points, Mark::Dots, color));
+            }
+        }
+        None => {
+            chart
+                .curves
+                .push(Curve::solved("loading", loading, Mark::Dots, PALETTE[0]));
+            chart
+                .curves
+                .push(Curve::solved("unloading", unloading, Mark::Triangles, PALETTE[3]));
+        }
+    }
     let pull_off: Vec<(f64, f64)> = summary
         .pull_off_force
         .zip(summary.pull_off_approach)

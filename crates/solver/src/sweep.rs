@@ -421,6 +421,8 @@ pub struct CyclePoint {
     pub converged: bool,
     /// Energy dissipated by yielding in the step \[J\].
     pub plastic_work: f64,
+    /// When the step was reached \[s\], on a path with times.
+    pub time: Option<f64>,
 }
 
 impl From<&SweepPoint> for CyclePoint {
@@ -433,6 +435,7 @@ impl From<&SweepPoint> for CyclePoint {
             branch: p.branch,
             converged: p.report.converged(),
             plastic_work: p.report.yielding.plastic_work,
+            time: p.time,
         }
     }
 }
@@ -533,6 +536,7 @@ mod tests {
             branch,
             converged: true,
             plastic_work: 0.0,
+            time: None,
         }
     }
 

@@ -401,7 +401,9 @@ fn a_capped_sphere_paths_fast_and_slow_yield_as_the_glassy_and_relaxed_elastic_o
         let got = problem
             .sweep(Path::timed(&controls, &times), None, &settings(), None, &mut ())
             .unwrap();
-        let want = capped(None, e).sweep(&controls, None, &settings(), None, &mut ()).unwrap();
+        let want = capped(None, e)
+            .sweep(&controls, None, &settings(), None, &mut ())
+            .unwrap();
         let (g, w) = (&got.last().unwrap().report, &want.last().unwrap().report);
         let deepest = |p: &[solver::SweepPoint]| p.iter().map(|p| p.report.load).fold(0.0, f64::max);
         println!(
