@@ -33,11 +33,11 @@ enum Command {
     Psd(surface::PsdArgs),
     /// Solve one normal contact, with or without adhesion (rough flat, sphere, rough sphere).
     #[command(allow_hyphen_values = true)]
-    Solve(solve::SolveArgs),
+    Solve(Box<solve::SolveArgs>),
     /// An approach-retraction cycle (or a list of approaches, loads or central gaps) with
     /// continuation: load-approach curve, pull-off, jumps and hysteresis.
     #[command(allow_hyphen_values = true)]
-    Sweep(sweep::SweepArgs),
+    Sweep(Box<sweep::SweepArgs>),
     /// A parameter study: a base case and axes to vary (seeds, Tabor parameters, any case key),
     /// each run a solve or a sweep in its own directory, run side by side, resumable, merged
     /// into one table (study.csv) with a mean and standard error per group.
@@ -83,8 +83,8 @@ fn main() -> ExitCode {
         Command::Info(args) => surface::info(args),
         Command::Stats(args) => surface::stats(args),
         Command::Psd(args) => surface::psd(args),
-        Command::Solve(args) => solve::solve(args),
-        Command::Sweep(args) => sweep::sweep(args),
+        Command::Solve(args) => solve::solve(*args),
+        Command::Sweep(args) => sweep::sweep(*args),
         Command::Study(args) => study::study(args, cli.threads),
         Command::Bench(args) => bench::bench(args),
         Command::Theory(args) => theory_cmd::theory(args),
