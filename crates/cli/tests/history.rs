@@ -31,6 +31,25 @@ fn args(out: &Path) -> Vec<String> {
     .to_vec()
 }
 
+/// `solve` of an adhesive sphere (R = 1 um, 64^2 cells across 200 nm, E* = 1 GPa,
+/// w0 = 50 mJ/m^2) with `extra` flags.
+fn sphere_solve(extra: &[&str]) -> Vec<String> {
+    let base = [
+        "solve",
+        "--sphere-radius",
+        "1e-6",
+        "--n",
+        "64",
+        "--length",
+        "2e-7",
+        "--modulus",
+        "1e9",
+        "--work-of-adhesion",
+        "0.05",
+    ];
+    base.iter().chain(extra).map(|s| s.to_string()).collect()
+}
+
 fn run(args: &[String]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_roughcontact"))
         .args(args)
@@ -217,18 +236,8 @@ fn bad_viscoelastic_input_is_refused_by_name() {
         !o.status.success() && err.contains("--times go backwards"),
         "{err}"
     );
-    let o = run(&[
-        "solve",
-        "--sphere-radius",
-        "1e-6",
-        "--n",
-        "64",
-        "--length",
-        "2e-7",
-        "--modulus",
-        "1e9",
-        "--work-of-adhesion",
-        "0.05",
+    let out = d.join("solve");
+    let o = run(&sphere_solve(&[
         "--z0",
         "1e-9",
         "--maxwell-moduli",
@@ -238,9 +247,8 @@ fn bad_viscoelastic_input_is_refused_by_name() {
         "--approach",
         "0",
         "--out",
-        d.join("solve").to_str().unwrap(),
-    ]
-    .map(String::from));
+        out.to_str().unwrap(),
+    ]));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
         !o.status.success() && err.contains("a viscoelastic body"),
@@ -269,18 +277,7 @@ fn bad_hardness_and_laws_or_methods_that_cannot_take_it_are_refused_by_name() {
         ),
         ("exponential", "--range", "attraction at contact"),
     ] {
-        let o = run(&[
-            "solve",
-            "--sphere-radius",
-            "1e-6",
-            "--n",
-            "64",
-            "--length",
-            "2e-7",
-            "--modulus",
-            "1e9",
-            "--work-of-adhesion",
-            "0.05",
+        let o = run(&sphere_solve(&[
             range,
             "1e-9",
             "--law",
@@ -293,8 +290,7 @@ fn bad_hardness_and_laws_or_methods_that_cannot_take_it_are_refused_by_name() {
             "energy",
             "--out",
             d.join(law).to_str().unwrap(),
-        ]
-        .map(String::from));
+        ]));
         assert!(!o.status.success());
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains(err_has) && err.contains("hardness"), "{err}");
