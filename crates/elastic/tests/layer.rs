@@ -284,3 +284,71 @@ fn a_layer_far_thinner_than_a_cell_is_winklers_bed_cell_by_cell() {
             .all(|((j, i), v)| (j, i) == (8, 8) || v.abs() < 1e-12 * own)
     );
 }
+
+#[test]
+fn a_body_at_another_modulus_is_the_operator_built_there() {
+    // Rescaled operators (a viscoelastic step's) against ones built at the new modulus:
+    // the half-space, a bonded layer and a coating (its substrate scaled alike), both grids.
+    let p = Array2::from_shape_fn((16, 16), |(j, i)| ((i * 7 + j * 3) % 5) as f64 * 1e5);
+    let coating = Layer::new(
+        2e-6,
+        0.3,
+        Base::Substrate {
+            e_star: 4e9,
+            poisson: 0.25,
+        },
+    )
+    .unwrap();
+    let bodies = [
+        Body::HalfSpace,
+        Body::Layer(Layer::new(2e-6, 0.45, Base::Bonded).unwrap()),
+        Body::Layer(coating),
+    ];
+    for periodic in [true, false] {
+        let domain = Domain {
+            periodic,
+            ..free_square(16, 1e-6)
+        };
+        for body in bodies {
+            let build = |e: f64, body: Body| -> Box<dyn Compliance> {
+                if periodic {
+                    Box::new(Periodic::with_body(domain, e, body).unwrap())
+                } else {
+                    Box::new(Free::with_body(domain, e, body).unwrap())
+                }
+            };
+            let scaled = build(1e9, body).with_modulus(2.5e9).unwrap();
+            let fresh = build(
+                2.5e9,
+                match body {
+                    Body::Layer(Layer {
+                        base: Base::Substrate { e_star, poisson },
+                        thickness,
+                        poisson: nu,
+                    }) => Body::Layer(Layer {
+                        thickness,
+                        poisson: nu,
+                        base: Base::Substrate {
+                            e_star: 2.5 * e_star,
+                            poisson,
+                        },
+                    }),
+                    other => other,
+                },
+            );
+            let (a, b) = (apply(scaled.as_ref(), &p), apply(fresh.as_ref(), &p));
+            let worst = (&a - &b).iter().fold(0.0f64, |m, d| m.max(d.abs()));
+            let top = b.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+            assert!(
+                worst <= 1e-12 * top,
+                "{body:?} periodic {periodic}: {worst} of {top}"
+            );
+            assert_eq!(scaled.e_star(), 2.5e9);
+            assert!((scaled.cell_compliance() / fresh.cell_compliance() - 1.0).abs() < 1e-12);
+            assert!(
+                (scaled.mean_compliance() - fresh.mean_compliance()).abs()
+                    <= 1e-12 * fresh.mean_compliance().abs()
+            );
+        }
+    }
+}

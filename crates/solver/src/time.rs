@@ -116,12 +116,20 @@ pub(crate) fn solve(
         Control::Approach(delta) => Control::Approach(delta - lowest),
         other => other,
     };
+    // The start in the step's frame (its history is the shift's, not the solve's).
     let seed = warm.map(|w| {
-        let mut w = w.clone();
-        w.contact.displacement -= &shift;
-        w.contact.approach -= lowest;
-        w.contact.history = None;
-        w
+        let c = &w.contact;
+        AdhesiveState {
+            contact: crate::state::ContactState {
+                pressure: c.pressure.clone(),
+                gap: c.gap.clone(),
+                displacement: &c.displacement - &shift,
+                approach: c.approach - lowest,
+                permanent_set: c.permanent_set.clone(),
+                history: None,
+            },
+            adhesive_pressure: w.adhesive_pressure.clone(),
+        }
     });
     let from = seed.as_ref().map_or(start, Start::Warm);
     let stepped = Parts {

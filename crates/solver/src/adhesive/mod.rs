@@ -111,7 +111,7 @@ pub(crate) fn solve(
     );
     // The approach's tolerance: relative to the law's range, or without adhesion (whose range
     // means nothing) to the mean initial gap.
-    let length = if parts.law.work_of_adhesion() > 0.0 {
+    let length = if parts.law.work_of_adhesion() > 0.0 || bounds.0 <= 0.0 {
         parts.law.range()
     } else {
         bounds.0
