@@ -183,7 +183,8 @@ impl ContactProblem {
     pub(crate) fn elastic_only(&self, what: &str) -> Result<()> {
         match self.solid {
             Some(_) => Err(SolverError::Unsupported(format!(
-                "{what} on a viscoelastic body: its answer depends on the load history; sweep a                  path with a time for each step (a hold is a repeated value)"
+                "{what} on a viscoelastic body: its answer depends on the load history; sweep a \
+                 path with a time for each step (a hold is a repeated value)"
             ))),
             None => Ok(()),
         }

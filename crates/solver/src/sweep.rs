@@ -122,9 +122,10 @@ pub fn branches(path: &[Control]) -> Vec<Branch> {
 }
 
 impl ContactProblem {
-    /// Solves every control of `path` in order, at its time if it has one (each warm-started from the previous
-    /// step; the first from `start`, else from apart), telling `observer` every iteration and
-    /// every step; its [`Observer::step`] returns `false` to stop early. Returns the solved points.
+    /// Solves every control of `path` in order, at its time if it has one (each warm-started
+    /// from the previous step; the first from `start`, else from apart), telling `observer`
+    /// every iteration and every step; its [`Observer::step`] returns `false` to stop early.
+    /// Returns the solved points.
     ///
     /// A step of approach that does not converge is solved again from the state before it, in
     /// twice as many substeps, up to [`RETRIES`] times (down to an eighth): near a jump a long

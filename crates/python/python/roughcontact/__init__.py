@@ -380,8 +380,8 @@ class Sweep:
     (ready for ``pandas.DataFrame(sweep.curve)``): ``approach`` [m], ``load`` [N],
     ``mean_pressure`` [Pa], area fractions [-] (the plastic one too), ``central_gap`` [m],
     ``permanent_set_volume`` [m^3], ``plastic_work`` [J], ``time`` [s] (NaN on an elastic
-    body), ``branch`` ('loading' or 'unloading'), ``iterations``, ``converged``, ``residual``, ``wall_time_s`` [s],
-    ``retries``, ``termination`` (in words). The cycle's ``pull_off_force`` [N] and its
+    body), ``branch`` ('loading' or 'unloading'), ``iterations``, ``converged``,
+    ``residual``, ``wall_time_s`` [s], ``retries``, ``termination`` (in words). The cycle's ``pull_off_force`` [N] and its
     ``pull_off_approach`` [m] (``pull_off_at_path_end``: it is the last step's, still
     attached, and the pull-off lies beyond the path), ``jump_in_approach``,
     ``jump_out_approach`` [m],
