@@ -251,9 +251,9 @@ impl RunDir {
         let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
         let columns = text.lines().next().map_or(0, |h| h.split(',').count());
         // Curves written before the plastic columns, or before the time column.
-        let missing = match HEADER.split(',').count() - columns {
-            4 => Some(",0,0e0,0e0,"),
-            1 => Some(","),
+        let missing = match HEADER.split(',').count().checked_sub(columns) {
+            Some(4) => Some(",0,0e0,0e0,"),
+            Some(1) => Some(","),
             _ => None,
         };
         if let Some(missing) = missing {
