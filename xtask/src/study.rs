@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 /// The studies, by name, with what each shows.
-pub const STUDIES: [(&str, &str); 8] = [
+pub const STUDIES: [(&str, &str); 9] = [
     (
         "pull-off-mesh",
         "a sphere's pull-off at mu = 1 against the cell size, point, line, surface and surface-energy laws (minutes)",
@@ -51,6 +51,13 @@ pub const STUDIES: [(&str, &str); 8] = [
          relaxed and glassy elastic spheres (MU=1,5; half an hour)",
     ),
     (
+        "rate-retraction",
+        "a Lennard-Jones sphere, smooth and rough, on a standard linear solid (E0 = 10 E_inf), pressed in \
+         relaxed and drawn back at 1e-3 to 1e2 z0 per relaxation time, beside Greenwood & Johnson's and Persson \
+         & Brener's effective adhesion; writes the figure (MU=1; RQ=1 z0; FIGURE=docs/figures/rate-retraction; \
+         minutes at mu = 1, hours at 5)",
+    ),
+    (
         "plastic-pull-off",
         "the pull-off of a Lennard-Jones sphere (mu = 5) loaded past yield, against the depth and the hardness, \
          beside the elastic sphere's and Mesarovic & Johnson's flattened sphere (N=256; HALF=256 z0; \
@@ -69,6 +76,7 @@ pub fn run(name: &str) -> Result<()> {
         "plastic-rough" => crate::plastic::plastic_rough(),
         "plastic-pull-off" => crate::plastic::plastic_pull_off(),
         "rate-pull-off" => crate::viscoelastic::rate_pull_off(),
+        "rate-retraction" => crate::viscoelastic::rate_retraction(),
         _ => {
             let names: Vec<_> = STUDIES.iter().map(|(n, _)| *n).collect();
             bail!("unknown study `{name}`; the studies are {}", names.join(", "))
