@@ -48,14 +48,15 @@ pub const STUDIES: [(&str, &str); 9] = [
         "rate-pull-off",
         "the pull-off of a Lennard-Jones sphere (mu = 1 and 5) on a standard linear solid (E0 = 10 E_inf) \
          against the speed it is pressed in and drawn back at, 1e-3 to 1e3 z0 per relaxation time, beside the \
-         relaxed and glassy elastic spheres (MU=1,5; half an hour)",
+         relaxed and glassy elastic spheres, with the cycle's loss split into viscous and adhesive (MU=1,5; \
+         STEP=0.5 z0; an hour)",
     ),
     (
         "rate-retraction",
         "a Lennard-Jones sphere, smooth and rough, on a standard linear solid (E0 = 10 E_inf), pressed in \
          relaxed and drawn back at 1e-3 to 1e2 z0 per relaxation time, beside Greenwood & Johnson's and Persson \
-         & Brener's effective adhesion; writes the figure (MU=1; RQ=1 z0; FIGURE=docs/figures/rate-retraction; \
-         minutes at mu = 1, hours at 5)",
+         & Brener's effective adhesion; writes the figure (MU=1; RQ=1 z0; STEP=0.5 z0; \
+         FIGURE=docs/figures/rate-retraction; minutes at mu = 1, hours at 5)",
     ),
     (
         "plastic-pull-off",

@@ -1,11 +1,12 @@
-//! `cargo xtask study rate-pull-off`: the pull-off of a Lennard-Jones sphere on a standard
-//! linear solid against the rate it is pressed in and drawn back at, between the relaxed and
-//! the glassy elastic spheres.
+//! `cargo xtask study rate-pull-off` and `rate-retraction`: the pull-off of a Lennard-Jones
+//! sphere on a standard linear solid against the rate it is pressed in and drawn back at,
+//! between the relaxed and the glassy elastic spheres, and beside the effective-adhesion
+//! theories.
 
 use crate::sphere::{MODULUS, RADIUS, Z0};
 use anyhow::Result;
 use ljadhesion::{LennardJones, SurfaceLaw};
-use solver::{ContactProblem, Control, Method, Path, Settings};
+use solver::{ContactProblem, Control, CyclePoint, Method, Path, Settings, summarize};
 use std::f64::consts::PI;
 use std::time::Instant;
 
@@ -14,8 +15,9 @@ const GLASSY: f64 = 10.0;
 const TAU: f64 = 1.0;
 
 /// Pull-off over `pi R w0` against the speed (in z0 per relaxation time, from 1e-3 to 1e3) for
-/// mu = 1 and 5 at the relaxed modulus (`MU`), the sphere pressed 1 z0 in from 3 z0 apart
-/// (10 z0 at mu = 5) and drawn back to 20 z0, in steps of z0 / 2 at one speed throughout; the
+/// mu = 1 and 5 at the relaxed modulus (`MU`), the sphere pressed 1 z0 in from 20 z0 apart and
+/// drawn back there, in steps of `STEP` z0 (default 1/2) at one speed throughout, and the cycle's loss split
+/// into the dashpots' and the adhesive jumps' (`solver::CycleSummary::adhesive_work`); the
 /// grid 128^2 across 200 z0 at mu = 1 (the pull-off-mesh study's) and 256^2 across 512 z0 at
 /// mu = 5 (the plastic-pull-off study's), wider than the relaxed contact.
 pub fn rate_pull_off() -> Result<()> {
@@ -24,9 +26,13 @@ pub fn rate_pull_off() -> Result<()> {
         .split(',')
         .map(|s| s.trim().parse())
         .collect::<Result<_, _>>()?;
+    let h: f64 = std::env::var("STEP").unwrap_or_else(|_| "0.5".into()).parse()?;
     let settings = Settings::with_method(Method::Auto);
-    println!("| mu (E_inf) | speed (z0 / tau) | pull-off / (pi R w0) | seconds |");
-    println!("|---|---|---|---|");
+    println!("steps of {h} z0");
+    println!(
+        "| mu (E_inf) | speed (z0 / tau) | pull-off / (pi R w0) | viscous work / (pi R w0 z0) | adhesive work / (pi R w0 z0) | seconds |"
+    );
+    println!("|---|---|---|---|---|---|");
     for mu in tabor {
         let (n, side) = if mu > 2.0 {
             (256, 512.0 * Z0)
@@ -35,17 +41,16 @@ pub fn rate_pull_off() -> Result<()> {
         };
         let w0 = (mu.powi(3) / (RADIUS / Z0)).sqrt() * MODULUS * Z0;
         let law = SurfaceLaw(LennardJones::new(w0, Z0)?);
-        let depth = 1.0;
-        let apart = if mu > 2.0 { 10.0 } else { 3.0 };
+        let (depth, apart) = (1.0, 20.0);
         let mut path: Vec<Control> = Vec::new();
         let mut a = -apart;
         while a < depth {
             path.push(Control::Approach(a * Z0));
-            a += 0.5;
+            a += h;
         }
-        while a >= -20.0 {
+        while a >= -apart {
             path.push(Control::Approach(a * Z0));
-            a -= 0.5;
+            a -= h;
         }
         let build = |modulus: f64, solid: bool| -> Result<ContactProblem> {
             let mut b = ContactProblem::builder()
@@ -58,30 +63,36 @@ pub fn rate_pull_off() -> Result<()> {
             }
             Ok(b.build()?)
         };
-        let pull_off = |problem: &ContactProblem, times: Option<&[f64]>| -> Result<(f64, bool, f64)> {
-            let started = Instant::now();
-            let path = Path {
-                controls: &path,
-                times,
+        let pull_off =
+            |problem: &ContactProblem, times: Option<&[f64]>| -> Result<(f64, bool, f64, f64, f64)> {
+                let started = Instant::now();
+                let path = Path {
+                    controls: &path,
+                    times,
+                };
+                let points = problem.sweep(path, Some(h * Z0), &settings, None, &mut ())?;
+                let least = points.iter().map(|p| p.report.load).fold(0.0, f64::min);
+                let converged = points.iter().all(|p| p.report.converged());
+                let cycle: Vec<CyclePoint> = points.iter().map(CyclePoint::from).collect();
+                let summary = summarize(&cycle);
+                let energy = PI * RADIUS * w0 * Z0;
+                Ok((
+                    -least / (PI * RADIUS * w0),
+                    converged,
+                    summary.viscous_work / energy,
+                    summary.adhesive_work.unwrap_or(f64::NAN) / energy,
+                    started.elapsed().as_secs_f64(),
+                ))
             };
-            let points = problem.sweep(path, Some(0.5 * Z0), &settings, None, &mut ())?;
-            let least = points.iter().map(|p| p.report.load).fold(0.0, f64::min);
-            let converged = points.iter().all(|p| p.report.converged());
-            Ok((
-                -least / (PI * RADIUS * w0),
-                converged,
-                started.elapsed().as_secs_f64(),
-            ))
-        };
-        let row = |speed: String, (p, converged, s): (f64, bool, f64)| {
+        let row = |speed: String, (p, converged, viscous, adhesive, s): (f64, bool, f64, f64, f64)| {
             let flag = if converged { "" } else { " (not converged)" };
-            println!("| {mu} | {speed} | {p:.4}{flag} | {s:.0} |");
+            println!("| {mu} | {speed} | {p:.4}{flag} | {viscous:.4} | {adhesive:.4} | {s:.0} |");
         };
         row("relaxed elastic".into(), pull_off(&build(MODULUS, false)?, None)?);
         let problem = build(MODULUS, true)?;
         for k in -3..=3 {
             let speed = 10f64.powi(k);
-            let step = 0.5 * TAU / speed;
+            let step = h * TAU / speed;
             let times: Vec<f64> = (0..path.len()).map(|i| i as f64 * step).collect();
             row(format!("{speed:e}"), pull_off(&problem, Some(&times))?);
         }
@@ -95,7 +106,8 @@ pub fn rate_pull_off() -> Result<()> {
 
 /// `cargo xtask study rate-retraction`: a Lennard-Jones sphere (`MU`, default 1; smooth, and
 /// rough with `RQ` z0, default 1) pressed 1 z0 in slowly enough to stay relaxed, then drawn back
-/// at one speed, 1e-3 to 1e2 z0 per relaxation time, in steps of z0/2; beside it the sphere
+/// at one speed, 1e-3 to 1e2 z0 per relaxation time, in steps of `STEP` z0 (default 1/2);
+/// beside it the sphere
 /// whose receding edge follows Greenwood & Johnson's and Persson & Brener's effective adhesion
 /// (`theory::rate_adhesion`) on the relaxed JKR contact. Writes the figure to `FIGURE`
 /// (default `docs/figures/rate-retraction`, `.png` and `.svg`).
@@ -103,6 +115,7 @@ pub fn rate_retraction() -> Result<()> {
     use theory::rate_adhesion::{EdgeLaw, Model, retraction};
     let mu: f64 = std::env::var("MU").unwrap_or_else(|_| "1".into()).parse()?;
     let rq: f64 = std::env::var("RQ").unwrap_or_else(|_| "1".into()).parse()?;
+    let h: f64 = std::env::var("STEP").unwrap_or_else(|_| "0.5".into()).parse()?;
     let figure = std::env::var("FIGURE").unwrap_or_else(|_| "docs/figures/rate-retraction".into());
     let settings = Settings::with_method(Method::Auto);
     let (n, side) = if mu > 2.0 {
@@ -121,12 +134,12 @@ pub fn rate_retraction() -> Result<()> {
     let mut a = -apart;
     while a < depth {
         path.push(Control::Approach(a * Z0));
-        a += 0.5;
+        a += h;
     }
     let pressed = path.len();
     while a >= back {
         path.push(Control::Approach(a * Z0));
-        a -= 0.5;
+        a -= h;
     }
     let roughness = {
         let grid = surfgen::Grid::square(n, side)?;
@@ -157,7 +170,7 @@ pub fn rate_retraction() -> Result<()> {
             controls: &path,
             times,
         };
-        let points = problem.sweep(path, Some(0.5 * Z0), &settings, None, &mut ())?;
+        let points = problem.sweep(path, Some(h * Z0), &settings, None, &mut ())?;
         let least = points[pressed..]
             .iter()
             .map(|p| p.report.load)
@@ -176,7 +189,7 @@ pub fn rate_retraction() -> Result<()> {
     };
     let slow: Vec<f64> = laws.iter().map(|l| theory(l, 1e-9)).collect();
     println!(
-        "mu = {mu} at E_inf, E0 = {GLASSY} E_inf, tau = {TAU} s; rough: Rq = {rq} z0; {n}^2 across {} z0",
+        "mu = {mu} at E_inf, E0 = {GLASSY} E_inf, tau = {TAU} s; rough: Rq = {rq} z0; {n}^2 across {} z0; steps of {h} z0",
         side / Z0
     );
     println!(
@@ -201,13 +214,13 @@ pub fn rate_retraction() -> Result<()> {
     for k in -3..=2 {
         let speed = 10f64.powi(k);
         let started = Instant::now();
-        // Loading steps a million relaxation times apart, then z0/2 at the speed.
+        // Loading steps a million relaxation times apart, then STEP z0 at the speed.
         let mut times = Vec::with_capacity(path.len());
         for i in 0..path.len() {
             let t = if i < pressed {
                 i as f64 * 1e6 * TAU
             } else {
-                (pressed - 1) as f64 * 1e6 * TAU + (i + 1 - pressed) as f64 * 0.5 * TAU / speed
+                (pressed - 1) as f64 * 1e6 * TAU + (i + 1 - pressed) as f64 * h * TAU / speed
             };
             times.push(t);
         }

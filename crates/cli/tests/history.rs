@@ -158,7 +158,7 @@ fn viscoelastic(out: &Path) -> Vec<String> {
 #[test]
 fn a_viscoelastic_sweep_killed_and_resumed_is_the_same_to_the_bit() {
     let files = [
-        "state/branch_0.npy",
+        "state/branch_stress_0.npy",
         "state/displacement.npy",
         "state/manifest.json",
     ];

@@ -32,7 +32,7 @@ pub fn read_progress(dir: &Path) -> Option<String> {
 /// The columns of `curve.csv`.
 const HEADER: &str = "step,approach,load,mean_pressure,contact_area_fraction,attractive_area_fraction,\
 attached_area_fraction,central_gap,branch,iterations,inner_iterations,converged,residual,wall_time_s,\
-retries,plastic_area_fraction,permanent_set_volume,plastic_work,time";
+retries,plastic_area_fraction,permanent_set_volume,plastic_work,time,elastic_energy,viscous_work";
 
 /// The files and directories a run writes: what makes a directory "another run's", and what
 /// `--overwrite` removes (nothing else in the directory is touched).
@@ -244,16 +244,18 @@ impl RunDir {
     }
 
     /// The steps of `curve.csv`, as much as a summary and a plot need. A curve written before
-    /// the plastic columns or the time column is rewritten with them (zeros, no time), so that
-    /// the rows a resumed sweep appends match it.
+    /// the plastic columns, the time column or the energy columns is rewritten with them
+    /// (zeros, no time, energies unknown: NaN), so that the rows a resumed sweep appends match
+    /// it.
     pub fn read_curve(&self) -> Result<Vec<CyclePoint>> {
         let path = self.curve_path();
         let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
         let columns = text.lines().next().map_or(0, |h| h.split(',').count());
-        // Curves written before the plastic columns, or before the time column.
+        // Curves written before the plastic columns, the time column or the energy columns.
         let missing = match HEADER.split(',').count().checked_sub(columns) {
-            Some(4) => Some(",0,0e0,0e0,"),
-            Some(1) => Some(","),
+            Some(6) => Some(",0,0e0,0e0,,,"),
+            Some(3) => Some(",,,"),
+            Some(2) => Some(",,"),
             _ => None,
         };
         if let Some(missing) = missing {
@@ -328,7 +330,7 @@ impl CurveWriter {
     pub fn append(&mut self, k: usize, p: &SweepPoint) -> Result<()> {
         let r = &p.report;
         let line = format!(
-            "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3},{},{},{:e},{:e},{}\n",
+            "{},{:e},{:e},{:e},{},{},{},{:e},{},{},{},{},{:e},{:.3},{},{},{:e},{:e},{},{:e},{:e}\n",
             k,
             r.approach,
             r.load,
@@ -348,6 +350,8 @@ impl CurveWriter {
             r.yielding.permanent_set_volume,
             r.yielding.plastic_work,
             p.time.map_or(String::new(), |t| format!("{t:e}")),
+            r.elastic_energy,
+            r.viscous_work,
         );
         self.0.write_all(line.as_bytes())?;
         self.0.flush()?;
@@ -379,6 +383,8 @@ fn parse_curve(text: &str) -> Result<Vec<CyclePoint>> {
             converged: f[11] == "true",
             plastic_work: num(17)?,
             time: if f[18].is_empty() { None } else { Some(num(18)?) },
+            elastic_energy: if f[19].is_empty() { f64::NAN } else { num(19)? },
+            viscous_work: if f[20].is_empty() { f64::NAN } else { num(20)? },
         });
     }
     Ok(rows)
@@ -431,8 +437,8 @@ fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
 const MANIFEST: &str = "manifest.json";
 
 /// The fields a saved state holds, by file name: the permanent set (`plastic`) once the
-/// surface has a hardness, a viscoelastic body's branch fields (`branch_K`, its time in the
-/// manifest).
+/// surface has a hardness, a viscoelastic body's branch stresses (`branch_stress_K` \[Pa\],
+/// its time in the manifest).
 fn state_fields(state: &AdhesiveState) -> Vec<(String, &Array2<f64>)> {
     let mut fields = vec![
         ("compressive_pressure".to_string(), &state.contact.pressure),
@@ -452,7 +458,7 @@ fn state_fields(state: &AdhesiveState) -> Vec<(String, &Array2<f64>)> {
             h.branches
                 .iter()
                 .enumerate()
-                .map(|(k, b)| (format!("branch_{k}"), b)),
+                .map(|(k, b)| (format!("branch_stress_{k}"), b)),
         );
     }
     fields
@@ -520,11 +526,18 @@ pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
             },
             history: match manifest["time"].as_f64() {
                 Some(time) => {
+                    if manifest["fields"].get("branch_0").is_some() {
+                        bail!(
+                            "{}: saved by an earlier version, which kept the branches' \
+                             displacements; this one keeps their stresses: rerun the sweep",
+                            manifest_path.display()
+                        );
+                    }
                     let count = (0..)
-                        .take_while(|k| manifest["fields"].get(format!("branch_{k}")).is_some())
+                        .take_while(|k| manifest["fields"].get(format!("branch_stress_{k}")).is_some())
                         .count();
                     let branches = (0..count)
-                        .map(|k| read(&format!("branch_{k}")))
+                        .map(|k| read(&format!("branch_stress_{k}")))
                         .collect::<Result<_>>()?;
                     Some(solver::History { time, branches })
                 }

@@ -192,10 +192,12 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         "path": path,
         "units": {
             "pull_off_force": "N", "pull_off_approach": "m", "jump_in_approach": "m",
-            "jump_out_approach": "m", "hysteresis_energy": "J", "plastic_work": "J", "lengths": "m",
+            "jump_out_approach": "m", "hysteresis_energy": "J", "plastic_work": "J",
+            "viscous_work": "J", "adhesive_work": "J", "lengths": "m",
             "pressures": "Pa", "plastic.npy": "m (the permanent set after the last step)",
             "curve.csv": "approach m, load N, mean_pressure Pa, central_gap m, wall_time_s s, \
-                          permanent_set_volume m^3, plastic_work J, time s"
+                          permanent_set_volume m^3, plastic_work J, time s, elastic_energy J, \
+                          viscous_work J"
         },
         "law": problem.law.name(),
         "method": problem
@@ -504,6 +506,15 @@ fn print_cycle(
             "plastic work          {:.6e} J (dissipated by yielding; the permanent set in plastic.npy)",
             summary.plastic_work
         );
+    }
+    if problem.solid.is_some() {
+        say!(
+            "viscous work          {:.6e} J (dissipated by the dashpots)",
+            summary.viscous_work
+        );
+        if let Some(w) = summary.adhesive_work {
+            say!("adhesive work         {w:.6e} J (lost in the jumps, from apart to apart)");
+        }
     }
     if let Some(mu) = theory.tabor {
         say!("Tabor parameter       {mu:.4}");

@@ -399,6 +399,16 @@ pub struct CycleSummary {
     /// Energy dissipated by yielding over the sweep \[J\]: the steps' plastic work, `H` times
     /// the permanent set's added volume (0 for an elastic surface).
     pub plastic_work: f64,
+    /// Energy dissipated by a viscoelastic body's dashpots over the sweep \[J\] (0 when
+    /// elastic; NaN when a step's is unknown).
+    pub viscous_work: f64,
+    /// On a path that starts and ends apart (no cell attached, or no load at all) at the same
+    /// approach, the work `sum W d(delta)` done
+    /// along all of it (trapezoidal rule) less the dashpots', yielding's and the elastic energy
+    /// the body still stores at its end \[J\]: what the adhesive jumps lost. With
+    /// [`CycleSummary::viscous_work`] it splits a viscoelastic body's hysteresis into viscous
+    /// and adhesive. `None` on other paths, or when an energy is unknown.
+    pub adhesive_work: Option<f64>,
     /// Whether every step converged (`converged` when serialised).
     #[serde(rename = "converged")]
     pub all_converged: bool,
@@ -424,6 +434,11 @@ pub struct CyclePoint {
     pub plastic_work: f64,
     /// When the step was reached \[s\], on a path with times.
     pub time: Option<f64>,
+    /// Elastic energy the body stores \[J\] (NaN when unknown: read from a curve written
+    /// without it).
+    pub elastic_energy: f64,
+    /// Energy the body's dashpots dissipated over the step \[J\] (NaN when unknown).
+    pub viscous_work: f64,
 }
 
 impl From<&SweepPoint> for CyclePoint {
@@ -437,6 +452,8 @@ impl From<&SweepPoint> for CyclePoint {
             converged: p.report.converged(),
             plastic_work: p.report.yielding.plastic_work,
             time: p.time,
+            elastic_energy: p.report.elastic_energy,
+            viscous_work: p.report.viscous_work,
         }
     }
 }
@@ -481,6 +498,8 @@ pub fn summarize(points: &[CyclePoint]) -> CycleSummary {
         jump_out_approach: jump_out.filter(|_| hysteresis),
         hysteresis_energy: closed_loop_work(points),
         plastic_work: points.iter().map(|p| p.plastic_work).sum(),
+        viscous_work: points.iter().map(|p| p.viscous_work).sum(),
+        adhesive_work: adhesive_work(points),
         all_converged: points.iter().all(|p| p.converged),
     }
 }
@@ -507,6 +526,27 @@ pub fn closed_loop_work(points: &[CyclePoint]) -> Option<f64> {
     let other_end = if near(a[0]) < near(a[end]) { a[0] } else { a[end] };
     let (lo, hi) = (other_end.min(a[turn]), other_end.max(a[turn]));
     Some(clipped_work(&points[..=turn], lo, hi) + clipped_work(&points[turn..=end], lo, hi))
+}
+
+/// See [`CycleSummary::adhesive_work`].
+fn adhesive_work(points: &[CyclePoint]) -> Option<f64> {
+    let (first, last) = (points.first()?, points.last()?);
+    // Apart: no cell within the law's range, or (a law without attraction) no load at all.
+    let apart =
+        |p: &CyclePoint| p.attached_area_fraction == 0.0 || (p.contact_area_fraction == 0.0 && p.load == 0.0);
+    // Back where it started, so that the law's energy (not known for every law) is the same.
+    let scale = points.iter().map(|p| p.approach.abs()).fold(0.0, f64::max);
+    let returned = (first.approach - last.approach).abs() <= 1e-9 * scale;
+    if points.len() < 2 || !apart(first) || !apart(last) || !returned {
+        return None;
+    }
+    let work: f64 = points
+        .windows(2)
+        .map(|w| 0.5 * (w[0].load + w[1].load) * (w[1].approach - w[0].approach))
+        .sum();
+    let lost: f64 = points[1..].iter().map(|p| p.viscous_work + p.plastic_work).sum();
+    let rest = work - lost - (last.elastic_energy - first.elastic_energy);
+    rest.is_finite().then_some(rest)
 }
 
 /// `sum W d(delta)` along `leg` over approaches in `[lo, hi]` only.
@@ -538,6 +578,8 @@ mod tests {
             converged: true,
             plastic_work: 0.0,
             time: None,
+            elastic_energy: 0.0,
+            viscous_work: 0.0,
         }
     }
 

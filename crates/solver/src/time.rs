@@ -4,9 +4,15 @@
 //! A step of `dt` is one elastic solve (`docs/method.md` section 13): the body's compliance at
 //! the step's effective modulus [`elastic::viscoelastic::Step::modulus`], and the initial gap
 //! shifted by the branches' memory `s = -sum_k E_k (decay_k h_k - weight_k u_old) / E_eff`, so
-//! that the new displacement is `u = C_eff p + s`. After it the branches' spring displacements
-//! advance exactly for a `u` linear over the step. A state without a history is a body at
-//! rest and undeformed just before the step (a first step is a jump: the glassy response).
+//! that the new displacement is `u = C_eff p + s`. After it the branches advance exactly for a
+//! `u` linear over the step, and so does the energy their dashpots dissipate. A state without a
+//! history is a body at rest and undeformed just before the step (a first step is a jump: the
+//! glassy response).
+//!
+//! The memory is each branch's stress `sigma_k = E_k S h_k` (`S` the stiffness at unit
+//! modulus, `h_k` the spring's displacement): one field a branch, `h_k = C sigma_k / E_k`
+//! recovered by one application of the compliance `C` a step, and `S u` needs none, since the
+//! surface carries `p = E_inf S u + sum_k sigma_k`.
 
 use crate::adhesive::{self, AdhesiveReport, AdhesiveState, Parts, Start};
 use crate::error::{Result, SolverError, invalid};
@@ -20,8 +26,9 @@ use ndarray::{Array2, Zip};
 pub struct History {
     /// When the state was reached \[s\].
     pub time: f64,
-    /// The displacement \[m\] on each branch's spring (shape `(ny, nx)` each, in the order of
-    /// the solid's branches): the branch carries `E_k` times its stiffness applied to it.
+    /// The stress \[Pa\] each branch carries (shape `(ny, nx)` each, in the order of the
+    /// solid's branches): `E_k` times the body's stiffness at unit modulus applied to the
+    /// displacement on its spring.
     pub branches: Vec<Array2<f64>>,
 }
 
@@ -92,19 +99,37 @@ pub(crate) fn solve(
             )));
         }
     }
-    let (dt, u_old) = match (remembered, warm) {
-        (Some(h), Some(w)) => (time - h.time, Some(&w.contact.displacement)),
+    let (dt, old) = match (remembered, warm) {
+        (Some(h), Some(w)) => (time - h.time, Some((h, w))),
         _ => (0.0, None),
     };
     let step = solid.step(dt);
+    let relaxed = solid.relaxed;
+    // The springs' displacements h_k = C sigma_k / E_k (the operator is at E_inf; with the
+    // mean mode that it leaves out, a layer's uniform compression) and S u_old.
+    let mut springs: Vec<Array2<f64>> = Vec::with_capacity(solid.branches.len());
+    let mut stiff_old = Array2::zeros(shape);
+    if let Some((h, w)) = old {
+        let mut ws = parts.op.make_workspace();
+        for (k, &(e, _)) in solid.branches.iter().enumerate() {
+            let mut spring = Array2::zeros(shape);
+            parts.op.apply(h.branches[k].view(), spring.view_mut(), &mut ws)?;
+            spring += parts.op.mean_compliance() * h.branches[k].mean().unwrap_or(0.0);
+            spring *= relaxed / e;
+            springs.push(spring);
+        }
+        stiff_old = w.total_pressure();
+        for sigma in &h.branches {
+            stiff_old -= sigma;
+        }
+        stiff_old /= relaxed;
+    }
     // The branches' memory as a shift of the initial gap.
     let mut shift = Array2::zeros(shape);
-    for (k, &(e, _)) in solid.branches.iter().enumerate() {
-        if let Some(h) = remembered {
-            shift.scaled_add(-e * step.decay[k] / step.modulus, &h.branches[k]);
-        }
-        if let Some(u) = u_old {
-            shift.scaled_add(e * step.weight[k] / step.modulus, u);
+    if let Some((_, w)) = old {
+        for (k, &(e, _)) in solid.branches.iter().enumerate() {
+            shift.scaled_add(-e * step.decay[k] / step.modulus, &springs[k]);
+            shift.scaled_add(e * step.weight[k] / step.modulus, &w.contact.displacement);
         }
     }
     let mut g0 = &parts.g0 + &shift;
@@ -141,23 +166,51 @@ pub(crate) fn solve(
     state.contact.displacement += &shift;
     state.contact.approach += lowest;
     report.approach += lowest;
-    let branches = solid
-        .branches
-        .iter()
-        .enumerate()
-        .map(|(k, _)| {
-            let mut h = remembered.map_or_else(|| Array2::zeros(shape), |h| &h.branches[k] * step.decay[k]);
-            let w = step.weight[k];
-            match u_old {
-                Some(u) => Zip::from(&mut h)
-                    .and(&state.contact.displacement)
-                    .and(u)
-                    .for_each(|h, &new, &old| *h += w * (new - old)),
-                None => h.scaled_add(w, &state.contact.displacement),
+    // S u_new from p_new = E_eff S u_new + sum_k (decay_k sigma_k - weight_k E_k S u_old).
+    let mut stiff = state.total_pressure();
+    if let Some((h, _)) = old {
+        for (k, &(e, _)) in solid.branches.iter().enumerate() {
+            stiff.scaled_add(-step.decay[k], &h.branches[k]);
+            stiff.scaled_add(step.weight[k] * e, &stiff_old);
+        }
+    }
+    stiff /= step.modulus;
+    let u_new = &state.contact.displacement;
+    let du = match old {
+        Some((_, w)) => u_new - &w.contact.displacement,
+        None => u_new.clone(),
+    };
+    let dr = &stiff - &stiff_old;
+    let dot = |a: &Array2<f64>, b: &Array2<f64>| Zip::from(a).and(b).fold(0.0, |s, &x, &y| s + x * y);
+    let cell = parts.op.domain().cell_area();
+    let mut viscous = 0.0;
+    let mut stored = relaxed * dot(u_new, &stiff);
+    let mut branches = Vec::with_capacity(solid.branches.len());
+    for (k, &(e, tau)) in solid.branches.iter().enumerate() {
+        let (d, w, x) = (step.decay[k], step.weight[k], dt / tau);
+        let mut sigma = dr.clone() * (w * e);
+        let mut spring = du.clone() * w;
+        if let Some((h, _)) = old {
+            sigma.scaled_add(d, &h.branches[k]);
+            spring.scaled_add(d, &springs[k]);
+            if x > 0.0 {
+                // The dashpot's power (E_k / tau_k) <h, S h> integrated over the step for the
+                // exact h(t) = e a + (1 - e) tau du/dt, e = exp(-t / tau).
+                let g = if x < 1e-3 {
+                    x / 3.0 - x * x / 4.0
+                } else {
+                    (x + 2.0 * (-x).exp_m1() - 0.5 * (-2.0 * x).exp_m1()) / (x * x)
+                };
+                viscous += -0.5 * (-2.0 * x).exp_m1() * dot(&springs[k], &h.branches[k])
+                    + e * (-x).exp_m1().powi(2) / x * dot(&springs[k], &dr)
+                    + e * g * dot(&du, &dr);
             }
-            h
-        })
-        .collect();
+        }
+        stored += dot(&spring, &sigma);
+        branches.push(sigma);
+    }
+    report.viscous_work = viscous * cell;
+    report.elastic_energy = 0.5 * stored * cell;
     state.contact.history = Some(History { time, branches });
     Ok((state, report))
 }

@@ -361,17 +361,32 @@ fn a_lennard_jones_sphere_pulls_off_as_the_relaxed_or_glassy_elastic_one_at_the_
                 0.0,
                 "still attached"
             );
-            -points.iter().map(|p| p.report.load).fold(0.0, f64::min)
+            let cycle: Vec<solver::CyclePoint> = points.iter().map(solver::CyclePoint::from).collect();
+            let summary = solver::summarize(&cycle);
+            (
+                -points.iter().map(|p| p.report.load).fold(0.0, f64::min),
+                summary.adhesive_work.unwrap(),
+                summary.viscous_work,
+            )
         };
         let problem = build(Some((9.0 * e, 1.0)), e);
         for (step, modulus) in [(1e-9, 10.0 * e), (1e9, e)] {
             let times: Vec<f64> = (0..path.len()).map(|k| step * k as f64).collect();
-            let got = pull_off(&problem, Some(&times));
-            let want = pull_off(&build(None, modulus), None);
+            let (got, lost, viscous) = pull_off(&problem, Some(&times));
+            let (want, lost_elastic, _) = pull_off(&build(None, modulus), None);
             println!(
-                "mu {mu}, steps of {step:e} s: pull-off {got:e} N, elastic E* = {modulus:e}: {want:e} N"
+                "mu {mu}, steps of {step:e} s: pull-off {got:e} N, elastic E* = {modulus:e}: {want:e} N; \
+                 adhesive work {lost:e} J ({lost_elastic:e} J), viscous {viscous:e} J"
             );
             assert!((got / want - 1.0).abs() < 0.01, "{got} {want}");
+            // The cycle's loss is the jumps' (the elastic one's; none without jumps), none of it
+            // viscous: on the scale of the pull-off force times z0.
+            let scale = want * z0;
+            assert!(
+                (lost - lost_elastic).abs() < 0.01 * scale,
+                "{lost} {lost_elastic}"
+            );
+            assert!(viscous.abs() < 1e-3 * scale, "{viscous} {scale}");
         }
     }
 }
@@ -416,5 +431,110 @@ fn a_capped_sphere_paths_fast_and_slow_yield_as_the_glassy_and_relaxed_elastic_o
         assert!(w.yielding.permanent_set_volume > 0.0);
         assert!((deepest(&got) / deepest(&want) - 1.0).abs() < 0.005);
         assert!((g.yielding.permanent_set_volume / w.yielding.permanent_set_volume - 1.0).abs() < 0.005);
+    }
+}
+
+/// A free-grid flat punch of radius 16 cells (64^2 cells of 1 um) on `problem`'s body: its
+/// face touches at approach 0, the rest stands 0.1 mm off.
+fn punch(solid: Option<Maxwell>) -> ContactProblem {
+    let (n, cell) = (64, 1e-6_f64);
+    let domain = elastic::Domain {
+        nx: n,
+        ny: n,
+        dx: cell,
+        dy: cell,
+        periodic: false,
+    };
+    let centre = n as f64 / 2.0 - 0.5;
+    let face = ndarray::Array2::from_shape_fn((n, n), |(j, i)| {
+        let r = (i as f64 - centre).hypot(j as f64 - centre);
+        if r < 16.0 { 0.0 } else { 1e-4 }
+    });
+    let op = elastic::Free::new(domain, E_INF).unwrap();
+    let mut problem = ContactProblem::new(op, face, ljadhesion::NoAdhesion).unwrap();
+    problem.solid = solid;
+    problem
+}
+
+#[test]
+fn a_punch_pressed_at_a_constant_rate_dissipates_and_stores_the_closed_form_energies() {
+    // The punch's contact is its face throughout, so its displacement is linear in time
+    // wherever the approach is, and each step is exact: per unit relaxed stiffness k, branch
+    // k's spring stretches h_k = V tau_k (1 - exp(-t / tau_k)), its dashpot dissipates
+    // (E_k / E_inf) k int h_k^2 / tau_k dt and the body stores
+    // (k / 2) (delta^2 + sum_k (E_k / E_inf) h_k^2).
+    let branches = [(9.0 * E_INF, 1.0), (5.0 * E_INF, 0.1)];
+    let (moduli, taus): (Vec<f64>, Vec<f64>) = branches.iter().copied().unzip();
+    let solid = Maxwell::new(E_INF, &moduli, &taus).unwrap();
+    let (speed, dt, end) = (1e-8, 0.25, 3.0);
+    let times: Vec<f64> = (0..=12).map(|k| k as f64 * dt).collect();
+    let controls: Vec<Control> = times.iter().map(|t| Control::Approach(speed * t)).collect();
+    let points = punch(Some(solid))
+        .sweep(Path::timed(&controls, &times), None, &settings(), None, &mut ())
+        .unwrap();
+    let elastic = punch(None)
+        .solve(
+            Control::Approach(speed * end),
+            &settings(),
+            solver::Start::Loading,
+            &mut (),
+        )
+        .unwrap()
+        .1;
+    let k = elastic.load / (speed * end);
+    let (mut dissipated, mut stored) = (0.0, speed * end * speed * end);
+    for &(e, tau) in &branches {
+        let x = end / tau;
+        let h = speed * tau * -(-x).exp_m1();
+        dissipated += e / E_INF
+            * speed
+            * speed
+            * tau
+            * (end + 2.0 * tau * (-x).exp_m1() - 0.5 * tau * (-2.0 * x).exp_m1());
+        stored += e / E_INF * h * h;
+    }
+    let (dissipated, stored) = (k * dissipated, 0.5 * k * stored);
+    let viscous: f64 = points.iter().map(|p| p.report.viscous_work).sum();
+    let last = &points.last().unwrap().report;
+    println!(
+        "viscous {viscous:e} J (closed form {dissipated:e}), stored {:e} J ({stored:e})",
+        last.elastic_energy
+    );
+    assert!((viscous / dissipated - 1.0).abs() < 1e-6);
+    assert!((last.elastic_energy / stored - 1.0).abs() < 1e-6);
+}
+
+#[test]
+fn without_adhesion_a_cycle_loses_its_work_to_the_dashpots_alone() {
+    // A free sphere and a periodic rough surface pressed in and drawn back apart at about one
+    // relaxation time a cycle: the work done on them is the dashpots' plus what the body still
+    // stores, and the adhesive rest is the trapezoidal rule's error, second order in the step.
+    let branches = [(9.0 * E_INF, 1.0)];
+    let sphere = sphere(64, 4e-5, &branches);
+    let smooth_depth = 2e-7;
+    let rough = rough(Some(&branches), E_INF, None);
+    let rough_depth = 0.5 * rough.initial_gap.mean().unwrap();
+    for (problem, depth) in [(sphere, smooth_depth), (rough, rough_depth)] {
+        let mut rests = Vec::new();
+        for steps in [10, 20] {
+            let path = solver::approach_cycle(-0.1 * depth, depth, steps);
+            let times: Vec<f64> = (0..path.len())
+                .map(|k| k as f64 * 0.1 * 10.0 / steps as f64)
+                .collect();
+            let points = problem
+                .sweep(Path::timed(&path, &times), None, &settings(), None, &mut ())
+                .unwrap();
+            let cycle: Vec<solver::CyclePoint> = points.iter().map(solver::CyclePoint::from).collect();
+            let summary = solver::summarize(&cycle);
+            let rest = summary.adhesive_work.unwrap();
+            let stored = points.last().unwrap().report.elastic_energy;
+            println!(
+                "{} steps a leg: viscous {:e} J, still stored {stored:e} J, rest {rest:e} J",
+                steps, summary.viscous_work
+            );
+            assert!(summary.viscous_work > 0.0);
+            rests.push(rest.abs() / summary.viscous_work);
+        }
+        assert!(rests[0] / rests[1] > 3.5 && rests[1] < 5e-3, "{rests:?}");
     }
 }

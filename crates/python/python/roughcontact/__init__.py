@@ -370,6 +370,8 @@ _CURVE = (
     "plastic_area_fraction",
     "permanent_set_volume",
     "plastic_work",
+    "elastic_energy",
+    "viscous_work",
     "residual",
     "wall_time_s",
 )
@@ -379,14 +381,17 @@ class Sweep:
     """A quasi-static path of solves. ``curve`` holds one array a column, one row a step
     (ready for ``pandas.DataFrame(sweep.curve)``): ``approach`` [m], ``load`` [N],
     ``mean_pressure`` [Pa], area fractions [-] (the plastic one too), ``central_gap`` [m],
-    ``permanent_set_volume`` [m^3], ``plastic_work`` [J], ``time`` [s] (NaN on an elastic
-    body), ``branch`` ('loading' or 'unloading'), ``iterations``, ``converged``,
+    ``permanent_set_volume`` [m^3], ``plastic_work`` [J], ``elastic_energy`` [J] (stored in
+    the body), ``viscous_work`` [J] (dissipated by its dashpots in the step), ``time`` [s] (NaN
+    on an elastic body), ``branch`` ('loading' or 'unloading'), ``iterations``, ``converged``,
     ``residual``, ``wall_time_s`` [s], ``retries``, ``termination`` (in words). The cycle's ``pull_off_force`` [N] and its
     ``pull_off_approach`` [m] (``pull_off_at_path_end``: it is the last step's, still
     attached, and the pull-off lies beyond the path), ``jump_in_approach``,
     ``jump_out_approach`` [m],
-    ``hysteresis_energy`` [J], ``plastic_work`` [J] (dissipated by yielding) and
-    ``all_converged``; the last state's fields in ``state`` (the permanent set ``plastic``
+    ``hysteresis_energy`` [J], ``plastic_work`` [J] (dissipated by yielding),
+    ``viscous_work`` [J] (by a viscoelastic body's dashpots), ``adhesive_work`` [J] (on a path
+    from apart to apart, what the adhesive jumps lost: the work done less the other losses and
+    the energy still stored; None otherwise) and ``all_converged``; the last state's fields in ``state`` (the permanent set ``plastic``
     [m] with a ``hardness``); every step's full report in ``steps``."""
 
     def __init__(self, summary: Dict[str, Any], fields: Dict[str, np.ndarray]) -> None:
@@ -407,6 +412,8 @@ class Sweep:
         self.jump_out_approach: Optional[float] = cycle["jump_out_approach"]
         self.hysteresis_energy: Optional[float] = cycle["hysteresis_energy"]
         self.plastic_work: float = cycle["plastic_work"]
+        self.viscous_work: float = cycle["viscous_work"]
+        self.adhesive_work: Optional[float] = cycle["adhesive_work"]
         reports = [s["report"] for s in self.steps]
         curve: Dict[str, np.ndarray] = {"step": np.arange(len(reports))}
         for k in _CURVE:

@@ -98,6 +98,11 @@ pub(crate) fn assemble(
         max_p = max_p.max(c + a);
         min_p = min_p.min(c + a);
     });
+    let mut stored = 0.0;
+    Zip::from(&contact.pressure)
+        .and(&p_a)
+        .and(&contact.displacement)
+        .for_each(|&c, &a, &u| stored += (c + a) * u);
     let report = AdhesiveReport {
         load,
         mean_pressure: load / (n * cell),
@@ -112,6 +117,8 @@ pub(crate) fn assemble(
         max_pressure: max_p,
         min_pressure: min_p,
         yielding: crate::interface::Yield::default(),
+        elastic_energy: 0.5 * stored * cell,
+        viscous_work: 0.0,
         method: job.method,
         iterations: outcome.iterations,
         operator_calls: outcome.operator_calls,

@@ -95,8 +95,11 @@ pub(crate) fn solve(
         _ => None,
     };
     let start = warm.as_ref().map_or(start, Start::Warm);
+    let area = parts.op.domain().cell_area() * parts.g0.len() as f64;
     let to_base = |(mut state, mut report): (AdhesiveState, AdhesiveReport)| {
-        report.approach += mean.shift(&mut state.contact, report.mean_pressure, 1.0);
+        let p = report.mean_pressure;
+        report.approach += mean.shift(&mut state.contact, p, 1.0);
+        report.elastic_energy += 0.5 * parts.op.mean_compliance() * p * p * area;
         (state, report)
     };
     let Control::Approach(delta) = control else {

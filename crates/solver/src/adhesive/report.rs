@@ -162,6 +162,12 @@ pub struct AdhesiveReport {
     /// What yielding did under a hardness (zeros when elastic).
     #[serde(flatten)]
     pub yielding: crate::interface::Yield,
+    /// Elastic energy the body stores \[J\]: `(1/2) sum (p_c + p_a) u dA` for an elastic body,
+    /// its springs' energy for a viscoelastic one ([`crate::time`]).
+    pub elastic_energy: f64,
+    /// Energy the body's dashpots dissipated over the step that reached this state \[J\] (0
+    /// when elastic).
+    pub viscous_work: f64,
     /// The method that solved it ([`Method::Auto`] resolved).
     pub method: Method,
     /// What the method counted.
