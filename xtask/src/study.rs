@@ -48,8 +48,8 @@ pub const STUDIES: [(&str, &str); 9] = [
         "rate-pull-off",
         "the pull-off of a Lennard-Jones sphere (mu = 1 and 5) on a standard linear solid (E0 = 10 E_inf) \
          against the speed it is pressed in and drawn back at, 1e-3 to 1e3 z0 per relaxation time, beside the \
-         relaxed and glassy elastic spheres, with the cycle's loss split into viscous and adhesive (MU=1,5; \
-         STEP=0.5 z0; an hour)",
+         relaxed and glassy elastic spheres, with the cycle's loss split into viscous and adhesive when the path \
+         returns to its start (MU=1,5; STEP=0.5 z0; FROM=20 z0 apart; an hour)",
     ),
     (
         "rate-retraction",

@@ -15,8 +15,8 @@ const GLASSY: f64 = 10.0;
 const TAU: f64 = 1.0;
 
 /// Pull-off over `pi R w0` against the speed (in z0 per relaxation time, from 1e-3 to 1e3) for
-/// mu = 1 and 5 at the relaxed modulus (`MU`), the sphere pressed 1 z0 in from 20 z0 apart and
-/// drawn back there, in steps of `STEP` z0 (default 1/2) at one speed throughout, and the cycle's loss split
+/// mu = 1 and 5 at the relaxed modulus (`MU`), the sphere pressed 1 z0 in from `FROM` z0 apart
+/// (default 20) and drawn back to 20 z0 apart, in steps of `STEP` z0 (default 1/2) at one speed throughout, and the cycle's loss split
 /// into the dashpots' and the adhesive jumps' (`solver::CycleSummary::adhesive_work`); the
 /// grid 128^2 across 200 z0 at mu = 1 (the pull-off-mesh study's) and 256^2 across 512 z0 at
 /// mu = 5 (the plastic-pull-off study's), wider than the relaxed contact.
@@ -27,8 +27,9 @@ pub fn rate_pull_off() -> Result<()> {
         .map(|s| s.trim().parse())
         .collect::<Result<_, _>>()?;
     let h: f64 = std::env::var("STEP").unwrap_or_else(|_| "0.5".into()).parse()?;
+    let from: f64 = std::env::var("FROM").unwrap_or_else(|_| "20".into()).parse()?;
     let settings = Settings::with_method(Method::Auto);
-    println!("steps of {h} z0");
+    println!("steps of {h} z0, from {from} z0 apart");
     println!(
         "| mu (E_inf) | speed (z0 / tau) | pull-off / (pi R w0) | viscous work / (pi R w0 z0) | adhesive work / (pi R w0 z0) | seconds |"
     );
@@ -43,7 +44,7 @@ pub fn rate_pull_off() -> Result<()> {
         let law = SurfaceLaw(LennardJones::new(w0, Z0)?);
         let (depth, apart) = (1.0, 20.0);
         let mut path: Vec<Control> = Vec::new();
-        let mut a = -apart;
+        let mut a = -from;
         while a < depth {
             path.push(Control::Approach(a * Z0));
             a += h;

@@ -116,6 +116,12 @@ fn killed_and_resumed(d: &Path, args: impl Fn(&Path) -> Vec<String>, rows: usize
     whole
 }
 
+/// The last row's value of the column `name` in `rows` (header first).
+fn column<'a>(rows: &'a [String], name: &str) -> &'a str {
+    let k = rows[0].split(',').position(|c| c == name).unwrap();
+    rows.last().unwrap().split(',').nth(k).unwrap()
+}
+
 #[test]
 fn a_plastic_sweep_killed_and_resumed_is_the_same_to_the_bit() {
     let whole = killed_and_resumed(&dir("resume"), args, 8, &["plastic.npy"]);
@@ -125,9 +131,8 @@ fn a_plastic_sweep_killed_and_resumed_is_the_same_to_the_bit() {
         serde_json::from_str(&std::fs::read_to_string(whole.join("summary.json")).unwrap()).unwrap();
     assert!(s["plastic_work"].as_f64().unwrap() > 0.0, "{s}");
     assert!(s["permanent_set_volume"].is_null());
-    let last: Vec<&str> = reference.last().unwrap().split(',').collect();
     assert!(
-        last[last.len() - 3].parse::<f64>().unwrap() > 0.0,
+        column(&reference, "permanent_set_volume").parse::<f64>().unwrap() > 0.0,
         "a permanent set after unloading"
     );
 }
@@ -163,9 +168,26 @@ fn a_viscoelastic_sweep_killed_and_resumed_is_the_same_to_the_bit() {
         "state/manifest.json",
     ];
     let whole = killed_and_resumed(&dir("viscoelastic"), viscoelastic, 12, &files);
-    let text = std::fs::read_to_string(whole.join("curve.csv")).unwrap();
-    let last = text.lines().last().unwrap();
-    assert!(last.ends_with(",8e0"), "the time column: {last}");
+    let reference = curve(&whole);
+    assert_eq!(column(&reference, "time"), "8e0");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(whole.join("summary.json")).unwrap()).unwrap();
+    assert!(s["viscous_work"].as_f64().unwrap() > 0.0, "{s}");
+    // A state saved as an earlier version did (the springs' displacements) is refused by name.
+    let state = whole.join("state");
+    let manifest = std::fs::read_to_string(state.join("manifest.json")).unwrap();
+    std::fs::write(
+        state.join("manifest.json"),
+        manifest.replace("branch_stress_0", "branch_0"),
+    )
+    .unwrap();
+    std::fs::rename(state.join("branch_stress_0.npy"), state.join("branch_0.npy")).unwrap();
+    let mut again = viscoelastic(&whole.with_file_name("from-old"));
+    again.extend(["--start-from".into(), state.to_str().unwrap().into()]);
+    let o = run(&again);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("earlier version") && err.contains("rerun"), "{err}");
 }
 
 #[test]
@@ -298,7 +320,7 @@ fn bad_hardness_and_laws_or_methods_that_cannot_take_it_are_refused_by_name() {
 }
 
 #[test]
-fn a_curve_written_before_the_plastic_or_time_columns_resumes_with_them() {
+fn a_curve_written_before_the_plastic_time_or_energy_columns_resumes_with_them() {
     let d = dir("old-curve");
     let out = d.join("old");
     let mut a = args(&out);
@@ -308,16 +330,20 @@ fn a_curve_written_before_the_plastic_or_time_columns_resumes_with_them() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(out.join("curve.csv")).unwrap();
     a.push("--resume".into());
-    // Without the plastic and time columns, and without the time column.
-    for cut in [5, 2] {
-        let old: String = text
-            .lines()
-            .map(|l| l.rsplitn(cut, ',').last().unwrap().to_string() + "\n")
-            .collect();
+    // The energies of the old rows are unknown: empty.
+    let cut = |l: &str, n: usize| l.rsplitn(n + 1, ',').last().unwrap().to_string();
+    let upgraded: String = text
+        .lines()
+        .enumerate()
+        .map(|(k, l)| if k == 0 { l.to_string() } else { cut(l, 2) + ",," } + "\n")
+        .collect();
+    // Without the plastic, time and energy columns, without time and energies, without energies.
+    for columns in [6, 3, 2] {
+        let old: String = text.lines().map(|l| cut(l, columns) + "\n").collect();
         std::fs::write(out.join("curve.csv"), &old).unwrap();
         let o = run(&a);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        assert_eq!(std::fs::read_to_string(out.join("curve.csv")).unwrap(), text);
+        assert_eq!(std::fs::read_to_string(out.join("curve.csv")).unwrap(), upgraded);
     }
 }
 

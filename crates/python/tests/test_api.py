@@ -281,6 +281,11 @@ def test_a_viscoelastic_sphere_is_swept_in_time_between_its_elastic_limits():
         elastic = rc.sweep(**dict(SPHERE, modulus=modulus), **path)
         assert np.isnan(elastic.curve["time"]).all()
         assert abs(swept.pull_off_force / elastic.pull_off_force - 1) < 1e-3
+    # At one relaxation time a step the dashpots take part of the work, step by step.
+    middle = rc.sweep(**SPHERE, **solid, **path, step_time=1.0)
+    assert middle.viscous_work > 0
+    assert middle.viscous_work == pytest.approx(middle.curve["viscous_work"].sum(), rel=1e-12)
+    assert (middle.curve["elastic_energy"] >= 0).all()
     with pytest.raises(ValueError, match="give each step a time"):
         rc.sweep(**SPHERE, **solid, **path)
     with pytest.raises(ValueError, match="this body is elastic"):
