@@ -195,7 +195,7 @@ pub(crate) fn solve(
             spring.scaled_add(d, &springs[k]);
             if x > 0.0 {
                 // The dashpot's power (E_k / tau_k) <h, S h> integrated over the step for the
-                // exact h(t) = e a + (1 - e) tau du/dt, e = exp(-t / tau).
+                // exact h(t) = q h_old + (1 - q) tau du/dt, q = exp(-t / tau).
                 let g = if x < 1e-3 {
                     x / 3.0 - x * x / 4.0
                 } else {

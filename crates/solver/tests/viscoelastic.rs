@@ -165,23 +165,7 @@ fn a_flat_punch_creeps_with_the_creep_compliance_to_second_order_in_the_step() {
     // A punch's contact is its face at every time, so the grid's answer is the elastic one
     // times E_inf J(t) (the correspondence principle) and what remains is the time step's error.
     let solid = Maxwell::new(E_INF, &[9.0 * E_INF], &[1.0]).unwrap();
-    let (n, cell) = (64, 1e-6_f64);
-    let domain = elastic::Domain {
-        nx: n,
-        ny: n,
-        dx: cell,
-        dy: cell,
-        periodic: false,
-    };
-    let radius = 16.0 * cell;
-    let centre = n as f64 / 2.0 - 0.5;
-    let face = ndarray::Array2::from_shape_fn((n, n), |(j, i)| {
-        let r = (i as f64 - centre).hypot(j as f64 - centre) * cell;
-        if r < radius { 0.0 } else { 1e-4 }
-    });
-    let op = elastic::Free::new(domain, E_INF).unwrap();
-    let mut problem = ContactProblem::new(op, face, ljadhesion::NoAdhesion).unwrap();
-    problem.solid = Some(solid.clone());
+    let problem = punch(Some(solid.clone()));
     let load = 1e-3;
     let approach_at = |dt: f64, t: f64| {
         let steps = (t / dt).round() as usize;
@@ -434,8 +418,9 @@ fn a_capped_sphere_paths_fast_and_slow_yield_as_the_glassy_and_relaxed_elastic_o
     }
 }
 
-/// A free-grid flat punch of radius 16 cells (64^2 cells of 1 um) on `problem`'s body: its
-/// face touches at approach 0, the rest stands 0.1 mm off.
+/// A free-grid flat punch of radius 16 cells (64^2 cells of 1 um) on a half-space of relaxed
+/// modulus `E_INF`, viscoelastic with `solid`: its face touches at approach 0, the rest stands
+/// 0.1 mm off.
 fn punch(solid: Option<Maxwell>) -> ContactProblem {
     let (n, cell) = (64, 1e-6_f64);
     let domain = elastic::Domain {

@@ -33,6 +33,7 @@ pub enum Model {
 }
 
 impl Model {
+    /// Its authors, for tables and legends.
     pub fn name(self) -> &'static str {
         match self {
             Model::GreenwoodJohnson => "Greenwood & Johnson",
