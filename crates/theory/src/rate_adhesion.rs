@@ -9,7 +9,8 @@
 //! [`Maxwell`] of creep compliance `J(t) = J_inf - sum_j c_j exp(-t / lambda_j)`; `K` and `G`
 //! of the edge of a rigid sphere on it: `G = K^2 / (2 E*)` (JKR's edge field).
 //!
-//! - Greenwood & Johnson (Phil. Mag. A 43, 1981): a Dugdale zone of length
+//! - Greenwood & Johnson (Phil. Mag. A 43, 1981), in the averaged form of Greenwood (J. Phys.
+//!   D 37, 2004): a Dugdale zone of length
 //!   `alpha = pi E_inf G / (4 sigma0^2)`, crossed in `T = alpha / v`. The zone's tip opening
 //!   under the moving stress field is the elastic one with the compliance averaged over the
 //!   transit, weighted by the Dugdale opening profile's slope `artanh(sqrt xi)`:
