@@ -90,7 +90,7 @@ pub fn plastic_pull_off() -> Result<()> {
     let hardnesses = list("HARDNESS", "0.025,0.05,0.1")?;
     let depths = list("DEPTHS", "5,10,20")?;
     let mu: f64 = 5.0;
-    let w0 = (mu.powi(3) / (RADIUS / Z0)).sqrt() * MODULUS * Z0;
+    let w0 = crate::study::work_of_adhesion(mu);
     let law = PointLaw(LennardJones::new(w0, Z0)?);
     let side = 2.0 * half * Z0;
     let cell_area = (side / n as f64).powi(2);

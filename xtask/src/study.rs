@@ -87,7 +87,7 @@ pub fn run(name: &str) -> Result<()> {
 
 /// `w0` [J/m^2] of the smooth sphere (R, E*, z0 of [`crate::sphere`]) at Tabor parameter
 /// `mu`: `mu^3 = R w0^2 / (E*^2 z0^3)`.
-fn work_of_adhesion(mu: f64) -> f64 {
+pub(crate) fn work_of_adhesion(mu: f64) -> f64 {
     (mu.powi(3) / (RADIUS / Z0)).sqrt() * MODULUS * Z0
 }
 

@@ -4,8 +4,9 @@
 //! theories.
 
 use crate::sphere::{MODULUS, RADIUS, Z0};
-use anyhow::Result;
-use ljadhesion::{LennardJones, SurfaceLaw};
+use crate::study::work_of_adhesion;
+use anyhow::{Context, Result};
+use ljadhesion::{AdhesionLaw, LennardJones, SurfaceLaw};
 use solver::{ContactProblem, Control, CyclePoint, Method, Path, Settings, summarize};
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -40,19 +41,9 @@ pub fn rate_pull_off() -> Result<()> {
         } else {
             (128, 200.0 * Z0)
         };
-        let w0 = (mu.powi(3) / (RADIUS / Z0)).sqrt() * MODULUS * Z0;
+        let w0 = work_of_adhesion(mu);
         let law = SurfaceLaw(LennardJones::new(w0, Z0)?);
-        let (depth, apart) = (1.0, 20.0);
-        let mut path: Vec<Control> = Vec::new();
-        let mut a = -from;
-        while a < depth {
-            path.push(Control::Approach(a * Z0));
-            a += h;
-        }
-        while a >= -apart {
-            path.push(Control::Approach(a * Z0));
-            a -= h;
-        }
+        let (path, _) = press_and_draw_back(from, 20.0, h);
         let build = |modulus: f64, solid: bool| -> Result<ContactProblem> {
             let mut b = ContactProblem::builder()
                 .grid(n, n, side, side)
@@ -124,24 +115,14 @@ pub fn rate_retraction() -> Result<()> {
     } else {
         (128, 200.0 * Z0)
     };
-    let w0 = (mu.powi(3) / (RADIUS / Z0)).sqrt() * MODULUS * Z0;
+    let w0 = work_of_adhesion(mu);
     let unit = PI * RADIUS * w0;
     let law = SurfaceLaw(LennardJones::new(w0, Z0)?);
-    let solid = elastic::Maxwell::new(MODULUS, &[(GLASSY - 1.0) * MODULUS], &[TAU])?;
-    let apart = if mu > 2.0 { 10.0 } else { 3.0 };
-    let depth = 1.0;
-    let back = if mu > 2.0 { -40.0 } else { -20.0 };
-    let mut path: Vec<Control> = Vec::new();
-    let mut a = -apart;
-    while a < depth {
-        path.push(Control::Approach(a * Z0));
-        a += h;
-    }
-    let pressed = path.len();
-    while a >= back {
-        path.push(Control::Approach(a * Z0));
-        a -= h;
-    }
+    let (path, pressed) = if mu > 2.0 {
+        press_and_draw_back(10.0, 40.0, h)
+    } else {
+        press_and_draw_back(3.0, 20.0, h)
+    };
     let roughness = {
         let grid = surfgen::Grid::square(n, side)?;
         let spec = surfgen::SurfaceSpec {
@@ -178,14 +159,16 @@ pub fn rate_retraction() -> Result<()> {
             .fold(0.0, f64::min);
         Ok((-least / unit, points.iter().all(|p| p.report.converged())))
     };
-    let sigma0 = 16.0 * w0 / (9.0 * 3f64.sqrt() * Z0);
+    let smooth_problem = build(false, true)?;
+    let rough_problem = build(true, true)?;
+    let solid = smooth_problem.solid.as_ref().context("the viscoelastic sphere")?;
     let models = [Model::GreenwoodJohnson, Model::PerssonBrener];
     let laws: Vec<EdgeLaw> = models
         .iter()
-        .map(|&m| EdgeLaw::new(m, &solid, w0, sigma0))
+        .map(|&m| EdgeLaw::new(m, solid, w0, -law.peak_pressure()))
         .collect();
     let theory = |law: &EdgeLaw, speed: f64| -> f64 {
-        retraction(law, MODULUS, RADIUS, w0, depth * Z0, speed * Z0 / TAU, 4000)
+        retraction(law, MODULUS, RADIUS, w0, DEPTH * Z0, speed * Z0 / TAU, 4000)
             .map_or(f64::NAN, |r| -r.pull_off / unit)
     };
     let slow: Vec<f64> = laws.iter().map(|l| theory(l, 1e-9)).collect();
@@ -209,8 +192,6 @@ pub fn rate_retraction() -> Result<()> {
         slow[0],
         slow[1]
     );
-    let smooth_problem = build(false, true)?;
-    let rough_problem = build(true, true)?;
     let mut curves: [Vec<(f64, f64, bool)>; 2] = [Vec::new(), Vec::new()];
     for k in -3..=2 {
         let speed = 10f64.powi(k);
@@ -295,4 +276,24 @@ pub fn rate_retraction() -> Result<()> {
         .unwrap_or("rate-retraction");
     chart.save(path.parent().unwrap_or(std::path::Path::new(".")), stem)?;
     Ok(())
+}
+
+/// How far the sphere is pressed in \[z0\].
+const DEPTH: f64 = 1.0;
+
+/// Approaches from `from` z0 apart in to [`DEPTH`] and back out to `back` z0 apart, in steps
+/// of `h` z0; with the number of steps pressing in.
+fn press_and_draw_back(from: f64, back: f64, h: f64) -> (Vec<Control>, usize) {
+    let mut path = Vec::new();
+    let mut a = -from;
+    while a < DEPTH {
+        path.push(Control::Approach(a * Z0));
+        a += h;
+    }
+    let pressed = path.len();
+    while a >= -back {
+        path.push(Control::Approach(a * Z0));
+        a -= h;
+    }
+    (path, pressed)
 }

@@ -403,9 +403,9 @@ pub struct CycleSummary {
     /// elastic; NaN when a step's is unknown).
     pub viscous_work: f64,
     /// On a path that starts and ends apart (no cell attached, or no load at all) at the same
-    /// approach, the work `sum W d(delta)` done
-    /// along all of it (trapezoidal rule) less the dashpots', yielding's and the elastic energy
-    /// the body still stores at its end \[J\]: what the adhesive jumps lost. With
+    /// approach, the work `sum W d(delta)` done along all of it (trapezoidal rule) less the
+    /// dashpots', yielding's and the elastic energy the body still stores at its end \[J\]:
+    /// what the adhesive jumps lost. With
     /// [`CycleSummary::viscous_work`] it splits a viscoelastic body's hysteresis into viscous
     /// and adhesive. `None` on other paths, or when an energy is unknown.
     pub adhesive_work: Option<f64>,

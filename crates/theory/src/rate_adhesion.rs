@@ -224,21 +224,13 @@ pub fn retraction(
     if from < delta_of(a_m) {
         return None;
     }
-    let (mut lo, mut hi) = (a_m, a_m.max((r * from.max(0.0)).sqrt()) * 2.0 + a_m);
+    let mut hi = 2.0 * a_m;
     while delta_of(hi) < from {
         hi *= 2.0;
     }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if delta_of(mid) < from {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
+    let mut a = last_where(a_m, hi, |x| delta_of(x) < from);
     let release = |a: f64, delta: f64| relaxed * (a * a / r - delta).powi(2) / (2.0 * PI * a);
     let load = |a: f64, delta: f64| 2.0 * relaxed * a * delta - 2.0 * relaxed * a.powi(3) / (3.0 * r);
-    let mut a = 0.5 * (lo + hi);
     let dt = (from - delta_of(a_m)) / steps as f64 / speed;
     let (mut t, mut delta) = (0.0, from);
     let mut least = Retraction {
@@ -261,19 +253,11 @@ pub fn retraction(
                 // G is least at a^2 = R delta (delta > 0) or 3 a^2 = -R delta (delta < 0);
                 // beyond, it rises with a. No root there: the sphere is off.
                 let lo = (r * delta.max(-delta / 3.0)).sqrt();
-                if residual(lo).is_none_or(|x| x > 0.0) {
+                let holds = |x: f64| residual(x).is_some_and(|rest| rest <= 0.0);
+                if !holds(lo) {
                     break;
                 }
-                let mut lo = lo;
-                let mut hi = a;
-                for _ in 0..100 {
-                    let mid = 0.5 * (lo + hi);
-                    match residual(mid) {
-                        Some(x) if x <= 0.0 => lo = mid,
-                        _ => hi = mid,
-                    }
-                }
-                a = lo;
+                a = last_where(lo, a, holds);
             }
         }
         let p = load(a, delta);
@@ -286,4 +270,20 @@ pub fn retraction(
         }
     }
     Some(least)
+}
+
+/// The end of the stretch of `[lo, hi]` from `lo` where `holds` (true at `lo`, false beyond
+/// some point), by bisection to round-off.
+fn last_where(mut lo: f64, mut hi: f64, holds: impl Fn(f64) -> bool) -> f64 {
+    loop {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            return lo;
+        }
+        if holds(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
 }

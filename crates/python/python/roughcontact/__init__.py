@@ -391,8 +391,9 @@ class Sweep:
     ``hysteresis_energy`` [J], ``plastic_work`` [J] (dissipated by yielding),
     ``viscous_work`` [J] (by a viscoelastic body's dashpots), ``adhesive_work`` [J] (on a path
     from apart to apart, what the adhesive jumps lost: the work done less the other losses and
-    the energy still stored; None otherwise) and ``all_converged``; the last state's fields in ``state`` (the permanent set ``plastic``
-    [m] with a ``hardness``); every step's full report in ``steps``."""
+    the energy still stored; None otherwise) and ``all_converged``; the last state's fields in
+    ``state`` (the permanent set ``plastic`` [m] with a ``hardness``); every step's full report
+    in ``steps``."""
 
     def __init__(self, summary: Dict[str, Any], fields: Dict[str, np.ndarray]) -> None:
         self.steps = summary["steps"]

@@ -93,16 +93,15 @@ pub(crate) fn assemble(
         .fold(0usize, |acc, &c, &a| acc + usize::from(c == 0.0 && a < 0.0));
     let range = job.law.range();
     let attached = contact.gap.iter().filter(|&&g| g < range).count();
-    let (mut max_p, mut min_p) = (f64::NEG_INFINITY, f64::INFINITY);
-    Zip::from(&contact.pressure).and(&p_a).for_each(|&c, &a| {
-        max_p = max_p.max(c + a);
-        min_p = min_p.min(c + a);
-    });
-    let mut stored = 0.0;
+    let (mut max_p, mut min_p, mut stored) = (f64::NEG_INFINITY, f64::INFINITY, 0.0);
     Zip::from(&contact.pressure)
         .and(&p_a)
         .and(&contact.displacement)
-        .for_each(|&c, &a, &u| stored += (c + a) * u);
+        .for_each(|&c, &a, &u| {
+            max_p = max_p.max(c + a);
+            min_p = min_p.min(c + a);
+            stored += (c + a) * u;
+        });
     let report = AdhesiveReport {
         load,
         mean_pressure: load / (n * cell),
