@@ -42,6 +42,7 @@ pub mod layer;
 pub mod love;
 pub mod material;
 mod operators;
+pub mod shear;
 pub mod viscoelastic;
 
 pub use body::Body;
@@ -49,6 +50,7 @@ pub use error::{ElasticError, Result};
 pub use layer::{Base, Layer};
 pub use material::{Material, composite_modulus};
 pub use operators::{Free, FreeStiffness, Periodic, PeriodicStiffness, Workspace};
+pub use shear::{Shear, ShearWorkspace};
 pub use viscoelastic::Maxwell;
 
 use ndarray::{ArrayView2, ArrayViewMut2, Zip};

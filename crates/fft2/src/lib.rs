@@ -85,6 +85,12 @@ impl Workspace {
     pub fn spectrum(&self) -> ArrayView2<'_, Complex64> {
         self.spectrum.view()
     }
+
+    /// The same spectrum, to be changed in place before [`Fft2::inverse_into`] (a multiplier
+    /// that mixes the spectra of several fields).
+    pub fn spectrum_mut(&mut self) -> ArrayViewMut2<'_, Complex64> {
+        self.spectrum.view_mut()
+    }
 }
 
 /// What the pass along y does to each `kx` row of the spectrum.
@@ -230,6 +236,22 @@ impl Fft2 {
         let scratch = self.make_scratch();
         self.along_y(spectrum, self.my, AlongY::Inverse, &scratch);
         self.gather(spectrum.view(), field, scale, &scratch);
+    }
+
+    /// Inverse transform of the workspace's own spectrum into `out` (its first `out.dim()`
+    /// values of the `(my, mx)` field), each value multiplied by `scale`; the spectrum is
+    /// consumed as scratch. With [`Workspace::spectrum_mut`], for multipliers that mix fields.
+    ///
+    /// # Panics
+    /// If `out` exceeds the plan's shape or `ws` was made by a plan of another shape.
+    pub fn inverse_into(&self, ws: &mut Workspace, out: ArrayViewMut2<f64>, scale: f64) {
+        self.check_workspace(ws);
+        assert!(
+            out.nrows() <= self.my && out.ncols() <= self.mx,
+            "output larger than the plan"
+        );
+        self.along_y(&mut ws.spectrum, self.my, AlongY::Inverse, &ws.scratch);
+        self.gather(ws.spectrum.view(), out, scale, &ws.scratch);
     }
 
     /// Circular convolution `out = K * input` on the `(my, mx)` grid, where `multiplier` is the

@@ -1,0 +1,321 @@
+//! The tangential surface compliance of an isotropic elastic half-space (Cerruti's problem):
+//! shear tractions `(q_x, q_y)` \[Pa\] uniform over each cell to the tangential surface
+//! displacements `(u_x, u_y)` \[m\], both in the direction the traction acts on the body
+//! (docs/method.md section 14).
+//!
+//! A point force `Q_x` on the surface of a half-space of shear modulus `G` and Poisson's
+//! ratio `nu` displaces it by (Johnson 1985, Eq. 3.86)
+//! `u_x = Q_x / (2 pi G) [(1 - nu) / r + nu x^2 / r^3]`, `u_y = Q_x / (2 pi G) nu x y / r^3`,
+//! and by the same in `y` for `Q_y`; in Fourier space the multipliers are
+//! `(1 - nu qx^2/q^2) / (G q)`, `(1 - nu qy^2/q^2) / (G q)` and `-nu qx qy / (G q^3)`. The
+//! normal displacement a shear traction also makes, `(1 - 2 nu)` times a kernel of its own, is
+//! left out: it vanishes for an incompressible body and between bodies of like materials, and
+//! the problems built on this operator are the decoupled ones (docs/method.md says how large
+//! the neglected coupling is).
+//!
+//! As the normal operators: [`Shear`] is periodic (the mean mode, which a uniform shear moves
+//! without bound, is left out: displacements are measured from the mean surface) or free
+//! (exact cell integrals of the point kernel, applied by DC-FFT on a zero-padded grid).
+
+use crate::error::{ElasticError, Result};
+use crate::love::cell_influence;
+use crate::material::check_poisson;
+use crate::{Compliance, Domain};
+use fft2::{Complex64, Fft2, Workspace as FftWorkspace};
+use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip};
+use rayon::prelude::*;
+use std::f64::consts::PI;
+
+/// The tangential compliance of a half-space on a grid (periodic or free).
+#[derive(Clone)]
+pub struct Shear {
+    domain: Domain,
+    shear_modulus: f64,
+    poisson: f64,
+    fft: Fft2,
+    /// The multipliers `xx`, `yy`, `xy` on the transform grid (transposed half layout), divided
+    /// by the grid's number of points.
+    kernels: [Array2<f64>; 3],
+    /// The diagonal: a cell's displacement along x and along y under a unit traction on itself
+    /// along the same axis \[m/Pa\].
+    cell: [f64; 2],
+}
+
+/// Buffers for [`Shear::apply`]: one per concurrent caller.
+pub struct ShearWorkspace([FftWorkspace; 2]);
+
+impl Shear {
+    /// The half-space of shear modulus `shear_modulus` \[Pa\] and Poisson's ratio `poisson` on
+    /// `domain`. Plans and kernels are made once here.
+    ///
+    /// # Errors
+    /// A bad domain, a shear modulus that is not finite and positive, a Poisson's ratio
+    /// outside `(-1, 0.5]`.
+    pub fn new(domain: Domain, shear_modulus: f64, poisson: f64) -> Result<Self> {
+        if !(shear_modulus.is_finite() && shear_modulus > 0.0) {
+            return Err(ElasticError::InvalidParameter {
+                name: "shear_modulus",
+                value: shear_modulus,
+                reason: "must be finite and > 0 Pa",
+            });
+        }
+        check_poisson("poisson_ratio", poisson)?;
+        domain.validate()?;
+        let (a, b) = (domain.dx / 2.0, domain.dy / 2.0);
+        let scale = 1.0 / (2.0 * PI * shear_modulus);
+        let cell = [
+            scale * ((1.0 - poisson) * cell_integral(Kernel::One, 0.0, 0.0, a, b) + poisson * cell_integral(Kernel::Xx, 0.0, 0.0, a, b)),
+            scale * ((1.0 - poisson) * cell_integral(Kernel::One, 0.0, 0.0, a, b) + poisson * cell_integral(Kernel::Yy, 0.0, 0.0, a, b)),
+        ];
+        let (fft, kernels) = if domain.periodic {
+            periodic_kernels(&domain, shear_modulus, poisson)
+        } else {
+            free_kernels(&domain, scale, poisson)
+        };
+        Ok(Shear {
+            domain,
+            shear_modulus,
+            poisson,
+            fft,
+            kernels,
+            cell,
+        })
+    }
+
+    /// The tangential compliance of the body whose normal operator is `normal` (of
+    /// plane-strain modulus `E*`) and whose Poisson's ratio is `poisson`, against a rigid
+    /// counterface: `G = E* (1 - nu) / 2`.
+    ///
+    /// # Errors
+    /// As [`Shear::new`]; [`ElasticError::Unsupported`] for a body other than the half-space.
+    pub fn of(normal: &dyn Compliance, poisson: f64) -> Result<Self> {
+        if normal.body() != crate::Body::HalfSpace {
+            return Err(ElasticError::Unsupported(
+                "the tangential compliance is the half-space's (Cerruti's); a layer's is not implemented",
+            ));
+        }
+        check_poisson("poisson_ratio", poisson)?;
+        Shear::new(*normal.domain(), normal.e_star() * (1.0 - poisson) / 2.0, poisson)
+    }
+
+    /// The grid.
+    pub fn domain(&self) -> &Domain {
+        &self.domain
+    }
+
+    /// Shear modulus G \[Pa\].
+    pub fn shear_modulus(&self) -> f64 {
+        self.shear_modulus
+    }
+
+    /// Poisson's ratio [-].
+    pub fn poisson(&self) -> f64 {
+        self.poisson
+    }
+
+    /// A cell's displacement along x and along y under a unit traction \[Pa\] on itself along
+    /// the same axis \[m/Pa\].
+    pub fn cell_compliance(&self) -> [f64; 2] {
+        self.cell
+    }
+
+    /// Buffers for [`Shear::apply`].
+    pub fn make_workspace(&self) -> ShearWorkspace {
+        ShearWorkspace([self.fft.make_workspace(), self.fft.make_workspace()])
+    }
+
+    /// Bytes a workspace holds.
+    pub fn workspace_bytes(ws: &ShearWorkspace) -> usize {
+        ws.0[0].bytes() + ws.0[1].bytes()
+    }
+
+    /// Writes the tangential displacements \[m\] `(u_x, u_y)` under the shear tractions
+    /// `(q_x, q_y)` \[Pa\]: two forward and two inverse transforms.
+    ///
+    /// # Errors
+    /// [`ElasticError::ShapeMismatch`] if a field is not `(ny, nx)`.
+    pub fn apply(
+        &self,
+        traction: [ArrayView2<f64>; 2],
+        displacement: [ArrayViewMut2<f64>; 2],
+        ws: &mut ShearWorkspace,
+    ) -> Result<()> {
+        let shape = self.domain.shape();
+        for (what, got) in [
+            ("traction x", traction[0].dim()),
+            ("traction y", traction[1].dim()),
+            ("displacement x", displacement[0].dim()),
+            ("displacement y", displacement[1].dim()),
+        ] {
+            if got != shape {
+                return Err(ElasticError::ShapeMismatch {
+                    what,
+                    expected: shape,
+                    got,
+                });
+            }
+        }
+        let [wx, wy] = &mut ws.0;
+        self.fft.forward_into(traction[0], wx);
+        self.fft.forward_into(traction[1], wy);
+        let [kxx, kyy, kxy] = &self.kernels;
+        Zip::from(wx.spectrum_mut())
+            .and(wy.spectrum_mut())
+            .and(kxx)
+            .and(kyy)
+            .and(kxy)
+            .par_for_each(|x, y, &xx, &yy, &xy| {
+                let (tx, ty): (Complex64, Complex64) = (*x, *y);
+                *x = tx * xx + ty * xy;
+                *y = tx * xy + ty * yy;
+            });
+        let [ux, uy] = displacement;
+        self.fft.inverse_into(wx, ux, 1.0);
+        self.fft.inverse_into(wy, uy, 1.0);
+        Ok(())
+    }
+
+    /// Elastic energy `(1/2) sum q . u dx dy` \[J\] stored by `traction`, given its displacement.
+    pub fn energy(&self, traction: [ArrayView2<f64>; 2], displacement: [ArrayView2<f64>; 2]) -> f64 {
+        let mut sum = 0.0;
+        for (q, u) in traction.iter().zip(&displacement) {
+            Zip::from(q).and(u).for_each(|q, u| sum += q * u);
+        }
+        0.5 * sum * self.domain.cell_area()
+    }
+}
+
+/// The point kernels integrated over a cell: `1/r`, `x^2/r^3`, `y^2/r^3` and `x y/r^3`.
+#[derive(Clone, Copy)]
+enum Kernel {
+    One,
+    Xx,
+    Yy,
+    Xy,
+}
+
+/// `x ln(y + r)`, vanishing with `x`, and evaluated without cancellation for `y <= 0` (as in
+/// Love's solution).
+fn x_log(x: f64, y: f64) -> f64 {
+    if x == 0.0 {
+        return 0.0;
+    }
+    let r = x.hypot(y);
+    x * if y > 0.0 { (y + r).ln() } else { (x * x / (r - y)).ln() }
+}
+
+/// Distance in half-sides beyond which [`cell_integral`] integrates by Gauss quadrature: the
+/// closed forms subtract terms of order `r` to get `a b / r`, the 3-point rule errs by about
+/// `(a / r)^6`; both are near 1e-11 here.
+const FAR: f64 = 64.0;
+
+/// `int int f(x - x', y - y') dx' dy'` over the cell `|x'| <= a`, `|y'| <= b` \[m\]: the closed
+/// forms `F(s, t)` with `d^2 F / ds dt = f` summed over the corners near the cell, Gauss
+/// quadrature far from it.
+fn cell_integral(kernel: Kernel, x: f64, y: f64, a: f64, b: f64) -> f64 {
+    if let Kernel::One = kernel {
+        // Love's `p / (pi E*)` times this integral.
+        return PI * cell_influence(x, y, a, b, 1.0);
+    }
+    if x * x + y * y >= (FAR * a.max(b)).powi(2) {
+        const NODES: [f64; 3] = [-0.774_596_669_241_483_4, 0.0, 0.774_596_669_241_483_4];
+        const WEIGHTS: [f64; 3] = [5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0];
+        let mut sum = 0.0;
+        for (u, wu) in NODES.iter().zip(WEIGHTS) {
+            for (v, wv) in NODES.iter().zip(WEIGHTS) {
+                let (s, t) = (x - u * a, y - v * b);
+                let r = s.hypot(t);
+                let f = match kernel {
+                    Kernel::Xx => s * s,
+                    Kernel::Yy => t * t,
+                    _ => s * t,
+                } / (r * r * r);
+                sum += wu * wv * f;
+            }
+        }
+        return sum * a * b;
+    }
+    let corner = |s: f64, t: f64| match kernel {
+        Kernel::Xx => x_log(t, s),
+        Kernel::Yy => x_log(s, t),
+        _ => -s.hypot(t),
+    };
+    corner(x + a, y + b) - corner(x + a, y - b) - corner(x - a, y + b) + corner(x - a, y - b)
+}
+
+/// Wavevector [rad/m] of DFT index `k` on an axis of `n` points spanning `l` metres, and
+/// whether it is the Nyquist index (whose sign is ambiguous).
+fn wavevector(k: usize, n: usize, l: f64) -> (f64, bool) {
+    let signed = if k <= n / 2 { k as f64 } else { k as f64 - n as f64 };
+    (2.0 * PI * signed / l, 2 * k == n)
+}
+
+fn periodic_kernels(domain: &Domain, g: f64, nu: f64) -> (Fft2, [Array2<f64>; 3]) {
+    let Domain { nx, ny, dx, dy, .. } = *domain;
+    let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
+    let scale = 1.0 / (nx * ny) as f64;
+    let make = |which: usize| {
+        Array2::from_shape_fn((nx / 2 + 1, ny), |(kx, ky)| {
+            let ((qx, nyq_x), (qy, nyq_y)) = (wavevector(kx, nx, lx), wavevector(ky, ny, ly));
+            let q = qx.hypot(qy);
+            if q == 0.0 {
+                return 0.0;
+            }
+            let c = scale / (g * q);
+            match which {
+                0 => c * (1.0 - nu * qx * qx / (q * q)),
+                1 => c * (1.0 - nu * qy * qy / (q * q)),
+                // At a Nyquist index `+q` and `-q` are one mode: the odd coupling averages out.
+                _ if nyq_x || nyq_y => 0.0,
+                _ => -c * nu * qx * qy / (q * q),
+            }
+        })
+    };
+    (Fft2::new(nx, ny), [make(0), make(1), make(2)])
+}
+
+fn free_kernels(domain: &Domain, scale: f64, nu: f64) -> (Fft2, [Array2<f64>; 3]) {
+    let Domain { nx, ny, dx, dy, .. } = *domain;
+    let (a, b) = (dx / 2.0, dy / 2.0);
+    let (mx, my) = (2 * nx, 2 * ny);
+    let fft = Fft2::new(mx, my);
+    // Offsets 0..=n along each axis; the padded grid's wrap folds the rest back by symmetry
+    // (even for xx and yy, odd in both for xy, which vanishes at the padding's Nyquist offset n).
+    let quadrant = |kernel: Kernel| -> Vec<f64> {
+        (0..(ny + 1) * (nx + 1))
+            .into_par_iter()
+            .map(|k| {
+                let (j, i) = (k / (nx + 1), k % (nx + 1));
+                cell_integral(kernel, i as f64 * dx, j as f64 * dy, a, b)
+            })
+            .collect()
+    };
+    let (one, xx, yy, xy) = (
+        quadrant(Kernel::One),
+        quadrant(Kernel::Xx),
+        quadrant(Kernel::Yy),
+        quadrant(Kernel::Xy),
+    );
+    let fold = |k: usize, n: usize| if k <= n { (k, 1.0) } else { (2 * n - k, -1.0) };
+    let mut ws = fft.make_workspace();
+    let spectrum = |value: &(dyn Fn(usize) -> f64 + Sync), odd: bool, ws: &mut FftWorkspace| {
+        let row = |j: usize, out: &mut [f64]| {
+            let (jj, sy) = fold(j, ny);
+            out.iter_mut().enumerate().for_each(|(i, o)| {
+                let (ii, sx) = fold(i, nx);
+                *o = if !odd {
+                    value(jj * (nx + 1) + ii)
+                } else if ii == nx || jj == ny {
+                    0.0
+                } else {
+                    sx * sy * value(jj * (nx + 1) + ii)
+                };
+            });
+        };
+        fft.real_spectrum(row, ws).mapv(|k| k * scale / (mx * my) as f64)
+    };
+    let kxx = spectrum(&|k| (1.0 - nu) * one[k] + nu * xx[k], false, &mut ws);
+    let kyy = spectrum(&|k| (1.0 - nu) * one[k] + nu * yy[k], false, &mut ws);
+    let kxy = spectrum(&|k| nu * xy[k], true, &mut ws);
+    (fft, [kxx, kyy, kxy])
+}
