@@ -45,6 +45,7 @@ pub mod adhesive;
 pub mod cg;
 pub mod error;
 mod fields;
+pub mod friction;
 pub mod geometry;
 pub mod interface;
 mod mean_mode;
@@ -61,6 +62,7 @@ pub mod time;
 
 pub use adhesive::{AdhesiveReport, AdhesiveState, Iterations, Start};
 pub use error::{Result, SolverError};
+pub use friction::{Friction, ShearOptions, ShearReport, ShearState, TangentialControl, TangentialProblem};
 pub use interface::{Interface, Yield};
 pub use method::{Method, Mixing, Settings};
 pub use observer::{Branch, Observer, SweepPoint};

@@ -11,6 +11,7 @@ pub mod hertz;
 pub mod jkr_dmt;
 pub mod layer;
 pub mod maugis;
+pub mod mindlin;
 pub mod rate_adhesion;
 pub mod rough;
 pub mod viscoelastic;

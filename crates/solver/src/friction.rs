@@ -1,0 +1,624 @@
+//! Tangential loading of a normal contact: partial slip under Coulomb's law with Derjaguin's
+//! adhesive term, `|q| <= tau0 + mu p_c` on the cells in contact (`p_c > 0`), no shear
+//! elsewhere (docs/method.md section 14).
+//!
+//! The rigid body moves tangentially by `D` \[m\] (a vector in the plane); the body's surface by
+//! `u = K q` ([`elastic::Shear`]). The slip `s = D - u` is what the contact remembers: a cell
+//! sticks (`s` unchanged from the last step) while its shear is inside the disc of radius
+//! `g = tau0 + mu p_c`, and slips along its shear when on it. A step is then the convex problem
+//! `min 1/2 q.Kq - q.(D - s_prev)` over shears inside their discs (its optimality conditions
+//! are exactly these), under a prescribed `D` or, with `D` its multiplier, a prescribed total
+//! force `Q = sum q dA` \[N\]. It is solved by conjugate gradients on the sticking cells with
+//! the slipping cells held on their discs, each turned along its slip, and every iterate
+//! projected back inside (the tangential form of Polonsky & Keer's method, 1999).
+//!
+//! The problem is the decoupled one: the normal pressure is the normal solution's, whatever the
+//! shear ([`elastic::shear`] says when that is exact).
+
+use crate::error::{Result, SolverError, invalid};
+use crate::report::Termination;
+use crate::state::ContactState;
+use elastic::{Compliance, Shear};
+use ndarray::Array2;
+use std::time::Instant;
+
+/// Coulomb friction with Derjaguin's adhesive term: a contact cell carries a shear up to
+/// `shear_strength + coefficient p_c` \[Pa\].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Friction {
+    /// Coulomb's friction coefficient `mu` [-], `>= 0`.
+    pub coefficient: f64,
+    /// Shear strength `tau0` \[Pa\] of a contact cell at no pressure (adhesive friction), `>= 0`.
+    pub shear_strength: f64,
+}
+
+impl Friction {
+    /// A friction law, checked.
+    ///
+    /// # Errors
+    /// A coefficient or shear strength that is negative or not finite, or both zero (a
+    /// frictionless contact carries no shear).
+    pub fn new(coefficient: f64, shear_strength: f64) -> Result<Friction> {
+        let friction = Friction {
+            coefficient,
+            shear_strength,
+        };
+        friction.validate()?;
+        Ok(friction)
+    }
+
+    /// Refuses a negative or non-finite coefficient or shear strength, or a law that carries
+    /// no shear.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.coefficient.is_finite() && self.coefficient >= 0.0) {
+            return Err(invalid(
+                "friction_coefficient",
+                self.coefficient,
+                "must be a finite number >= 0",
+            ));
+        }
+        if !(self.shear_strength.is_finite() && self.shear_strength >= 0.0) {
+            return Err(invalid(
+                "shear_strength",
+                self.shear_strength,
+                "must be a finite shear stress >= 0 Pa",
+            ));
+        }
+        if self.coefficient == 0.0 && self.shear_strength == 0.0 {
+            return Err(invalid(
+                "friction_coefficient",
+                0.0,
+                "with no shear strength the contact is frictionless and carries no tangential \
+                 load: give a coefficient or a shear strength > 0",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The largest shear \[Pa\] a cell of compressive pressure `p_c` \[Pa\] carries: 0 out of
+    /// contact.
+    pub fn bound(&self, p_c: f64) -> f64 {
+        if p_c > 0.0 {
+            self.shear_strength + self.coefficient * p_c
+        } else {
+            0.0
+        }
+    }
+}
+
+/// What a tangential step prescribes, as a vector `[x, y]` in the plane of the grid.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TangentialControl {
+    /// The total shear force on the body \[N\].
+    Force([f64; 2]),
+    /// The rigid body's tangential displacement \[m\], from where the normal load left it (on
+    /// periodic grids relative to the body's mean surface, which a mean shear moves without
+    /// bound).
+    Displacement([f64; 2]),
+}
+
+/// The tangential state of a contact: fields of the grid's shape `(ny, nx)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShearState {
+    /// Shear traction on the body `[q_x, q_y]` \[Pa\].
+    pub traction: [Array2<f64>; 2],
+    /// Slip accumulated since the tangential path began, `[s_x, s_y]` \[m\]: the rigid body's
+    /// displacement less the surface's, on the cells in contact (zero elsewhere).
+    pub slip: [Array2<f64>; 2],
+    /// The rigid body's tangential displacement \[m\].
+    pub displacement: [f64; 2],
+    /// The total shear force \[N\].
+    pub force: [f64; 2],
+}
+
+impl ShearState {
+    /// No shear and no slip: where a tangential path begins.
+    pub fn unloaded(shape: (usize, usize)) -> ShearState {
+        ShearState {
+            traction: [Array2::zeros(shape), Array2::zeros(shape)],
+            slip: [Array2::zeros(shape), Array2::zeros(shape)],
+            displacement: [0.0; 2],
+            force: [0.0; 2],
+        }
+    }
+}
+
+/// A tangential solve's settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShearOptions {
+    /// Tolerance on the worst cell's error in its slip (a sticking cell's slip, a slipping
+    /// cell's slip across its shear), over the slip a cell's own largest shear makes (its
+    /// bound times its compliance) [-].
+    pub tolerance: f64,
+    /// Iteration limit.
+    pub max_iterations: usize,
+}
+
+impl ShearOptions {
+    /// The default tolerance.
+    pub const DEFAULT_TOLERANCE: f64 = 1e-8;
+    /// The default iteration limit.
+    pub const DEFAULT_MAX_ITERATIONS: usize = 10_000;
+
+    /// Refuses a tolerance that is not finite and positive, or no iterations.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.tolerance.is_finite() && self.tolerance > 0.0) {
+            return Err(invalid("tolerance", self.tolerance, "must be finite and > 0"));
+        }
+        if self.max_iterations == 0 {
+            return Err(invalid("max_iterations", 0.0, "must be at least 1"));
+        }
+        Ok(())
+    }
+}
+
+impl Default for ShearOptions {
+    fn default() -> Self {
+        ShearOptions {
+            tolerance: ShearOptions::DEFAULT_TOLERANCE,
+            max_iterations: ShearOptions::DEFAULT_MAX_ITERATIONS,
+        }
+    }
+}
+
+/// What a tangential step reports. SI units.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct ShearReport {
+    /// Total shear force `[Q_x, Q_y]` \[N\].
+    pub force: [f64; 2],
+    /// The rigid body's tangential displacement `[D_x, D_y]` \[m\] (NaN under a force the
+    /// contact cannot carry).
+    pub displacement: [f64; 2],
+    /// The most shear force the contact carries, `sum (tau0 + mu p_c) dA` \[N\]: the static
+    /// friction force of a decoupled contact.
+    pub capacity: f64,
+    /// Fraction of the grid's cells in contact and sticking [-].
+    pub stick_area_fraction: f64,
+    /// Fraction of the grid's cells in contact and slipping [-].
+    pub slip_area_fraction: f64,
+    /// Energy friction dissipated over the step, `sum q . (s - s_prev) dA` with `q` averaged
+    /// over the step \[J\].
+    pub frictional_work: f64,
+    /// Elastic energy of the shear, `(1/2) sum q . u dA` \[J\].
+    pub elastic_energy: f64,
+    /// Every cell in contact slips: the contact slides as a whole.
+    pub gross_sliding: bool,
+    /// Iterations run.
+    pub iterations: usize,
+    /// Final residual ([`ShearOptions::tolerance`]).
+    pub residual: f64,
+    /// Why it stopped.
+    pub termination: Termination,
+    /// Wall time \[s\].
+    pub wall_time_s: f64,
+}
+
+/// The tangential problem on one normal solution: the shear compliance, and each contact
+/// cell's bound.
+pub struct TangentialProblem {
+    operator: Shear,
+    /// Flat indices of the cells in contact, and their bounds \[Pa\].
+    cells: Vec<usize>,
+    bound: Vec<f64>,
+    shape: (usize, usize),
+    cell_area: f64,
+}
+
+impl TangentialProblem {
+    /// The tangential problem of the body of `normal`'s operator, of Poisson's ratio `poisson`,
+    /// on the normal solution whose compressive pressure is `pressure` \[Pa\], under `friction`.
+    ///
+    /// # Errors
+    /// A bad friction law or Poisson's ratio, a body whose tangential compliance is not
+    /// implemented, a pressure of another shape, no cell in contact.
+    pub fn new(normal: &dyn Compliance, poisson: f64, friction: Friction, state: &ContactState) -> Result<Self> {
+        friction.validate()?;
+        let operator = Shear::of(normal, poisson)?;
+        let domain = *normal.domain();
+        let shape = domain.shape();
+        if state.pressure.dim() != shape {
+            return Err(SolverError::ShapeMismatch {
+                what: "normal pressure",
+                expected: shape,
+                got: state.pressure.dim(),
+            });
+        }
+        crate::error::finite("normal pressure", state.pressure.view())?;
+        let (mut cells, mut bound) = (Vec::new(), Vec::new());
+        for (k, &p) in state.pressure.iter().enumerate() {
+            if p > 0.0 {
+                cells.push(k);
+                bound.push(friction.bound(p));
+            }
+        }
+        if cells.is_empty() {
+            return Err(SolverError::Unsupported(
+                "a tangential load needs a normal contact: the normal solution has no cell in \
+                 compressive contact (press the bodies together first)"
+                    .into(),
+            ));
+        }
+        Ok(TangentialProblem {
+            operator,
+            cells,
+            bound,
+            shape,
+            cell_area: domain.cell_area(),
+        })
+    }
+
+    /// The shear compliance.
+    pub fn operator(&self) -> &Shear {
+        &self.operator
+    }
+
+    /// The most shear force the contact carries \[N\].
+    pub fn capacity(&self) -> f64 {
+        self.bound.iter().sum::<f64>() * self.cell_area
+    }
+
+    /// The cells in contact as a fraction of the grid [-].
+    pub fn contact_area_fraction(&self) -> f64 {
+        self.cells.len() as f64 / (self.shape.0 * self.shape.1) as f64
+    }
+
+    /// Solves one step of a tangential path from `previous` (its slip is the history).
+    ///
+    /// # Errors
+    /// A state of another shape, bad options, a non-finite control.
+    pub fn solve(
+        &self,
+        control: TangentialControl,
+        previous: &ShearState,
+        options: &ShearOptions,
+    ) -> Result<(ShearState, ShearReport)> {
+        options.validate()?;
+        let started = Instant::now();
+        for field in previous.traction.iter().chain(&previous.slip) {
+            if field.dim() != self.shape {
+                return Err(SolverError::ShapeMismatch {
+                    what: "previous tangential state",
+                    expected: self.shape,
+                    got: field.dim(),
+                });
+            }
+        }
+        let (TangentialControl::Force(v) | TangentialControl::Displacement(v)) = control;
+        if !(v[0].is_finite() && v[1].is_finite()) {
+            return Err(invalid("tangential control", v[0] + v[1], "must be finite"));
+        }
+        let n = self.cells.len();
+        let area = self.cell_area;
+        let capacity = self.capacity();
+        let cell = self.operator.cell_compliance();
+        let scale = self.bound.iter().fold(0.0f64, |m, &g| m.max(g)) * cell[0].max(cell[1]);
+        let flat = |a: &Array2<f64>| -> Vec<f64> {
+            let s = a.as_slice().map(|s| s.to_vec()).unwrap_or_else(|| a.iter().copied().collect());
+            self.cells.iter().map(|&k| s[k]).collect()
+        };
+        let s_prev = [flat(&previous.slip[0]), flat(&previous.slip[1])];
+        let tau_prev = [flat(&previous.traction[0]), flat(&previous.traction[1])];
+        let mut tau = tau_prev.clone();
+        let force_of = |tau: &[Vec<f64>; 2]| [tau[0].iter().sum::<f64>() * area, tau[1].iter().sum::<f64>() * area];
+        let project = |tau: &mut [Vec<f64>; 2]| {
+            for i in 0..n {
+                let m = tau[0][i].hypot(tau[1][i]);
+                if m > self.bound[i] {
+                    let f = self.bound[i] / m;
+                    tau[0][i] *= f;
+                    tau[1][i] *= f;
+                }
+            }
+        };
+        let target = match control {
+            TangentialControl::Force(q) => Some(q),
+            TangentialControl::Displacement(_) => None,
+        };
+        if let Some(q) = target {
+            let magnitude = q[0].hypot(q[1]);
+            if magnitude >= capacity {
+                // More than the contact carries: every cell slides along the force.
+                let dir = [q[0] / magnitude, q[1] / magnitude];
+                for i in 0..n {
+                    tau[0][i] = self.bound[i] * dir[0];
+                    tau[1][i] = self.bound[i] * dir[1];
+                }
+                let mut report = self.report(&tau, &tau_prev, None, capacity, [f64::NAN; 2]);
+                report.gross_sliding = true;
+                report.termination = Termination::Converged;
+                report.wall_time_s = started.elapsed().as_secs_f64();
+                let state = self.state(&tau, &s_prev, None, [f64::NAN; 2], &mut None)?;
+                return Ok((state, report));
+            }
+            // The change of force spread in proportion to the bounds, then made exact.
+            let f = force_of(&tau);
+            for i in 0..n {
+                tau[0][i] += self.bound[i] * (q[0] - f[0]) / capacity;
+                tau[1][i] += self.bound[i] * (q[1] - f[1]) / capacity;
+            }
+            project(&mut tau);
+            self.fix_force(&mut tau, q);
+        }
+        let mut ws = self.operator.make_workspace();
+        let mut fields = Fields::new(self.shape);
+        let mut w = [vec![0.0; n], vec![0.0; n]];
+        let mut r = [vec![0.0; n], vec![0.0; n]];
+        let mut t = [vec![0.0; n], vec![0.0; n]];
+        let mut kt = [vec![0.0; n], vec![0.0; n]];
+        let mut gradient = [vec![0.0; n], vec![0.0; n]];
+        let mut curvature = vec![0.0; n];
+        let mut free = vec![false; n];
+        let mut free_before = vec![false; n];
+        let (mut g_old, mut residual, mut iterations) = (0.0f64, f64::INFINITY, 0);
+        let mut d = match control {
+            TangentialControl::Displacement(d) => d,
+            TangentialControl::Force(_) => previous.displacement,
+        };
+        let mut termination = Termination::MaxIterations;
+        while iterations < options.max_iterations {
+            // The surface's displacement plus the slip before: sticking cells hold it at D.
+            fields.apply(&self.operator, &self.cells, &tau, &mut w, &mut ws)?;
+            for c in 0..2 {
+                w[c].iter_mut().zip(&s_prev[c]).for_each(|(w, s)| *w += s);
+            }
+            let at_bound = |i: usize, tau: &[Vec<f64>; 2]| tau[0][i].hypot(tau[1][i]) >= self.bound[i] * (1.0 - 1e-12);
+            // D under force control: the mean over the sticking cells (then those released
+            // from their discs join them).
+            for pass in 0..2 {
+                if target.is_some() {
+                    let (mut sum, mut count) = ([0.0; 2], 0usize);
+                    for i in 0..n {
+                        if (pass == 0 && !at_bound(i, &tau)) || (pass == 1 && free[i]) {
+                            sum[0] += w[0][i];
+                            sum[1] += w[1][i];
+                            count += 1;
+                        }
+                    }
+                    if count > 0 {
+                        d = [sum[0] / count as f64, sum[1] / count as f64];
+                    }
+                }
+                for i in 0..n {
+                    r[0][i] = w[0][i] - d[0];
+                    r[1][i] = w[1][i] - d[1];
+                    // A cell on its disc stays there while it slips outwards (-r along q).
+                    free[i] = !at_bound(i, &tau) || r[0][i] * tau[0][i] + r[1][i] * tau[1][i] > 0.0;
+                }
+            }
+            // The gradient on the set each cell may move in: a free cell's whole slip, a
+            // slipping cell's slip across its shear (it moves along its disc's rim), with the
+            // rim's curvature `|slip| / g` that the step must respect there.
+            for i in 0..n {
+                if free[i] {
+                    gradient[0][i] = r[0][i];
+                    gradient[1][i] = r[1][i];
+                    curvature[i] = 0.0;
+                } else {
+                    let m = tau[0][i].hypot(tau[1][i]);
+                    let along = (r[0][i] * tau[0][i] + r[1][i] * tau[1][i]) / m;
+                    gradient[0][i] = r[0][i] - along * tau[0][i] / m;
+                    gradient[1][i] = r[1][i] - along * tau[1][i] / m;
+                    curvature[i] = (-along).max(0.0) / self.bound[i];
+                }
+            }
+            let worst = (0..n).fold(0.0f64, |m, i| m.max(gradient[0][i].hypot(gradient[1][i])));
+            residual = worst / scale;
+            if residual <= options.tolerance {
+                termination = Termination::Converged;
+                break;
+            }
+            iterations += 1;
+            // A conjugate direction, restarted when the sets change; a slipping cell's stays
+            // along its rim, and under a force the free cells take the direction's sum out (so
+            // that the step keeps the force, and D drops out of it).
+            let g_new: f64 = gradient[0].iter().chain(&gradient[1]).map(|v| v * v).sum();
+            let beta = if free == free_before && g_old > 0.0 { g_new / g_old } else { 0.0 };
+            for i in 0..n {
+                for c in 0..2 {
+                    t[c][i] = gradient[c][i] + beta * t[c][i];
+                }
+                if !free[i] {
+                    let m2 = tau[0][i] * tau[0][i] + tau[1][i] * tau[1][i];
+                    let along = (t[0][i] * tau[0][i] + t[1][i] * tau[1][i]) / m2;
+                    t[0][i] -= along * tau[0][i];
+                    t[1][i] -= along * tau[1][i];
+                }
+            }
+            if target.is_some() {
+                let count = free.iter().filter(|&&f| f).count();
+                if count > 0 {
+                    for c in 0..2 {
+                        let mean = t[c].iter().sum::<f64>() / count as f64;
+                        (0..n).filter(|&i| free[i]).for_each(|i| t[c][i] -= mean);
+                    }
+                }
+            }
+            fields.apply(&self.operator, &self.cells, &t, &mut kt, &mut ws)?;
+            let (mut num, mut den) = (0.0, 0.0);
+            for i in 0..n {
+                for c in 0..2 {
+                    num += r[c][i] * t[c][i];
+                    den += t[c][i] * (kt[c][i] + curvature[i] * t[c][i]);
+                }
+            }
+            if den > 0.0 {
+                let alpha = num / den;
+                for c in 0..2 {
+                    tau[c].iter_mut().zip(&t[c]).for_each(|(v, t)| *v -= alpha * t);
+                }
+            }
+            project(&mut tau);
+            if let Some(q) = target {
+                self.fix_force(&mut tau, q);
+            }
+            g_old = g_new;
+            free_before.clone_from(&free);
+        }
+        let gross = (0..n).all(|i| !free[i]);
+        let mut report = self.report(&tau, &tau_prev, Some((&r, &free)), capacity, d);
+        report.gross_sliding = gross;
+        report.iterations = iterations;
+        report.residual = residual;
+        report.termination = termination;
+        let mut energy = None;
+        let state = self.state(&tau, &s_prev, Some((&r, &free)), d, &mut energy)?;
+        report.elastic_energy = energy.unwrap_or(0.0);
+        report.wall_time_s = started.elapsed().as_secs_f64();
+        Ok((state, report))
+    }
+
+    /// Makes the total shear force `q` \[N\] exact by a uniform shear added to the cells inside
+    /// their discs, projecting again, until it holds or no cell is left inside.
+    fn fix_force(&self, tau: &mut [Vec<f64>; 2], q: [f64; 2]) {
+        let n = self.cells.len();
+        for _ in 0..50 {
+            let f = [tau[0].iter().sum::<f64>() * self.cell_area, tau[1].iter().sum::<f64>() * self.cell_area];
+            let error = [q[0] - f[0], q[1] - f[1]];
+            if error[0].hypot(error[1]) <= 1e-13 * self.capacity() {
+                return;
+            }
+            let inside: Vec<usize> = (0..n)
+                .filter(|&i| tau[0][i].hypot(tau[1][i]) < self.bound[i] * (1.0 - 1e-12))
+                .collect();
+            if inside.is_empty() {
+                return;
+            }
+            let per = [error[0] / (inside.len() as f64 * self.cell_area), error[1] / (inside.len() as f64 * self.cell_area)];
+            for &i in &inside {
+                tau[0][i] += per[0];
+                tau[1][i] += per[1];
+                let m = tau[0][i].hypot(tau[1][i]);
+                if m > self.bound[i] {
+                    tau[0][i] *= self.bound[i] / m;
+                    tau[1][i] *= self.bound[i] / m;
+                }
+            }
+        }
+    }
+
+    /// The step's scalars (the solver's counts are filled in by the caller).
+    fn report(
+        &self,
+        tau: &[Vec<f64>; 2],
+        tau_prev: &[Vec<f64>; 2],
+        slip: Option<(&[Vec<f64>; 2], &[bool])>,
+        capacity: f64,
+        d: [f64; 2],
+    ) -> ShearReport {
+        let n = self.cells.len();
+        let total = (self.shape.0 * self.shape.1) as f64;
+        let mut work = 0.0;
+        let mut slipping = 0usize;
+        if let Some((r, free)) = slip {
+            for i in (0..n).filter(|&i| !free[i]) {
+                slipping += 1;
+                // The slip increment is -r; the shear averaged over the step.
+                for c in 0..2 {
+                    work -= 0.5 * (tau[c][i] + tau_prev[c][i]) * r[c][i];
+                }
+            }
+        } else {
+            slipping = n;
+        }
+        ShearReport {
+            force: [tau[0].iter().sum::<f64>() * self.cell_area, tau[1].iter().sum::<f64>() * self.cell_area],
+            displacement: d,
+            capacity,
+            stick_area_fraction: (n - slipping) as f64 / total,
+            slip_area_fraction: slipping as f64 / total,
+            frictional_work: work * self.cell_area,
+            elastic_energy: 0.0,
+            gross_sliding: false,
+            iterations: 0,
+            residual: 0.0,
+            termination: Termination::Converged,
+            wall_time_s: 0.0,
+        }
+    }
+
+    /// The state after the step: the shear, and the slip grown by each slipping cell's
+    /// increment (sticking cells keep theirs). `energy` receives the shear's elastic energy.
+    fn state(
+        &self,
+        tau: &[Vec<f64>; 2],
+        s_prev: &[Vec<f64>; 2],
+        slip: Option<(&[Vec<f64>; 2], &[bool])>,
+        d: [f64; 2],
+        energy: &mut Option<f64>,
+    ) -> Result<ShearState> {
+        let mut state = ShearState::unloaded(self.shape);
+        for c in 0..2 {
+            let traction = state.traction[c].as_slice_mut().expect("standard layout");
+            let slip_field = state.slip[c].as_slice_mut().expect("standard layout");
+            for (i, &k) in self.cells.iter().enumerate() {
+                traction[k] = tau[c][i];
+                slip_field[k] = s_prev[c][i]
+                    + match slip {
+                        Some((r, free)) if !free[i] => -r[c][i],
+                        _ => 0.0,
+                    };
+            }
+        }
+        if slip.is_some() {
+            let (mut ux, mut uy) = (Array2::zeros(self.shape), Array2::zeros(self.shape));
+            let mut ws = self.operator.make_workspace();
+            self.operator.apply(
+                [state.traction[0].view(), state.traction[1].view()],
+                [ux.view_mut(), uy.view_mut()],
+                &mut ws,
+            )?;
+            *energy = Some(self.operator.energy(
+                [state.traction[0].view(), state.traction[1].view()],
+                [ux.view(), uy.view()],
+            ));
+        }
+        state.displacement = d;
+        state.force = [
+            tau[0].iter().sum::<f64>() * self.cell_area,
+            tau[1].iter().sum::<f64>() * self.cell_area,
+        ];
+        Ok(state)
+    }
+}
+
+/// Full-grid buffers for applying the shear compliance to values on the contact cells.
+struct Fields {
+    traction: [Array2<f64>; 2],
+    displacement: [Array2<f64>; 2],
+}
+
+impl Fields {
+    fn new(shape: (usize, usize)) -> Fields {
+        Fields {
+            traction: [Array2::zeros(shape), Array2::zeros(shape)],
+            displacement: [Array2::zeros(shape), Array2::zeros(shape)],
+        }
+    }
+
+    /// `out = K values` on the contact `cells` (values zero elsewhere).
+    fn apply(
+        &mut self,
+        op: &Shear,
+        cells: &[usize],
+        values: &[Vec<f64>; 2],
+        out: &mut [Vec<f64>; 2],
+        ws: &mut elastic::ShearWorkspace,
+    ) -> Result<()> {
+        for c in 0..2 {
+            let field = self.traction[c].as_slice_mut().expect("standard layout");
+            for (i, &k) in cells.iter().enumerate() {
+                field[k] = values[c][i];
+            }
+        }
+        let [tx, ty] = &self.traction;
+        let [ux, uy] = &mut self.displacement;
+        op.apply([tx.view(), ty.view()], [ux.view_mut(), uy.view_mut()], ws)?;
+        for c in 0..2 {
+            let field = self.displacement[c].as_slice().expect("standard layout");
+            for (i, &k) in cells.iter().enumerate() {
+                out[c][i] = field[k];
+            }
+        }
+        Ok(())
+    }
+}
