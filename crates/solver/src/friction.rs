@@ -622,3 +622,73 @@ impl Fields {
         Ok(())
     }
 }
+
+/// What a tangential path did, from its steps' reports.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct TangentialSummary {
+    /// The static friction force \[N\]: the shear force at which the stick zone vanishes, the
+    /// contact's capacity `sum (tau0 + mu p_c) dA` in the decoupled problem.
+    pub static_friction: f64,
+    /// Whether the path reached it (some step slid as a whole).
+    pub gross_sliding: bool,
+    /// Energy friction dissipated over the path, the steps' sum \[J\].
+    pub frictional_work: f64,
+    /// The work the shear force did on the rigid body, `sum Q . dD` over the steps (trapezoidal)
+    /// \[J\]: over a closed fretting cycle, the energy it dissipates.
+    pub work: f64,
+    /// Whether every step converged.
+    pub all_converged: bool,
+}
+
+impl TangentialSummary {
+    /// The summary of `reports`, the steps of a path that began unloaded.
+    pub fn of(reports: &[ShearReport]) -> TangentialSummary {
+        let mut work = 0.0;
+        let mut before = ([0.0; 2], [0.0; 2]);
+        for r in reports {
+            if r.displacement.iter().all(|v| v.is_finite()) {
+                for c in 0..2 {
+                    work += 0.5 * (r.force[c] + before.0[c]) * (r.displacement[c] - before.1[c]);
+                }
+                before = (r.force, r.displacement);
+            }
+        }
+        TangentialSummary {
+            static_friction: reports.first().map_or(0.0, |r| r.capacity),
+            gross_sliding: reports.iter().any(|r| r.gross_sliding),
+            frictional_work: reports.iter().map(|r| r.frictional_work).sum(),
+            work,
+            all_converged: reports.iter().all(|r| r.termination == Termination::Converged),
+        }
+    }
+}
+
+impl TangentialProblem {
+    /// Follows the `controls` from `start`, each step from the last one's state, calling
+    /// `step` after each with its index and report (return `false` to stop). Under a force the
+    /// contact cannot carry the path ends at that step (it slides away).
+    ///
+    /// # Errors
+    /// As [`TangentialProblem::solve`].
+    pub fn path(
+        &self,
+        controls: &[TangentialControl],
+        start: ShearState,
+        options: &ShearOptions,
+        step: &mut dyn FnMut(usize, &ShearState, &ShearReport) -> bool,
+    ) -> Result<(ShearState, Vec<ShearReport>)> {
+        let mut state = start;
+        let mut reports = Vec::with_capacity(controls.len());
+        for (k, control) in controls.iter().enumerate() {
+            let (next, report) = self.solve(*control, &state, options)?;
+            let slid_away = report.gross_sliding && matches!(control, TangentialControl::Force(_));
+            let go_on = step(k, &next, &report);
+            reports.push(report);
+            state = next;
+            if slid_away || !go_on {
+                break;
+            }
+        }
+        Ok((state, reports))
+    }
+}

@@ -62,7 +62,9 @@ pub mod time;
 
 pub use adhesive::{AdhesiveReport, AdhesiveState, Iterations, Start};
 pub use error::{Result, SolverError};
-pub use friction::{Friction, ShearOptions, ShearReport, ShearState, TangentialControl, TangentialProblem};
+pub use friction::{
+    Friction, ShearOptions, ShearReport, ShearState, TangentialControl, TangentialProblem, TangentialSummary,
+};
 pub use interface::{Interface, Yield};
 pub use method::{Method, Mixing, Settings};
 pub use observer::{Branch, Observer, SweepPoint};
