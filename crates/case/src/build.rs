@@ -93,8 +93,9 @@ impl Case {
             ),
             (
                 "poisson",
-                self.poisson.is_some() && self.thickness.is_none(),
-                "is the layer's Poisson's ratio: give --thickness (a half-space takes E* alone)",
+                self.poisson.is_some() && self.thickness.is_none() && !self.frictional(),
+                "is a layer's Poisson's ratio (give --thickness) or the body's for a tangential \
+                 path (give --friction-coefficient): a half-space under a normal load takes E* alone",
             ),
             (
                 "layer_base",
@@ -160,6 +161,7 @@ impl Case {
                     domain.cell_compliance(e_star),
                     &solver::Interface {
                         hardness: self.hardness,
+                        friction: None,
                     },
                 )
             });
@@ -172,6 +174,24 @@ impl Case {
             .modulus(e_star)
             .shared_law(law.clone())
             .periodic(periodic);
+        if self.frictional() {
+            let friction = solver::Friction::new(
+                self.friction_coefficient.unwrap_or(0.0),
+                self.shear_strength.unwrap_or(0.0),
+            )
+            .map_err(|e| match e {
+                solver::SolverError::InvalidParameter { name, value, reason } => {
+                    Error::Key(format!("--{} {reason}, got {value}", name.replace('_', "-")))
+                }
+                other => Error::Key(other.to_string()),
+            })?;
+            let nu = self.poisson.context(
+                "friction needs the body's --poisson: its tangential compliance depends on it",
+            )?;
+            builder = builder.friction(friction).poisson(nu);
+        } else if let Some(nu) = self.poisson {
+            builder = builder.poisson(nu);
+        }
         if let Some(h) = self.hardness {
             if !(h.is_finite() && h > 0.0) {
                 bail!("--hardness must be a finite H > 0 Pa (omit it for an elastic surface), got {h}");

@@ -129,7 +129,9 @@ pub struct Case {
     /// base.
     #[cfg_attr(feature = "clap", arg(long))]
     pub thickness: Option<f64>,
-    /// Poisson's ratio nu of the layer [-], in (-1, 0.5] (0.5: incompressible).
+    /// Poisson's ratio nu [-], in (-1, 0.5] (0.5: incompressible): a layer's, or the body's
+    /// for a tangential path (its shear modulus is then E* (1 - nu) / 2, against a rigid
+    /// counterface).
     #[cfg_attr(feature = "clap", arg(long))]
     pub poisson: Option<f64>,
     /// What the layer lies on: a rigid base, bonded or frictionless, or an elastic substrate
@@ -149,6 +151,14 @@ pub struct Case {
     /// overlap as permanent set (default: elastic).
     #[cfg_attr(feature = "clap", arg(long))]
     pub hardness: Option<f64>,
+    /// Coulomb's friction coefficient mu [-] (>= 0) of a tangential path: a contact cell carries
+    /// a shear up to --shear-strength + mu times its pressure. Needs --poisson.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub friction_coefficient: Option<f64>,
+    /// Shear strength tau0 [Pa] (>= 0) of a contact cell at no pressure, for a tangential path
+    /// (Derjaguin's adhesive friction; default 0).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub shear_strength: Option<f64>,
     /// A viscoelastic body (generalized Maxwell solid): the moduli E_k [Pa] of its branches,
     /// comma-separated, beside the relaxed --modulus; the glassy modulus is their sum with it.
     /// Needs --maxwell-times, and times for a sweep's steps (--step-time or `times`).
@@ -201,6 +211,11 @@ impl Case {
     /// Whether the case has adhesion.
     pub fn adhesive(&self) -> bool {
         !matches!(self.law, None | Some(LawKind::None)) || self.work_of_adhesion.is_some()
+    }
+
+    /// Whether the case has friction (a tangential path's interface).
+    pub fn frictional(&self) -> bool {
+        self.friction_coefficient.is_some() || self.shear_strength.is_some()
     }
 
     /// Fills in the defaults, so that the summary and `--print-config` show the whole case;

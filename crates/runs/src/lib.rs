@@ -10,6 +10,7 @@ pub mod run;
 pub mod solve;
 pub mod study;
 pub mod sweep;
+pub mod tangential;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 

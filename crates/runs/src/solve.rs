@@ -66,6 +66,21 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     }
     let built = case.build()?;
     let problem = &built.problem;
+    let tangential = control.tangential()?;
+    match (case.frictional(), &tangential) {
+        (true, None) => bail!(
+            "--friction-coefficient and --shear-strength bound a tangential path's shear: give \
+             --tangential-loads [N] or --tangential-displacements [m]"
+        ),
+        (false, Some(_)) => bail!(
+            "a tangential path needs friction: --friction-coefficient [-] and/or --shear-strength \
+             [Pa], and the body's --poisson"
+        ),
+        (true, Some(_)) => {
+            problem.check_tangential()?;
+        }
+        (false, None) => {}
+    }
     let control = control.control(problem)?;
     for w in &problem.warnings {
         note!("warning: {w}");
@@ -82,7 +97,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     let run = RunDir::open(&case.out.clone().expect("defaulted"), reuse)?;
     let out = run.path();
     if problem.adhesive() {
-        return solve_adhesive(&args, &case, control, &built, &run);
+        return solve_adhesive(&args, &case, control, tangential.as_deref(), &built, &run);
     }
     let options = case.contact_options();
     let mut progress = Progress::new();
@@ -98,7 +113,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     run.write_field("gap", &state.gap)?;
     run.write_field("displacement", &state.displacement)?;
     run.write_plastic(&state)?;
-    let summary = results(
+    let mut summary = results(
         json!({
             "units": {
                 "load": "N", "mean_pressure": "Pa", "approach": "m", "max_pressure": "Pa",
@@ -111,6 +126,8 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         }),
         &report,
     )?;
+    print_summary(out, &report, problem.interface.hardness.is_some())?;
+    let sheared = shear(problem, &state, tangential.as_deref(), &run, &mut summary)?;
     run.write_summary(&case, &built, summary)?;
     if !args.no_png {
         pressure_map(
@@ -121,7 +138,6 @@ pub fn solve(args: SolveArgs) -> Result<()> {
             report.contact_area_fraction,
         )?;
     }
-    print_summary(out, &report, problem.interface.hardness.is_some())?;
     finish(
         report.converged(),
         format!(
@@ -130,7 +146,29 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         ),
         args.keep_going,
         out,
-    )
+    )?;
+    finish(sheared, SHEAR_NOT_CONVERGED.into(), args.keep_going, out)
+}
+
+const SHEAR_NOT_CONVERGED: &str = "a step of the tangential path did not converge (tangential.csv says which)";
+
+/// Runs the tangential path, if any, on the normal solution, adding its summary; whether every
+/// step converged (true without a path).
+fn shear(
+    problem: &solver::ContactProblem,
+    normal: &solver::ContactState,
+    controls: Option<&[solver::TangentialControl]>,
+    run: &RunDir,
+    summary: &mut serde_json::Value,
+) -> Result<bool> {
+    let Some(controls) = controls else {
+        return Ok(true);
+    };
+    let (tangential, converged) = crate::tangential::run(problem, normal, controls, run)?;
+    if let serde_json::Value::Object(map) = summary {
+        map.insert("tangential".into(), tangential);
+    }
+    Ok(converged)
 }
 
 /// Draws the contact pressure map.
@@ -218,6 +256,7 @@ fn solve_adhesive(
     args: &SolveArgs,
     case: &Case,
     control: Control,
+    tangential: Option<&[solver::TangentialControl]>,
     built: &Built,
     run: &RunDir,
 ) -> Result<()> {
@@ -233,7 +272,7 @@ fn solve_adhesive(
     }
     let domain = problem.domain();
     run.write_adhesive_fields(&state)?;
-    let summary = results(
+    let mut summary = results(
         json!({
             "units": {
                 "load": "N", "mean_pressure": "Pa", "approach": "m", "pressures": "Pa",
@@ -248,6 +287,7 @@ fn solve_adhesive(
         }),
         &report,
     )?;
+    let sheared = shear(problem, &state.contact, tangential, run, &mut summary)?;
     run.write_summary(case, built, summary)?;
     if !args.no_png {
         pressure_map(
@@ -285,7 +325,8 @@ fn solve_adhesive(
         ),
         args.keep_going,
         out,
-    )
+    )?;
+    finish(sheared, SHEAR_NOT_CONVERGED.into(), args.keep_going, out)
 }
 
 /// The lines on yielding, for a surface with a hardness.

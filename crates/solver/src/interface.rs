@@ -1,6 +1,7 @@
 //! The interface model: what bounds the tractions the wall and the law give, beyond the hard
-//! wall itself. Today a hardness cap (an elastic-perfectly-plastic surface, Almqvist et al.,
-//! Tribol. Int. 40, 2007); friction goes here next, as another field of [`Interface`].
+//! wall itself: a hardness cap on the normal pressure (an elastic-perfectly-plastic surface,
+//! Almqvist et al., Tribol. Int. 40, 2007), and friction bounding the shear of a tangential
+//! path ([`crate::friction`]).
 //!
 //! Under the cap the compressive pressure `p_c` stays in `[0, H]`: three sets at a solution,
 //! free (`p_c = 0`, gap > 0), elastic contact (`0 < p_c < H`, gap 0) and plastic (`p_c = H`,
@@ -20,6 +21,9 @@ pub struct Interface {
     /// Penetration hardness `H` \[Pa\]: the compressive contact pressure never exceeds it.
     /// `None`: elastic.
     pub hardness: Option<f64>,
+    /// Friction: how much shear a contact cell carries under a tangential path. `None`:
+    /// frictionless (no tangential path).
+    pub friction: Option<crate::friction::Friction>,
 }
 
 /// What yielding did in one solve.
@@ -41,13 +45,17 @@ impl Interface {
     pub fn with_hardness(hardness: f64) -> Result<Interface> {
         let interface = Interface {
             hardness: Some(hardness),
+            friction: None,
         };
         interface.validate()?;
         Ok(interface)
     }
 
-    /// Refuses a hardness that is not finite and positive.
+    /// Refuses a hardness that is not finite and positive, and a bad friction law.
     pub fn validate(&self) -> Result<()> {
+        if let Some(friction) = &self.friction {
+            friction.validate()?;
+        }
         match self.hardness {
             Some(h) if !(h.is_finite() && h > 0.0) => Err(invalid(
                 "hardness",

@@ -55,6 +55,9 @@ pub struct ContactProblem {
     /// operator's E* ([`crate::time`]); its answers depend on the path, so it is swept along
     /// times. `None`: elastic.
     pub solid: Option<elastic::Maxwell>,
+    /// The body's Poisson's ratio [-], which its tangential compliance needs (the normal one
+    /// takes E* alone). `None`: not given.
+    pub poisson: Option<f64>,
     /// Things the user should know before trusting the result: a grid too coarse for the law,
     /// attraction cut off at a free grid's edge.
     pub warnings: Vec<String>,
@@ -101,6 +104,7 @@ impl ContactProblem {
             law,
             interface: Interface::default(),
             solid: None,
+            poisson: None,
             warnings: Vec::new(),
         };
         problem.warnings = problem.check();
@@ -176,6 +180,46 @@ impl ContactProblem {
             warm,
             observer,
         )
+    }
+
+    /// The tangential problem on the normal solution `normal` (its compressive pressure), under
+    /// the interface's friction ([`crate::friction`]).
+    ///
+    /// # Errors
+    /// No friction law or Poisson's ratio, a viscoelastic body or a layer (their tangential
+    /// compliance is not implemented), no cell in contact.
+    pub fn tangential(&self, normal: &ContactState) -> Result<crate::friction::TangentialProblem> {
+        let (friction, poisson) = self.check_tangential()?;
+        crate::friction::TangentialProblem::new(self.operator.as_ref(), poisson, friction, normal)
+    }
+
+    /// The friction law and Poisson's ratio a tangential path takes, or why the problem cannot
+    /// take one (before any solve).
+    ///
+    /// # Errors
+    /// As [`ContactProblem::tangential`], but for the contact.
+    pub fn check_tangential(&self) -> Result<(crate::friction::Friction, f64)> {
+        let friction = self.interface.friction.ok_or(SolverError::Incomplete(
+            "a friction law for a tangential path: a friction coefficient or a shear strength",
+        ))?;
+        let poisson = self.poisson.ok_or(SolverError::Incomplete(
+            "the body's Poisson's ratio for a tangential path: its tangential compliance depends on it",
+        ))?;
+        if self.solid.is_some() {
+            return Err(SolverError::Unsupported(
+                "tangential loading of a viscoelastic body is not implemented: its shear \
+                 relaxes along the path"
+                    .into(),
+            ));
+        }
+        if self.operator.body() != Body::HalfSpace {
+            return Err(SolverError::Unsupported(
+                "tangential loading of a layer is not implemented: its tangential compliance \
+                 differs from the half-space's (Cerruti's)"
+                    .into(),
+            ));
+        }
+        Ok((friction, poisson))
     }
 
     /// Refuses `what` on a viscoelastic body, whose answer depends on the path: it is swept
@@ -334,6 +378,7 @@ pub struct ProblemBuilder {
     interface: Interface,
     body: Body,
     maxwell: Option<(Vec<f64>, Vec<f64>)>,
+    poisson: Option<f64>,
 }
 
 impl ProblemBuilder {
@@ -396,6 +441,19 @@ impl ProblemBuilder {
     /// it ([`crate::interface`]); elastic by default.
     pub fn hardness(mut self, hardness: f64) -> Self {
         self.interface.hardness = Some(hardness);
+        self
+    }
+
+    /// Friction for tangential paths ([`crate::friction`]); frictionless by default.
+    pub fn friction(mut self, friction: crate::friction::Friction) -> Self {
+        self.interface.friction = Some(friction);
+        self
+    }
+
+    /// The body's Poisson's ratio `nu` [-] in (-1, 0.5], for its tangential compliance (a
+    /// layer's is the layer's own).
+    pub fn poisson(mut self, poisson: f64) -> Self {
+        self.poisson = Some(poisson);
         self
     }
 
@@ -499,9 +557,15 @@ impl ProblemBuilder {
             }
             None => None,
         };
+        if let Some(nu) = self.poisson
+            && !(nu > -1.0 && nu <= 0.5)
+        {
+            return Err(invalid("poisson", nu, "must lie in (-1, 0.5]"));
+        }
         let mut problem = ContactProblem::from_shared(operator, initial_gap, law)?;
         problem.interface = self.interface;
         problem.solid = solid;
+        problem.poisson = self.poisson;
         Ok(problem)
     }
 }
