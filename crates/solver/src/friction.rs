@@ -1,6 +1,9 @@
 //! Tangential loading of a normal contact: partial slip under Coulomb's law with Derjaguin's
-//! adhesive term, `|q| <= tau0 + mu p_c` on the cells in contact (`p_c > 0`), no shear
-//! elsewhere (docs/method.md section 14).
+//! adhesive term, `|q| <= tau0 + mu p_c` on the cells in contact, no shear elsewhere
+//! (docs/method.md section 14). A cell is in contact where the wall presses it (`p_c > 0`)
+//! or, with adhesion, where its gap is within that of the law's strongest attraction (the
+//! edge of contact of Greenwood, 1997: `0.2 z0` for Lennard-Jones, 0 for the exponential and
+//! Dugdale laws); there the tensile ring at a contact's edge carries the shear strength.
 //!
 //! The rigid body moves tangentially by `D` \[m\] (a vector in the plane); the body's surface by
 //! `u = K q` ([`elastic::Shear`]). The slip `s = D - u` is what the contact remembers: a cell
@@ -19,6 +22,7 @@ use crate::error::{Result, SolverError, invalid};
 use crate::report::Termination;
 use crate::state::ContactState;
 use elastic::{Compliance, Shear};
+use ljadhesion::{AdhesionLaw, Cells};
 use ndarray::Array2;
 use std::time::Instant;
 
@@ -75,10 +79,10 @@ impl Friction {
         Ok(())
     }
 
-    /// The largest shear \[Pa\] a cell of compressive pressure `p_c` \[Pa\] carries: 0 out of
-    /// contact.
-    pub fn bound(&self, p_c: f64) -> f64 {
-        if p_c > 0.0 {
+    /// The largest shear \[Pa\] a cell of compressive pressure `p_c` \[Pa\] carries, in contact
+    /// or not.
+    pub fn bound(&self, p_c: f64, in_contact: bool) -> f64 {
+        if in_contact {
             self.shear_strength + self.coefficient * p_c
         } else {
             0.0
@@ -121,6 +125,50 @@ impl ShearState {
             force: [0.0; 2],
         }
     }
+}
+
+/// The gap \[m\] of `law`'s strongest attraction on a flat field, the smallest where there are
+/// several (Dugdale's plateau): a cell at most this far apart is in contact for friction. Zero
+/// without adhesion.
+///
+/// # Errors
+/// The law's own refusal of a gap field.
+pub fn contact_gap(law: &dyn AdhesionLaw) -> Result<f64> {
+    if law.work_of_adhesion() <= 0.0 {
+        return Ok(0.0);
+    }
+    let cells = Cells {
+        dx: 1.0,
+        dy: 1.0,
+        periodic: true,
+    };
+    let mut out = Array2::zeros((2, 2));
+    let mut pressure = |g: f64| -> Result<f64> {
+        law.pressure_field(Array2::from_elem((2, 2), g).view(), &cells, out.view_mut())?;
+        Ok(out[(0, 0)])
+    };
+    let (samples, reach) = (2000, 5.0 * law.range());
+    let values = (0..=samples)
+        .map(|k| pressure(reach * k as f64 / samples as f64))
+        .collect::<Result<Vec<f64>>>()?;
+    let lowest = values.iter().copied().fold(f64::INFINITY, f64::min);
+    let first = values.iter().position(|&p| p <= lowest * (1.0 - 1e-9)).unwrap_or(0);
+    if first == 0 {
+        return Ok(0.0);
+    }
+    // The minimum lies within a sample of `first`: a golden-section search there.
+    let step = reach / samples as f64;
+    let (mut lo, mut hi) = (step * (first - 1) as f64, step * (first + 1).min(samples) as f64);
+    let ratio = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..60 {
+        let (a, b) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
+        if pressure(a)? <= pressure(b)? {
+            hi = b;
+        } else {
+            lo = a;
+        }
+    }
+    Ok(0.5 * (lo + hi))
 }
 
 /// A tangential solve's settings.
@@ -206,29 +254,40 @@ pub struct TangentialProblem {
 
 impl TangentialProblem {
     /// The tangential problem of the body of `normal`'s operator, of Poisson's ratio `poisson`,
-    /// on the normal solution whose compressive pressure is `pressure` \[Pa\], under `friction`.
+    /// on the normal solution `state` (its compressive pressure and gap), under `friction`, with
+    /// the cells whose gap is at most `contact_gap` \[m\] in contact besides those pressed
+    /// ([`contact_gap`] of the law).
     ///
     /// # Errors
     /// A bad friction law or Poisson's ratio, a body whose tangential compliance is not
-    /// implemented, a pressure of another shape, no cell in contact.
-    pub fn new(normal: &dyn Compliance, poisson: f64, friction: Friction, state: &ContactState) -> Result<Self> {
+    /// implemented, fields of another shape, no cell in contact.
+    pub fn new(
+        normal: &dyn Compliance,
+        poisson: f64,
+        friction: Friction,
+        state: &ContactState,
+        contact_gap: f64,
+    ) -> Result<Self> {
         friction.validate()?;
         let operator = Shear::of(normal, poisson)?;
         let domain = *normal.domain();
         let shape = domain.shape();
-        if state.pressure.dim() != shape {
-            return Err(SolverError::ShapeMismatch {
-                what: "normal pressure",
-                expected: shape,
-                got: state.pressure.dim(),
-            });
+        for (what, field) in [("normal pressure", &state.pressure), ("normal gap", &state.gap)] {
+            if field.dim() != shape {
+                return Err(SolverError::ShapeMismatch {
+                    what,
+                    expected: shape,
+                    got: field.dim(),
+                });
+            }
+            crate::error::finite(what, field.view())?;
         }
-        crate::error::finite("normal pressure", state.pressure.view())?;
         let (mut cells, mut bound) = (Vec::new(), Vec::new());
-        for (k, &p) in state.pressure.iter().enumerate() {
-            if p > 0.0 {
+        for (k, (&p, &g)) in state.pressure.iter().zip(&state.gap).enumerate() {
+            let b = friction.bound(p.max(0.0), p > 0.0 || g <= contact_gap);
+            if b > 0.0 {
                 cells.push(k);
-                bound.push(friction.bound(p));
+                bound.push(b);
             }
         }
         if cells.is_empty() {
