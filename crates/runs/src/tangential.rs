@@ -9,7 +9,8 @@ use solver::{ContactProblem, ContactState, ShearOptions, ShearState, TangentialC
 
 /// The columns of `tangential.csv`.
 pub const HEADER: &str = "step,force_x,force_y,displacement_x,displacement_y,stick_area_fraction,\
-slip_area_fraction,frictional_work,elastic_energy,gross_sliding,iterations,residual,converged";
+slip_area_fraction,frictional_work,elastic_energy,gross_sliding,iterations,residual,converged,\
+wall_time_s";
 
 /// Runs `controls` on the normal solution `normal` of `problem`, writing into `run`; returns
 /// the summary's `tangential` object and whether every step converged.
@@ -43,7 +44,7 @@ pub fn run(
     let mut csv = format!("{HEADER}\n");
     for (k, r) in reports.iter().enumerate() {
         csv += &format!(
-            "{k},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{:e},{}\n",
+            "{k},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{:e},{},{:.3}\n",
             r.force[0],
             r.force[1],
             r.displacement[0],
@@ -55,7 +56,8 @@ pub fn run(
             r.gross_sliding,
             r.iterations,
             r.residual,
-            r.termination == solver::report::Termination::Converged
+            r.termination == solver::report::Termination::Converged,
+            r.wall_time_s
         );
     }
     crate::output::text(&run.path().join("tangential.csv"), &csv)?;

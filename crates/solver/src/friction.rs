@@ -350,7 +350,8 @@ impl TangentialProblem {
         let area = self.cell_area;
         let capacity = self.capacity();
         let cell = self.operator.cell_compliance();
-        let scale = self.bound.iter().fold(0.0f64, |m, &g| m.max(g)) * cell[0].max(cell[1]);
+        let self_compliance = cell[0].max(cell[1]);
+        let scale = self.bound.iter().fold(0.0f64, |m, &g| m.max(g)) * self_compliance;
         let flat = |a: &Array2<f64>| -> Vec<f64> {
             let s = a.as_slice().map(|s| s.to_vec()).unwrap_or_else(|| a.iter().copied().collect());
             self.cells.iter().map(|&k| s[k]).collect()
@@ -467,11 +468,21 @@ impl TangentialProblem {
                 break;
             }
             iterations += 1;
-            // A conjugate direction, restarted when the sets change; a slipping cell's stays
-            // along its rim, and under a force the free cells take the direction's sum out (so
-            // that the step keeps the force, and D drops out of it).
-            let g_new: f64 = gradient[0].iter().chain(&gradient[1]).map(|v| v * v).sum();
-            let beta = if free == free_before && g_old > 0.0 { g_new / g_old } else { 0.0 };
+            // A conjugate direction, preconditioned by each cell's own stiffness (its
+            // compliance, plus the rim's curvature on a slipping cell), restarted when a cell
+            // joins the free set (as Polonsky and Keer restart when a cell joins the contact);
+            // a slipping cell's stays along its rim, and under a force the free cells take the
+            // direction's sum out (so that the step keeps the force, and D drops out of it).
+            let mut g_new = 0.0;
+            for i in 0..n {
+                let precondition = self_compliance / (self_compliance + curvature[i]);
+                for c in 0..2 {
+                    gradient[c][i] *= precondition;
+                    g_new += r[c][i] * gradient[c][i];
+                }
+            }
+            let joined = (0..n).any(|i| free[i] && !free_before[i]);
+            let beta = if !joined && g_old > 0.0 { g_new / g_old } else { 0.0 };
             for i in 0..n {
                 for c in 0..2 {
                     t[c][i] = gradient[c][i] + beta * t[c][i];
