@@ -41,8 +41,26 @@ pub struct SolveControl {
 }
 
 impl SolveControl {
+    /// The tangential path's controls, if one is given, for a case with friction
+    /// (`frictional`) or without: friction without a path, or a path without friction, is
+    /// refused.
+    pub fn tangential_path(&self, frictional: bool) -> Result<Option<Vec<solver::TangentialControl>>> {
+        let path = self.tangential()?;
+        match (frictional, &path) {
+            (true, None) => bail!(
+                "--friction-coefficient and --shear-strength bound a tangential path's shear: give \
+                 --tangential-loads [N] or --tangential-displacements [m]"
+            ),
+            (false, Some(_)) => bail!(
+                "a tangential path needs friction: --friction-coefficient [-] and/or \
+                 --shear-strength [Pa], and the body's --poisson"
+            ),
+            _ => Ok(path),
+        }
+    }
+
     /// The tangential path's controls, if one is given.
-    pub fn tangential(&self) -> Result<Option<Vec<solver::TangentialControl>>> {
+    fn tangential(&self) -> Result<Option<Vec<solver::TangentialControl>>> {
         use solver::TangentialControl::{Displacement, Force};
         let angle = self.tangential_angle.unwrap_or(0.0);
         if !angle.is_finite() {

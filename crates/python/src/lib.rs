@@ -301,12 +301,17 @@ fn solve<'py>(
 ) -> PyResult<(String, Fields<'py>)> {
     let (case, control, built): (Case, SolveControl, _) = built("the keywords", keys, roughness)?;
     let problem = &built.problem;
+    let tangential = control.tangential_path(case.frictional()).py()?;
+    if tangential.is_some() {
+        problem.check_tangential().py()?;
+    }
     let control = control.control(problem).py()?;
     case.validate_settings(problem.adhesive()).py()?;
     if !problem.adhesive() {
         control.validate_without_adhesion().py()?;
     }
     let mut observer = Progress::new(progress, cancel);
+    let cancel_flag = cancel.0.clone();
     let adhesive = problem.adhesive();
     let outcome = py.detach(|| {
         on_pool(threads, || -> anyhow::Result<_> {
@@ -315,20 +320,27 @@ fn solve<'py>(
                 let (state, report) = problem.solve(control, &settings, Start::Loading, &mut observer)?;
                 let edge = problem.edge_warning(&state.contact.gap, &state.contact.pressure);
                 let head = (report.converged(), report.termination);
-                (summary(problem, head, &report, edge)?, adhesive_fields(state))
+                let mut summary = summary(problem, head, &report, edge)?;
+                let sheared = shear(problem, &state.contact, tangential.as_deref(), &mut summary, &cancel_flag)?;
+                let mut fields = adhesive_fields(state);
+                fields.extend(sheared);
+                (summary, fields)
             } else {
                 let options = case.contact_options();
                 let (state, report) =
                     problem.solve_without_adhesion(control, &options, None, &mut observer)?;
                 let edge = problem.edge_warning(&state.gap, &state.pressure);
                 let head = (report.converged(), report.termination);
+                let mut summary = summary(problem, head, &report, edge)?;
+                let sheared = shear(problem, &state, tangential.as_deref(), &mut summary, &cancel_flag)?;
                 let mut fields = vec![
                     ("pressure", state.pressure),
                     ("gap", state.gap),
                     ("displacement", state.displacement),
                 ];
                 fields.extend(state.permanent_set.map(|s| ("plastic", s)));
-                (summary(problem, head, &report, edge)?, fields)
+                fields.extend(sheared);
+                (summary, fields)
             })
         })
         .and_then(|r| r)
@@ -341,6 +353,34 @@ fn solve<'py>(
         .map(|(name, a)| (name.to_string(), array(py, a)))
         .collect();
     Ok((summary.to_string(), fields))
+}
+
+/// Runs the tangential path, if any, on the normal solution: adds the summary's `tangential`
+/// (the path's summary and its steps' reports) and returns the last step's shear and slip.
+fn shear(
+    problem: &ContactProblem,
+    normal: &solver::ContactState,
+    controls: Option<&[solver::TangentialControl]>,
+    summary: &mut serde_json::Value,
+    cancel: &AtomicBool,
+) -> anyhow::Result<Vec<(&'static str, Array2<f64>)>> {
+    let Some(controls) = controls else {
+        return Ok(Vec::new());
+    };
+    let tangential = problem.tangential(normal)?;
+    let (state, reports) = tangential.path(
+        controls,
+        solver::ShearState::unloaded(normal.pressure.dim()),
+        &solver::ShearOptions::default(),
+        &mut |_, _, _| !cancel.load(Ordering::SeqCst),
+    )?;
+    let mut value = serde_json::to_value(solver::TangentialSummary::of(&reports))?;
+    value["steps"] = serde_json::to_value(&reports)?;
+    value["contact_area_fraction"] = serde_json::to_value(tangential.contact_area_fraction())?;
+    summary["tangential"] = value;
+    let [shear_x, shear_y] = state.traction;
+    let [slip_x, slip_y] = state.slip;
+    Ok(vec![("shear_x", shear_x), ("shear_y", shear_y), ("slip_x", slip_x), ("slip_y", slip_y)])
 }
 
 /// A solve's summary: the law, whether and how it ended, the report, and the problem's

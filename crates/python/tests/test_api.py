@@ -308,3 +308,32 @@ def test_a_film_takes_its_keywords_and_bad_ones_are_refused():
         rc.solve(**SPHERE, approach=1e-9, thickness=-1.0, poisson=0.3)
     with pytest.raises(ValueError, match="needs the layer.s poisson"):
         rc.solve(**SPHERE, approach=1e-9, thickness=5e-8)
+
+
+def test_a_tangential_path_slips_and_refuses_what_it_cannot_take():
+    sphere = dict(sphere_radius=1e-3, length=128e-6, n=128, modulus=1e9, poisson=0.3, load=0.0184)
+    cycle = [1e-3, 2e-3, 4e-3, 2e-3, 0.0, -2e-3, -4e-3, -2e-3, 0.0, 2e-3, 4e-3]
+    s = rc.solve(**sphere, friction_coefficient=0.3, tangential_loads=cycle)
+    t = s.tangential
+    assert t.all_converged and not t.gross_sliding
+    # The static friction is mu times the load; the stick zone shrinks as Q grows.
+    assert t.static_friction == pytest.approx(0.3 * 0.0184, rel=1e-9)
+    assert t.stick_area_fraction[0] > t.stick_area_fraction[1] > t.stick_area_fraction[2]
+    assert np.allclose(t.force_x, cycle, rtol=0, atol=1e-12)
+    # A closed fretting loop dissipates what friction's sum says, and back at +Q* the same state.
+    assert t.frictional_work[3:].sum() > 0
+    assert t.displacement_x[-1] == pytest.approx(t.displacement_x[2], rel=1e-4)
+    assert s.shear_x.shape == (128, 128) and s.slip_x.shape == (128, 128)
+    assert rc.solve(**sphere).tangential is None
+    with pytest.raises(ValueError, match="bound a tangential path"):
+        rc.solve(**sphere, friction_coefficient=0.3)
+    with pytest.raises(ValueError, match="needs friction"):
+        rc.solve(**sphere, tangential_loads=[1e-3])
+    with pytest.raises(ValueError, match="friction_coefficient must be a finite number >= 0"):
+        rc.solve(**sphere, friction_coefficient=-0.1, tangential_loads=[1e-3])
+    with pytest.raises(ValueError, match="shear_strength must be a finite shear stress"):
+        rc.solve(**sphere, shear_strength=-1.0, tangential_loads=[1e-3])
+    # More than the contact carries: it slides, reported, not a failure.
+    slid = rc.solve(**sphere, friction_coefficient=0.3, tangential_loads=[1e-3, 1.0, 2.0])
+    assert slid.tangential.gross_sliding and len(slid.tangential.steps) == 2
+    assert np.isnan(slid.tangential.displacement_x[-1])

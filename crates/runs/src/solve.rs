@@ -66,20 +66,9 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     }
     let built = case.build()?;
     let problem = &built.problem;
-    let tangential = control.tangential()?;
-    match (case.frictional(), &tangential) {
-        (true, None) => bail!(
-            "--friction-coefficient and --shear-strength bound a tangential path's shear: give \
-             --tangential-loads [N] or --tangential-displacements [m]"
-        ),
-        (false, Some(_)) => bail!(
-            "a tangential path needs friction: --friction-coefficient [-] and/or --shear-strength \
-             [Pa], and the body's --poisson"
-        ),
-        (true, Some(_)) => {
-            problem.check_tangential()?;
-        }
-        (false, None) => {}
+    let tangential = control.tangential_path(case.frictional())?;
+    if tangential.is_some() {
+        problem.check_tangential()?;
     }
     let control = control.control(problem)?;
     for w in &problem.warnings {

@@ -30,6 +30,7 @@ __version__ = _native.VERSION
 __all__ = [
     "Topography",
     "Solution",
+    "Tangential",
     "Sweep",
     "ConvergenceWarning",
     "generate",
@@ -321,7 +322,9 @@ class Solution:
     ``contact_area_fraction`` [-], with a ``hardness`` ``plastic_area_fraction`` [-],
     ``permanent_set_volume`` [m^3] and ``plastic_work`` [J] (0 when elastic), ``converged``,
     ``termination``, ``residual``, ``wall_time_s`` [s]; every number of the solver's report
-    is in ``report``, the resolved case in ``case``."""
+    is in ``report``, the resolved case in ``case``. After a tangential path, ``tangential``
+    (a :class:`Tangential`) and the last step's fields ``shear_x``, ``shear_y`` [Pa],
+    ``slip_x``, ``slip_y`` [m]; otherwise ``tangential`` is None."""
 
     def __init__(self, summary: Dict[str, Any], fields: Dict[str, np.ndarray]) -> None:
         self.fields = fields
@@ -342,6 +345,8 @@ class Solution:
         self.converged: bool = summary["converged"]
         self.residual: float = r["residual"]
         self.wall_time_s: float = r["wall_time_s"]
+        t = summary.get("tangential")
+        self.tangential: Optional[Tangential] = Tangential(t) if t is not None else None
 
     def __getattr__(self, name: str) -> Any:
         fields = self.__dict__.get("fields", {})
@@ -356,6 +361,46 @@ class Solution:
         return (
             f"Solution(load={self.load:.6e} N, approach={self.approach:.6e} m, "
             f"contact_area_fraction={self.contact_area_fraction:.6f}, {self.termination})"
+        )
+
+
+class Tangential:
+    """A tangential path after a normal solve, step by step (numpy arrays, one value a step):
+    ``force_x``, ``force_y`` [N], ``displacement_x``, ``displacement_y`` [m] (NaN under a force
+    the contact cannot carry), ``stick_area_fraction``, ``slip_area_fraction`` [-],
+    ``frictional_work`` [J] (each step's), ``elastic_energy`` [J], ``iterations``,
+    ``residual``, ``converged``; and the path's ``static_friction`` [N] (the contact's
+    capacity, sum (tau0 + mu p_c) dA), ``gross_sliding`` (whether it was reached),
+    ``total_frictional_work`` [J], ``work`` [J] (the shear force's, sum Q . dD),
+    ``all_converged``, ``contact_area_fraction`` [-] (the cells that carry shear). Every
+    step's report is in ``steps``."""
+
+    def __init__(self, summary: Dict[str, Any]) -> None:
+        self.steps: List[Dict[str, Any]] = summary["steps"]
+        self.static_friction: float = summary["static_friction"]
+        self.gross_sliding: bool = summary["gross_sliding"]
+        self.total_frictional_work: float = summary["frictional_work"]
+        self.work: float = summary["work"]
+        self.all_converged: bool = summary["all_converged"]
+        self.contact_area_fraction: float = summary["contact_area_fraction"]
+
+        def column(f: Callable[[Dict[str, Any]], Any]) -> np.ndarray:
+            return np.array([f(step) for step in self.steps], dtype=float)
+
+        nan = float("nan")
+        self.force_x = column(lambda r: r["force"][0])
+        self.force_y = column(lambda r: r["force"][1])
+        self.displacement_x = column(lambda r: nan if r["displacement"][0] is None else r["displacement"][0])
+        self.displacement_y = column(lambda r: nan if r["displacement"][1] is None else r["displacement"][1])
+        for name in ("stick_area_fraction", "slip_area_fraction", "frictional_work", "elastic_energy", "residual"):
+            setattr(self, name, column(lambda r, name=name: r[name]))
+        self.iterations = np.array([r["iterations"] for r in self.steps], dtype=int)
+        self.converged = np.array([r["termination"] == "Converged" for r in self.steps], dtype=bool)
+
+    def __repr__(self) -> str:
+        return (
+            f"Tangential({len(self.steps)} steps, static_friction={self.static_friction:.6e} N, "
+            f"gross_sliding={self.gross_sliding})"
         )
 
 
@@ -456,6 +501,10 @@ def solve(
     substrate's ``substrate_modulus`` [Pa] and ``substrate_poisson``: a coating, periodic
     grids only); ``modulus`` is then the layer's E / (1 - nu^2) [Pa]. A ``hardness`` [Pa] caps the compressive pressure.
     A viscoelastic body (``maxwell_moduli``) is swept, not solved: its answer depends on the path.
+    A tangential path after the normal solve: ``tangential_loads`` [N] or
+    ``tangential_displacements`` [m] (lists, each step from the last; negative reverses) along
+    ``tangential_angle`` [rad], with ``friction_coefficient`` [-] and/or ``shear_strength``
+    [Pa] and the body's ``poisson`` [-]; the result's ``tangential``.
     ``progress(info)`` is called after every iteration with ``{'step', 'iteration',
     'residual'}``; an exception it raises stops the solve. ``threads``: threads of this
     solve's own pool (None: all cores, shared). The GIL is released while solving; Ctrl-C
@@ -473,6 +522,8 @@ def solve(
             ConvergenceWarning,
             stacklevel=2,
         )
+    if solution.tangential is not None and not solution.tangential.all_converged:
+        warnings.warn("a step of the tangential path did not converge", ConvergenceWarning, stacklevel=2)
     return solution
 
 
