@@ -324,11 +324,12 @@ def test_a_tangential_path_slips_and_refuses_what_it_cannot_take():
     assert t.frictional_work[3:].sum() > 0
     assert t.displacement_x[-1] == pytest.approx(t.displacement_x[2], rel=1e-4)
     assert s.shear_x.shape == (128, 128) and s.slip_x.shape == (128, 128)
-    assert rc.solve(**sphere).tangential is None
+    plain = {k: v for k, v in sphere.items() if k != "poisson"}
+    assert rc.solve(**plain).tangential is None
     with pytest.raises(ValueError, match="bound a tangential path"):
         rc.solve(**sphere, friction_coefficient=0.3)
     with pytest.raises(ValueError, match="needs friction"):
-        rc.solve(**sphere, tangential_loads=[1e-3])
+        rc.solve(**plain, tangential_loads=[1e-3])
     with pytest.raises(ValueError, match="friction_coefficient must be a finite number >= 0"):
         rc.solve(**sphere, friction_coefficient=-0.1, tangential_loads=[1e-3])
     with pytest.raises(ValueError, match="shear_strength must be a finite shear stress"):
