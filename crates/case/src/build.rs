@@ -185,9 +185,9 @@ impl Case {
                 }
                 other => Error::Key(other.to_string()),
             })?;
-            let nu = self.poisson.context(
-                "friction needs the body's --poisson: its tangential compliance depends on it",
-            )?;
+            let nu = self
+                .poisson
+                .context("friction needs the body's --poisson: its tangential compliance depends on it")?;
             builder = builder.friction(friction).poisson(nu);
         } else if let Some(nu) = self.poisson {
             builder = builder.poisson(nu);

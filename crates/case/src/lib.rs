@@ -218,6 +218,20 @@ impl Case {
         self.friction_coefficient.is_some() || self.shear_strength.is_some()
     }
 
+    /// Refuses friction where no tangential path can follow (a sweep): the path follows a
+    /// single normal solve.
+    pub fn refuse_friction(&self) -> Result<()> {
+        if self.frictional() {
+            return Err(Error::Key(
+                "--friction-coefficient and --shear-strength bound a tangential path, which follows \
+                 a single normal solve: `roughcontact solve ... --tangential-loads` (a sweep has \
+                 none)"
+                    .into(),
+            ));
+        }
+        Ok(())
+    }
+
     /// Fills in the defaults, so that the summary and `--print-config` show the whole case;
     /// `out` is the command's own default output directory.
     pub fn fill_defaults(&mut self, out: &str) {

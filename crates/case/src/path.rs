@@ -28,12 +28,23 @@ pub struct SolveControl {
     /// A tangential path after the normal solve: the shear forces [N] along
     /// --tangential-angle, comma-separated, each step from the last (negative: the other way;
     /// a reversal makes a fretting loop). Needs --friction-coefficient or --shear-strength.
-    #[cfg_attr(feature = "clap", arg(long, value_delimiter = ',', allow_hyphen_values = true))]
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_delimiter = ',', allow_hyphen_values = true)
+    )]
     pub tangential_loads: Option<Vec<f64>>,
     /// A tangential path after the normal solve: the rigid body's tangential displacements [m]
     /// along --tangential-angle, comma-separated (on periodic grids relative to the body's
     /// mean surface).
-    #[cfg_attr(feature = "clap", arg(long, value_delimiter = ',', allow_hyphen_values = true, conflicts_with = "tangential_loads"))]
+    #[cfg_attr(
+        feature = "clap",
+        arg(
+            long,
+            value_delimiter = ',',
+            allow_hyphen_values = true,
+            conflicts_with = "tangential_loads"
+        )
+    )]
     pub tangential_displacements: Option<Vec<f64>>,
     /// The direction of the tangential path from the x axis towards y [rad] (default 0).
     #[cfg_attr(feature = "clap", arg(long, allow_hyphen_values = true))]
@@ -67,18 +78,24 @@ impl SolveControl {
             bail!("--tangential-angle must be a finite angle [rad], got {angle}");
         }
         let (c, s) = (angle.cos(), angle.sin());
-        let (values, make): (&Vec<f64>, fn([f64; 2]) -> solver::TangentialControl) =
-            match (&self.tangential_loads, &self.tangential_displacements) {
-                (Some(v), None) => (v, Force),
-                (None, Some(v)) => (v, Displacement),
-                (None, None) => {
-                    if self.tangential_angle.is_some() {
-                        bail!("--tangential-angle orients a tangential path: give --tangential-loads [N] or --tangential-displacements [m]");
-                    }
-                    return Ok(None);
+        let (values, make): (&Vec<f64>, fn([f64; 2]) -> solver::TangentialControl) = match (
+            &self.tangential_loads,
+            &self.tangential_displacements,
+        ) {
+            (Some(v), None) => (v, Force),
+            (None, Some(v)) => (v, Displacement),
+            (None, None) => {
+                if self.tangential_angle.is_some() {
+                    bail!(
+                        "--tangential-angle orients a tangential path: give --tangential-loads [N] or --tangential-displacements [m]"
+                    );
                 }
-                (Some(_), Some(_)) => bail!("give one of --tangential-loads [N] and --tangential-displacements [m]"),
-            };
+                return Ok(None);
+            }
+            (Some(_), Some(_)) => {
+                bail!("give one of --tangential-loads [N] and --tangential-displacements [m]")
+            }
+        };
         if values.is_empty() {
             bail!("the tangential path has no step");
         }

@@ -64,8 +64,12 @@ impl Shear {
         let (a, b) = (domain.dx / 2.0, domain.dy / 2.0);
         let scale = 1.0 / (2.0 * PI * shear_modulus);
         let cell = [
-            scale * ((1.0 - poisson) * cell_integral(Kernel::One, 0.0, 0.0, a, b) + poisson * cell_integral(Kernel::Xx, 0.0, 0.0, a, b)),
-            scale * ((1.0 - poisson) * cell_integral(Kernel::One, 0.0, 0.0, a, b) + poisson * cell_integral(Kernel::Yy, 0.0, 0.0, a, b)),
+            scale
+                * ((1.0 - poisson) * cell_integral(Kernel::One, 0.0, 0.0, a, b)
+                    + poisson * cell_integral(Kernel::Xx, 0.0, 0.0, a, b)),
+            scale
+                * ((1.0 - poisson) * cell_integral(Kernel::One, 0.0, 0.0, a, b)
+                    + poisson * cell_integral(Kernel::Yy, 0.0, 0.0, a, b)),
         ];
         let (fft, kernels) = if domain.periodic {
             periodic_kernels(&domain, shear_modulus, poisson)
@@ -201,7 +205,11 @@ fn x_log(x: f64, y: f64) -> f64 {
         return 0.0;
     }
     let r = x.hypot(y);
-    x * if y > 0.0 { (y + r).ln() } else { (x * x / (r - y)).ln() }
+    x * if y > 0.0 {
+        (y + r).ln()
+    } else {
+        (x * x / (r - y)).ln()
+    }
 }
 
 /// Distance in half-sides beyond which [`cell_integral`] integrates by Gauss quadrature: the

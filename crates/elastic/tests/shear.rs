@@ -38,9 +38,14 @@ fn periodic_modes_match_cerruti() {
     for (mx, my) in [(3i32, 0i32), (0, 5), (4, 4), (2, -6)] {
         let (qx, qy) = (2.0 * PI * mx as f64 / l, 2.0 * PI * my as f64 / l);
         let q = qx.hypot(qy);
-        let wave = Array2::from_shape_fn((n, n), |(j, i)| (qx * i as f64 * d.dx + qy * j as f64 * d.dy).cos());
+        let wave = Array2::from_shape_fn((n, n), |(j, i)| {
+            (qx * i as f64 * d.dx + qy * j as f64 * d.dy).cos()
+        });
         let (ux, uy) = apply(&op, &wave, &Array2::zeros((n, n)));
-        let (cx, cy) = ((1.0 - nu * qx * qx / (q * q)) / (G * q), -nu * qx * qy / (G * q * q * q));
+        let (cx, cy) = (
+            (1.0 - nu * qx * qx / (q * q)) / (G * q),
+            -nu * qx * qy / (G * q * q * q),
+        );
         let scale = 1.0 / (G * q);
         for ((u, v), w) in ux.iter().zip(&uy).zip(&wave) {
             assert!((u - cx * w).abs() < 1e-12 * scale, "mode ({mx}, {my}) x");
@@ -79,14 +84,18 @@ fn free_elliptical_shear_matches_johnson() {
         for i in 0..n {
             let (x, y) = xy(j, i);
             if x.hypot(y) < 0.8 * a {
-                let exact_x = scale * (4.0 * (2.0 - nu) * a * a - (4.0 - 3.0 * nu) * x * x - (4.0 - nu) * y * y);
+                let exact_x =
+                    scale * (4.0 * (2.0 - nu) * a * a - (4.0 - 3.0 * nu) * x * x - (4.0 - nu) * y * y);
                 let exact_y = scale * 2.0 * nu * x * y;
                 worst = worst.max((ux[(j, i)] - exact_x).abs() / centre_value);
                 worst_y = worst_y.max((uy[(j, i)] - exact_y).abs() / centre_value);
             }
         }
     }
-    assert!(worst < 2e-3 && worst_y < 2e-3, "worst errors {worst:e}, {worst_y:e} of the centre's");
+    assert!(
+        worst < 2e-3 && worst_y < 2e-3,
+        "worst errors {worst:e}, {worst_y:e} of the centre's"
+    );
 }
 
 /// The operator is symmetric (reciprocity) on both grids, and its diagonal is the cell
@@ -107,7 +116,10 @@ fn reciprocity_and_diagonal() {
         let (u2, v2) = apply(&op, &c, &e);
         let dot = |x: &Array2<f64>, y: &Array2<f64>| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
         let (left, right) = (dot(&c, &u1) + dot(&e, &v1), dot(&a, &u2) + dot(&b, &v2));
-        assert!((left - right).abs() < 1e-12 * left.abs().max(right.abs()), "{periodic}: {left} {right}");
+        assert!(
+            (left - right).abs() < 1e-12 * left.abs().max(right.abs()),
+            "{periodic}: {left} {right}"
+        );
         if !periodic {
             let mut unit = Array2::zeros((n, n));
             unit[(n / 2, n / 3)] = 1.0;

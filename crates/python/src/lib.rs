@@ -321,7 +321,13 @@ fn solve<'py>(
                 let edge = problem.edge_warning(&state.contact.gap, &state.contact.pressure);
                 let head = (report.converged(), report.termination);
                 let mut summary = summary(problem, head, &report, edge)?;
-                let sheared = shear(problem, &state.contact, tangential.as_deref(), &mut summary, &cancel_flag)?;
+                let sheared = shear(
+                    problem,
+                    &state.contact,
+                    tangential.as_deref(),
+                    &mut summary,
+                    &cancel_flag,
+                )?;
                 let mut fields = adhesive_fields(state);
                 fields.extend(sheared);
                 (summary, fields)
@@ -380,7 +386,12 @@ fn shear(
     summary["tangential"] = value;
     let [shear_x, shear_y] = state.traction;
     let [slip_x, slip_y] = state.slip;
-    Ok(vec![("shear_x", shear_x), ("shear_y", shear_y), ("slip_x", slip_x), ("slip_y", slip_y)])
+    Ok(vec![
+        ("shear_x", shear_x),
+        ("shear_y", shear_y),
+        ("slip_x", slip_x),
+        ("slip_y", slip_y),
+    ])
 }
 
 /// A solve's summary: the law, whether and how it ended, the report, and the problem's
@@ -427,6 +438,7 @@ fn sweep<'py>(
     cancel: &Cancel,
 ) -> PyResult<(String, Fields<'py>)> {
     let (case, mut path, built): (Case, SweepPath, _) = built("the keywords", keys, roughness)?;
+    case.refuse_friction().py()?;
     if path.start_from.is_some() {
         return Err(PyValueError::new_err(
             "`start_from` reads a command-line run directory; give the path from apart instead",

@@ -139,7 +139,8 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     finish(sheared, SHEAR_NOT_CONVERGED.into(), args.keep_going, out)
 }
 
-const SHEAR_NOT_CONVERGED: &str = "a step of the tangential path did not converge (tangential.csv says which)";
+const SHEAR_NOT_CONVERGED: &str =
+    "a step of the tangential path did not converge (tangential.csv says which)";
 
 /// Runs the tangential path, if any, on the normal solution, adding its summary; whether every
 /// step converged (true without a path).

@@ -264,6 +264,7 @@ fn resolved_case(args: &SweepArgs) -> Result<(Case, SweepPath, String)> {
         args.path.start_from.is_none(),
         &mut path.start_from,
     );
+    case.refuse_friction()?;
     case.fill_defaults("run/sweep");
     path.fill_defaults();
     let resolved = to_toml(&case, &path)?;

@@ -78,14 +78,21 @@ pub fn run(
         );
     }
     say!("static friction force    {:.6e} N", summary.static_friction);
-    say!("friction's work          {:.6e} J over {} tangential steps", summary.frictional_work, reports.len());
+    say!(
+        "friction's work          {:.6e} J over {} tangential steps",
+        summary.frictional_work,
+        reports.len()
+    );
     if let Some(last) = reports.last() {
         say!("last stick area fraction {:.6}", last.stick_area_fraction);
     }
     let mut value = serde_json::to_value(&summary)?;
     if let Value::Object(map) = &mut value {
         map.insert("steps".into(), json!(reports.len()));
-        map.insert("contact_area_fraction".into(), json!(tangential.contact_area_fraction()));
+        map.insert(
+            "contact_area_fraction".into(),
+            json!(tangential.contact_area_fraction()),
+        );
         map.insert(
             "units".into(),
             json!({

@@ -152,7 +152,10 @@ pub fn contact_gap(law: &dyn AdhesionLaw) -> Result<f64> {
         .map(|k| pressure(reach * k as f64 / samples as f64))
         .collect::<Result<Vec<f64>>>()?;
     let lowest = values.iter().copied().fold(f64::INFINITY, f64::min);
-    let first = values.iter().position(|&p| p <= lowest * (1.0 - 1e-9)).unwrap_or(0);
+    let first = values
+        .iter()
+        .position(|&p| p <= lowest * (1.0 - 1e-9))
+        .unwrap_or(0);
     if first == 0 {
         return Ok(0.0);
     }
@@ -353,13 +356,21 @@ impl TangentialProblem {
         let self_compliance = cell[0].max(cell[1]);
         let scale = self.bound.iter().fold(0.0f64, |m, &g| m.max(g)) * self_compliance;
         let flat = |a: &Array2<f64>| -> Vec<f64> {
-            let s = a.as_slice().map(|s| s.to_vec()).unwrap_or_else(|| a.iter().copied().collect());
+            let s = a
+                .as_slice()
+                .map(|s| s.to_vec())
+                .unwrap_or_else(|| a.iter().copied().collect());
             self.cells.iter().map(|&k| s[k]).collect()
         };
         let s_prev = [flat(&previous.slip[0]), flat(&previous.slip[1])];
         let tau_prev = [flat(&previous.traction[0]), flat(&previous.traction[1])];
         let mut tau = tau_prev.clone();
-        let force_of = |tau: &[Vec<f64>; 2]| [tau[0].iter().sum::<f64>() * area, tau[1].iter().sum::<f64>() * area];
+        let force_of = |tau: &[Vec<f64>; 2]| {
+            [
+                tau[0].iter().sum::<f64>() * area,
+                tau[1].iter().sum::<f64>() * area,
+            ]
+        };
         let project = |tau: &mut [Vec<f64>; 2]| {
             for i in 0..n {
                 let m = tau[0][i].hypot(tau[1][i]);
@@ -386,8 +397,10 @@ impl TangentialProblem {
                 let mut report = self.report(&tau, &tau_prev, None, capacity, [f64::NAN; 2]);
                 report.gross_sliding = true;
                 report.termination = Termination::Converged;
+                let mut energy = None;
+                let state = self.state(&tau, &s_prev, None, [f64::NAN; 2], &mut energy)?;
+                report.elastic_energy = energy.unwrap_or(0.0);
                 report.wall_time_s = started.elapsed().as_secs_f64();
-                let state = self.state(&tau, &s_prev, None, [f64::NAN; 2], &mut None)?;
                 return Ok((state, report));
             }
             // The change of force spread in proportion to the bounds, then made exact.
@@ -421,7 +434,8 @@ impl TangentialProblem {
             for c in 0..2 {
                 w[c].iter_mut().zip(&s_prev[c]).for_each(|(w, s)| *w += s);
             }
-            let at_bound = |i: usize, tau: &[Vec<f64>; 2]| tau[0][i].hypot(tau[1][i]) >= self.bound[i] * (1.0 - 1e-12);
+            let at_bound =
+                |i: usize, tau: &[Vec<f64>; 2]| tau[0][i].hypot(tau[1][i]) >= self.bound[i] * (1.0 - 1e-12);
             // D under force control: the mean over the sticking cells (then those released
             // from their discs join them).
             for pass in 0..2 {
@@ -482,7 +496,11 @@ impl TangentialProblem {
                 }
             }
             let joined = (0..n).any(|i| free[i] && !free_before[i]);
-            let beta = if !joined && g_old > 0.0 { g_new / g_old } else { 0.0 };
+            let beta = if !joined && g_old > 0.0 {
+                g_new / g_old
+            } else {
+                0.0
+            };
             for i in 0..n {
                 for c in 0..2 {
                     t[c][i] = gradient[c][i] + beta * t[c][i];
@@ -542,7 +560,10 @@ impl TangentialProblem {
     fn fix_force(&self, tau: &mut [Vec<f64>; 2], q: [f64; 2]) {
         let n = self.cells.len();
         for _ in 0..50 {
-            let f = [tau[0].iter().sum::<f64>() * self.cell_area, tau[1].iter().sum::<f64>() * self.cell_area];
+            let f = [
+                tau[0].iter().sum::<f64>() * self.cell_area,
+                tau[1].iter().sum::<f64>() * self.cell_area,
+            ];
             let error = [q[0] - f[0], q[1] - f[1]];
             if error[0].hypot(error[1]) <= 1e-13 * self.capacity() {
                 return;
@@ -553,7 +574,10 @@ impl TangentialProblem {
             if inside.is_empty() {
                 return;
             }
-            let per = [error[0] / (inside.len() as f64 * self.cell_area), error[1] / (inside.len() as f64 * self.cell_area)];
+            let per = [
+                error[0] / (inside.len() as f64 * self.cell_area),
+                error[1] / (inside.len() as f64 * self.cell_area),
+            ];
             for &i in &inside {
                 tau[0][i] += per[0];
                 tau[1][i] += per[1];
@@ -591,7 +615,10 @@ impl TangentialProblem {
             slipping = n;
         }
         ShearReport {
-            force: [tau[0].iter().sum::<f64>() * self.cell_area, tau[1].iter().sum::<f64>() * self.cell_area],
+            force: [
+                tau[0].iter().sum::<f64>() * self.cell_area,
+                tau[1].iter().sum::<f64>() * self.cell_area,
+            ],
             displacement: d,
             capacity,
             stick_area_fraction: (n - slipping) as f64 / total,
@@ -629,7 +656,7 @@ impl TangentialProblem {
                     };
             }
         }
-        if slip.is_some() {
+        {
             let (mut ux, mut uy) = (Array2::zeros(self.shape), Array2::zeros(self.shape));
             let mut ws = self.operator.make_workspace();
             self.operator.apply(

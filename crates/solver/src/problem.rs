@@ -191,7 +191,13 @@ impl ContactProblem {
     pub fn tangential(&self, normal: &ContactState) -> Result<crate::friction::TangentialProblem> {
         let (friction, poisson) = self.check_tangential()?;
         let contact_gap = crate::friction::contact_gap(self.law.as_ref())?;
-        crate::friction::TangentialProblem::new(self.operator.as_ref(), poisson, friction, normal, contact_gap)
+        crate::friction::TangentialProblem::new(
+            self.operator.as_ref(),
+            poisson,
+            friction,
+            normal,
+            contact_gap,
+        )
     }
 
     /// The friction law and Poisson's ratio a tangential path takes, or why the problem cannot

@@ -3,8 +3,8 @@
 //! contact's capacity.
 
 use solver::{
-    ContactOptions, ContactProblem, ContactState, Control, Friction, ShearOptions, ShearState, TangentialControl,
-    TangentialProblem,
+    ContactOptions, ContactProblem, ContactState, Control, Friction, ShearOptions, ShearState,
+    TangentialControl, TangentialProblem,
 };
 use std::f64::consts::PI;
 
@@ -45,8 +45,14 @@ fn options() -> ShearOptions {
 fn cattaneo_mindlin_partial_slip() {
     let (problem, normal, load, a) = hertz_contact(128, 24.0);
     for nu in [0.5, 0.3] {
-        let tangential =
-            TangentialProblem::new(problem.operator.as_ref(), nu, Friction::new(MU, 0.0).unwrap(), &normal, 0.0).unwrap();
+        let tangential = TangentialProblem::new(
+            problem.operator.as_ref(),
+            nu,
+            Friction::new(MU, 0.0).unwrap(),
+            &normal,
+            0.0,
+        )
+        .unwrap();
         let g = E_STAR * (1.0 - nu) / 2.0;
         let mu_p = MU * load;
         // The grid's contact carries mu times its load.
@@ -56,13 +62,22 @@ fn cattaneo_mindlin_partial_slip() {
             let (next, report) = tangential
                 .solve(TangentialControl::Force([ratio * mu_p, 0.0]), &state, &options())
                 .unwrap();
-            assert!(report.termination == solver::report::Termination::Converged, "{ratio}: {report:?}");
+            assert!(
+                report.termination == solver::report::Termination::Converged,
+                "{ratio}: {report:?}"
+            );
             let c = (report.stick_area_fraction * (128.0 * 128.0) * DX * DX / PI).sqrt();
             let c_exact = theory::mindlin::stick_ratio(ratio) * a;
-            assert!((c - c_exact).abs() < DX, "nu {nu}, Q/muP {ratio}: c {c:e} exact {c_exact:e}");
+            assert!(
+                (c - c_exact).abs() < DX,
+                "nu {nu}, Q/muP {ratio}: c {c:e} exact {c_exact:e}"
+            );
             let d_exact = theory::mindlin::displacement(ratio * mu_p, mu_p, g, nu, a);
             let d = report.displacement[0];
-            assert!((d - d_exact).abs() < 1e-2 * d_exact, "nu {nu}, Q/muP {ratio}: {d:e} vs {d_exact:e}");
+            assert!(
+                (d - d_exact).abs() < 1e-2 * d_exact,
+                "nu {nu}, Q/muP {ratio}: {d:e} vs {d_exact:e}"
+            );
             assert!(report.displacement[1].abs() < 1e-6 * d && report.force[1].abs() < 1e-9 * mu_p);
             state = next;
         }
@@ -82,8 +97,14 @@ fn fretting_loop_dissipates_mindlin_deresiewicz() {
     let (problem, normal, load, a) = hertz_contact(128, 24.0);
     let nu = 0.3;
     let g = E_STAR * (1.0 - nu) / 2.0;
-    let tangential =
-        TangentialProblem::new(problem.operator.as_ref(), nu, Friction::new(MU, 0.0).unwrap(), &normal, 0.0).unwrap();
+    let tangential = TangentialProblem::new(
+        problem.operator.as_ref(),
+        nu,
+        Friction::new(MU, 0.0).unwrap(),
+        &normal,
+        0.0,
+    )
+    .unwrap();
     let mu_p = MU * load;
     let amplitude = 0.6 * mu_p;
     let steps = 16;
@@ -94,7 +115,12 @@ fn fretting_loop_dissipates_mindlin_deresiewicz() {
         .map(|q| TangentialControl::Force([q, 0.0]))
         .collect();
     let (_, reports) = tangential
-        .path(&controls, ShearState::unloaded((128, 128)), &options(), &mut |_, _, _| true)
+        .path(
+            &controls,
+            ShearState::unloaded((128, 128)),
+            &options(),
+            &mut |_, _, _| true,
+        )
         .unwrap();
     assert_eq!(reports.len(), 3 * steps);
     let cycle = &reports[steps - 1..];
@@ -108,14 +134,24 @@ fn fretting_loop_dissipates_mindlin_deresiewicz() {
     }
     let friction: f64 = cycle[1..].iter().map(|r| r.frictional_work).sum();
     let exact = theory::mindlin::fretting_energy(amplitude, mu_p, g, nu, a);
-    assert!((work - exact).abs() < 2e-2 * exact, "loop area {work:e} vs {exact:e}");
-    assert!((friction - exact).abs() < 2e-2 * exact, "friction's work {friction:e} vs {exact:e}");
+    assert!(
+        (work - exact).abs() < 2e-2 * exact,
+        "loop area {work:e} vs {exact:e}"
+    );
+    assert!(
+        (friction - exact).abs() < 2e-2 * exact,
+        "friction's work {friction:e} vs {exact:e}"
+    );
     // The branches follow Masing's rule.
     for r in &cycle[1..=steps] {
         let q = r.force[0];
         let exact = theory::mindlin::loop_displacement(q, amplitude, true, mu_p, g, nu, a);
         let scale = theory::mindlin::displacement(amplitude, mu_p, g, nu, a);
-        assert!((r.displacement[0] - exact).abs() < 1e-2 * scale, "Q {q:e}: {:e} vs {exact:e}", r.displacement[0]);
+        assert!(
+            (r.displacement[0] - exact).abs() < 1e-2 * scale,
+            "Q {q:e}: {:e} vs {exact:e}",
+            r.displacement[0]
+        );
     }
 }
 
@@ -123,8 +159,14 @@ fn fretting_loop_dissipates_mindlin_deresiewicz() {
 #[test]
 fn displacement_control_matches_force_control() {
     let (problem, normal, load, _) = hertz_contact(96, 16.0);
-    let tangential =
-        TangentialProblem::new(problem.operator.as_ref(), 0.4, Friction::new(MU, 0.0).unwrap(), &normal, 0.0).unwrap();
+    let tangential = TangentialProblem::new(
+        problem.operator.as_ref(),
+        0.4,
+        Friction::new(MU, 0.0).unwrap(),
+        &normal,
+        0.0,
+    )
+    .unwrap();
     let start = ShearState::unloaded((96, 96));
     // Along a diagonal, to exercise the coupling.
     let q = 0.5 * MU * load / 2f64.sqrt();
@@ -132,13 +174,19 @@ fn displacement_control_matches_force_control() {
         .solve(TangentialControl::Force([q, q]), &start, &options())
         .unwrap();
     let (by_displacement, rd) = tangential
-        .solve(TangentialControl::Displacement(rf.displacement), &start, &options())
+        .solve(
+            TangentialControl::Displacement(rf.displacement),
+            &start,
+            &options(),
+        )
         .unwrap();
     assert!(rd.termination == solver::report::Termination::Converged);
     for c in 0..2 {
         assert!((rd.force[c] - q).abs() < 1e-6 * q, "{:?} vs {q}", rd.force);
         let peak = by_force.traction[c].iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let diff = (&by_force.traction[c] - &by_displacement.traction[c]).iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let diff = (&by_force.traction[c] - &by_displacement.traction[c])
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()));
         assert!(diff < 1e-5 * peak, "traction {c}: {diff:e} of {peak:e}");
     }
     assert!((rf.stick_area_fraction - rd.stick_area_fraction).abs() < 1e-9);
@@ -154,7 +202,10 @@ fn contact_gap_is_the_strongest_attraction() {
     assert!((g - (3f64.powf(1.0 / 6.0) - 1.0) * z0).abs() < 1e-6 * z0, "{g:e}");
     let exponential = ljadhesion::ExponentialLaw::new(0.1, z0).unwrap();
     assert_eq!(solver::friction::contact_gap(&exponential).unwrap(), 0.0);
-    assert_eq!(solver::friction::contact_gap(&ljadhesion::NoAdhesion).unwrap(), 0.0);
+    assert_eq!(
+        solver::friction::contact_gap(&ljadhesion::NoAdhesion).unwrap(),
+        0.0
+    );
 }
 
 /// A Lennard-Jones sphere (Tabor parameter 5) at zero load with a shear strength: its static
@@ -173,7 +224,9 @@ fn adhesive_static_friction_is_shear_strength_times_jkr_area() {
             .modulus(E_STAR)
             .poisson(0.5)
             .friction(Friction::new(mu, tau0).unwrap())
-            .law(ljadhesion::SurfaceLaw(ljadhesion::LennardJones::new(w0, z0).unwrap()))
+            .law(ljadhesion::SurfaceLaw(
+                ljadhesion::LennardJones::new(w0, z0).unwrap(),
+            ))
             .build()
             .unwrap()
     };
@@ -186,22 +239,40 @@ fn adhesive_static_friction_is_shear_strength_times_jkr_area() {
     let settings = solver::Settings::default();
     let mut approach = a0 * a0 / (3.0 * radius);
     let (mut normal, mut report) = problem
-        .solve(Control::Approach(approach), &settings, solver::Start::Loading, &mut ())
+        .solve(
+            Control::Approach(approach),
+            &settings,
+            solver::Start::Loading,
+            &mut (),
+        )
         .unwrap();
     let mut stiffness = 2.0 * E_STAR * a0;
     for _ in 0..2 {
         let next = approach - report.load / stiffness;
         let (state, r) = problem
-            .solve(Control::Approach(next), &settings, solver::Start::Warm(&normal), &mut ())
+            .solve(
+                Control::Approach(next),
+                &settings,
+                solver::Start::Warm(&normal),
+                &mut (),
+            )
             .unwrap();
         stiffness = (r.load - report.load) / (next - approach);
         (approach, normal, report) = (next, state, r);
     }
     assert!(report.converged());
-    assert!(report.load.abs() < 5e-3 * PI * radius * w0, "near zero load: {:e}", report.load);
+    assert!(
+        report.load.abs() < 5e-3 * PI * radius * w0,
+        "near zero load: {:e}",
+        report.load
+    );
     let capacity = problem.tangential(&normal.contact).unwrap().capacity();
     let jkr = tau0 * PI * a0 * a0;
-    assert!((capacity / jkr - 1.0).abs() < 1e-2, "static friction over tau0 A_JKR: {}", capacity / jkr);
+    assert!(
+        (capacity / jkr - 1.0).abs() < 1e-2,
+        "static friction over tau0 A_JKR: {}",
+        capacity / jkr
+    );
     // Maugis-Dugdale at the solve's load: the cohesive zone's excess m - 1 by bisection.
     let md = theory::maugis::MaugisDugdale::new(theory::maugis_parameter_of_tabor(5.0));
     let target = report.load / (PI * w0 * radius);
@@ -217,7 +288,11 @@ fn adhesive_static_friction_is_shear_strength_times_jkr_area() {
     let unit = (PI * w0 * radius * radius / (4.0 * E_STAR / 3.0)).cbrt();
     let a_md = md.point_from_excess(lo).radius * unit;
     let maugis = tau0 * PI * a_md * a_md;
-    assert!((capacity / maugis - 1.0).abs() < 2e-2, "static friction over tau0 A_MD: {}", capacity / maugis);
+    assert!(
+        (capacity / maugis - 1.0).abs() < 2e-2,
+        "static friction over tau0 A_MD: {}",
+        capacity / maugis
+    );
     let with_mu = build(0.3).tangential(&normal.contact).unwrap().capacity();
     assert!((with_mu - capacity - 0.3 * report.compressive_load).abs() < 1e-12 * with_mu);
 }

@@ -35,7 +35,10 @@ fn tamaas_stick() -> Vec<(f64, usize)> {
         .lines()
         .map(|line| {
             let v: serde_json::Value = serde_json::from_str(line).unwrap();
-            (v["ratio"].as_f64().unwrap(), v["stick"].as_u64().unwrap() as usize)
+            (
+                v["ratio"].as_f64().unwrap(),
+                v["stick"].as_u64().unwrap() as usize,
+            )
         })
         .collect()
 }
@@ -83,8 +86,14 @@ fn same_stick_zone_and_shear_as_tamaas() {
             let largest = state.traction[0].iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for (c, axis) in ["x", "y"].iter().enumerate() {
                 let reference = load(&format!("tamaas_shear_{axis}_{ratio}.npy"));
-                let worst = (&state.traction[c] - &reference).iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                assert!(worst < 3e-3 * largest, "Q/muP {ratio}, shear {axis}: {:e} of the largest", worst / largest);
+                let worst = (&state.traction[c] - &reference)
+                    .iter()
+                    .fold(0.0f64, |m, v| m.max(v.abs()));
+                assert!(
+                    worst < 3e-3 * largest,
+                    "Q/muP {ratio}, shear {axis}: {:e} of the largest",
+                    worst / largest
+                );
             }
         }
     }

@@ -14,7 +14,8 @@ pub fn stick_ratio(ratio: f64) -> f64 {
 /// `3 mu P (2 - nu) / (16 G a) [1 - (1 - Q / (mu P))^(2/3)]`, with the contact radius `a`
 /// \[m\], `mu_p = mu P` \[N\] and `q` = Q \[N\].
 pub fn displacement(q: f64, mu_p: f64, shear_modulus: f64, poisson: f64, radius: f64) -> f64 {
-    3.0 * mu_p * (2.0 - poisson) / (16.0 * shear_modulus * radius) * (1.0 - (1.0 - q / mu_p).max(0.0).powf(2.0 / 3.0))
+    3.0 * mu_p * (2.0 - poisson) / (16.0 * shear_modulus * radius)
+        * (1.0 - (1.0 - q / mu_p).max(0.0).powf(2.0 / 3.0))
 }
 
 /// The displacement \[m\] on the fretting loop between `-q_amp` and `+q_amp` \[N\] at the load
@@ -68,7 +69,8 @@ mod tests {
         let mut area = 0.0;
         for k in 0..n {
             let q = -q_amp + (k as f64 + 0.5) * 2.0 * q_amp / n as f64;
-            let gap = loop_displacement(q, q_amp, true, mu_p, g, nu, a) - loop_displacement(q, q_amp, false, mu_p, g, nu, a);
+            let gap = loop_displacement(q, q_amp, true, mu_p, g, nu, a)
+                - loop_displacement(q, q_amp, false, mu_p, g, nu, a);
             area += gap * 2.0 * q_amp / n as f64;
         }
         let exact = fretting_energy(q_amp, mu_p, g, nu, a);

@@ -1,0 +1,250 @@
+//! A tangential path end to end: the flags reach the problem, the outputs are written, and
+//! refusals name the flag.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("roughcontact-tangential-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_roughcontact"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// A Hertz contact 24 cells in radius (R = 1 mm, E* = 1 GPa, nu = 0.3) with `extra`.
+fn sphere(out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "solve",
+        "--sphere-radius",
+        "1e-3",
+        "--n",
+        "128",
+        "--length",
+        "128e-6",
+        "--modulus",
+        "1e9",
+        "--load",
+        "0.0184",
+        "--out",
+        out.to_str().unwrap(),
+        "--no-png",
+    ];
+    args.extend_from_slice(extra);
+    run(&args)
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn a_partial_slip_loop_writes_its_steps_fields_and_summary() {
+    let out = dir("loop");
+    let o = sphere(
+        &out,
+        &[
+            "--poisson",
+            "0.3",
+            "--friction-coefficient",
+            "0.3",
+            "--tangential-loads",
+            "2e-3,4e-3,0,-4e-3,0,4e-3",
+            "--tangential-angle",
+            "1.5707963267948966",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("tangential.csv")).unwrap();
+    let rows: Vec<Vec<String>> = csv
+        .lines()
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    assert_eq!(rows[0][1], "force_x");
+    assert_eq!(rows.len(), 7);
+    // Along y: the force's x part vanishes, its y part follows the path.
+    let fy: Vec<f64> = rows[1..].iter().map(|r| r[2].parse().unwrap()).collect();
+    for (f, q) in fy.iter().zip([2e-3, 4e-3, 0.0, -4e-3, 0.0, 4e-3]) {
+        assert!((f - q).abs() < 1e-12, "{f} vs {q}");
+    }
+    for name in ["shear_x", "shear_y", "slip_x", "slip_y"] {
+        assert!(out.join(format!("{name}.npy")).exists(), "{name}.npy");
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let t = &summary["tangential"];
+    assert!((t["static_friction"].as_f64().unwrap() - 0.3 * 0.0184).abs() < 1e-12);
+    assert_eq!(t["steps"], 6);
+    assert!(t["frictional_work"].as_f64().unwrap() > 0.0 && t["all_converged"] == true);
+    assert_eq!(summary["case"]["friction_coefficient"], 0.3);
+}
+
+#[test]
+fn more_than_the_contact_carries_is_reported_as_sliding() {
+    let out = dir("slide");
+    let o = sphere(
+        &out,
+        &[
+            "--poisson",
+            "0.3",
+            "--friction-coefficient",
+            "0.3",
+            "--tangential-loads",
+            "1e-3,0.1,0.2",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("ended at step 2 of 3"), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("tangential.csv")).unwrap();
+    let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
+    assert_eq!(last[3], "NaN");
+    assert_eq!(last[9], "true");
+}
+
+#[test]
+fn bad_tangential_input_is_refused_by_name() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &[
+                "--poisson",
+                "0.3",
+                "--friction-coefficient",
+                "-0.1",
+                "--tangential-loads",
+                "1e-3",
+            ],
+            "--friction-coefficient must be a finite number >= 0",
+        ),
+        (
+            &[
+                "--poisson",
+                "0.3",
+                "--shear-strength",
+                "-5",
+                "--tangential-loads",
+                "1e-3",
+            ],
+            "--shear-strength must be a finite shear stress >= 0 Pa",
+        ),
+        (
+            &["--poisson", "0.3", "--friction-coefficient", "0.3"],
+            "bound a tangential path's shear",
+        ),
+        (
+            &["--tangential-loads", "1e-3"],
+            "a tangential path needs friction",
+        ),
+        (
+            &["--friction-coefficient", "0.3", "--tangential-loads", "1e-3"],
+            "friction needs the body's --poisson",
+        ),
+        (
+            &[
+                "--poisson",
+                "0.3",
+                "--friction-coefficient",
+                "0.3",
+                "--tangential-angle",
+                "1",
+            ],
+            "--tangential-angle orients a tangential path",
+        ),
+        (
+            &[
+                "--poisson",
+                "0.3",
+                "--friction-coefficient",
+                "0.3",
+                "--tangential-loads",
+                "1e-3",
+                "--tangential-displacements",
+                "1e-9",
+            ],
+            "cannot be used with",
+        ),
+        (&["--poisson", "0.3"], "--poisson does not apply to this case"),
+    ];
+    for (k, (extra, message)) in cases.iter().enumerate() {
+        let o = sphere(&dir(&format!("bad{k}")), extra);
+        assert!(!o.status.success(), "{extra:?} was accepted");
+        assert!(stderr(&o).contains(message), "{extra:?}: {}", stderr(&o));
+    }
+    // A sweep has no tangential path.
+    let o = run(&[
+        "sweep",
+        "--sphere-radius",
+        "1e-3",
+        "--n",
+        "64",
+        "--length",
+        "128e-6",
+        "--modulus",
+        "1e9",
+        "--approaches",
+        "1e-7",
+        "--poisson",
+        "0.3",
+        "--friction-coefficient",
+        "0.3",
+        "--out",
+        dir("sweep").to_str().unwrap(),
+        "--no-png",
+    ]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("follows a single normal solve"),
+        "{}",
+        stderr(&o)
+    );
+    // No normal load: nothing to shear.
+    let o = run(&[
+        "solve",
+        "--sphere-radius",
+        "1e-3",
+        "--n",
+        "64",
+        "--length",
+        "128e-6",
+        "--modulus",
+        "1e9",
+        "--load",
+        "0",
+        "--poisson",
+        "0.3",
+        "--friction-coefficient",
+        "0.3",
+        "--tangential-loads",
+        "1e-3",
+        "--out",
+        dir("unloaded").to_str().unwrap(),
+        "--no-png",
+    ]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("needs a normal contact"),
+        "{}",
+        stderr(&o)
+    );
+    // A layer's tangential compliance is not the half-space's.
+    let o = sphere(
+        &dir("layer"),
+        &[
+            "--thickness",
+            "1e-5",
+            "--poisson",
+            "0.3",
+            "--friction-coefficient",
+            "0.3",
+            "--tangential-loads",
+            "1e-3",
+        ],
+    );
+    assert!(
+        !o.status.success() && stderr(&o).contains("tangential loading of a layer is not implemented"),
+        "{}",
+        stderr(&o)
+    );
+}
