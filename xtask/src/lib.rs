@@ -22,6 +22,7 @@ pub mod fig11;
 pub mod fig12;
 pub mod fig13;
 pub mod fig14;
+pub mod friction;
 pub use plot;
 pub mod plastic;
 pub mod report;

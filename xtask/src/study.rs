@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 /// The studies, by name, with what each shows.
-pub const STUDIES: [(&str, &str); 9] = [
+pub const STUDIES: [(&str, &str); 10] = [
     (
         "pull-off-mesh",
         "a sphere's pull-off at mu = 1 against the cell size, point, line, surface and surface-energy laws (minutes)",
@@ -59,6 +59,12 @@ pub const STUDIES: [(&str, &str); 9] = [
          FIGURE=docs/figures/rate-retraction; minutes at mu = 1, hours at 5)",
     ),
     (
+        "friction-rough",
+        "partial slip of a rough Lennard-Jones contact (Rq = 2 z0, w0 = 0.05 E* z0) at three depths under a growing \
+         shear, Coulomb's mu = 0.3 alone and with a shear strength of 0.02 E*: static friction and stick area \
+         against the shear; writes the figure (N=256; FIGURE=docs/figures/friction-rough; a minute)",
+    ),
+    (
         "plastic-pull-off",
         "the pull-off of a Lennard-Jones sphere (mu = 5) loaded past yield, against the depth and the hardness, \
          beside the elastic sphere's and Mesarovic & Johnson's flattened sphere (N=256; HALF=256 z0; \
@@ -78,6 +84,7 @@ pub fn run(name: &str) -> Result<()> {
         "plastic-pull-off" => crate::plastic::plastic_pull_off(),
         "rate-pull-off" => crate::viscoelastic::rate_pull_off(),
         "rate-retraction" => crate::viscoelastic::rate_retraction(),
+        "friction-rough" => crate::friction::friction_rough(),
         _ => {
             let names: Vec<_> = STUDIES.iter().map(|(n, _)| *n).collect();
             bail!("unknown study `{name}`; the studies are {}", names.join(", "))
