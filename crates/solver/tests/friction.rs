@@ -79,6 +79,13 @@ fn cattaneo_mindlin_partial_slip() {
                 "nu {nu}, Q/muP {ratio}: {d:e} vs {d_exact:e}"
             );
             assert!(report.displacement[1].abs() < 1e-6 * d && report.force[1].abs() < 1e-9 * mu_p);
+            println!(
+                "| {nu} | {ratio} | {:.4} | {:.4} | {:.5} | {} |",
+                c / a,
+                c_exact / a,
+                d / d_exact,
+                report.iterations
+            );
             state = next;
         }
         // At the capacity the contact slides as a whole.
