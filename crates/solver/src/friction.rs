@@ -421,7 +421,6 @@ impl TangentialProblem {
         let mut gradient = [vec![0.0; n], vec![0.0; n]];
         let mut curvature = vec![0.0; n];
         let mut free = vec![false; n];
-        let mut free_before = vec![false; n];
         let (mut g_old, mut residual, mut iterations) = (0.0f64, f64::INFINITY, 0);
         let mut d = match control {
             TangentialControl::Displacement(d) => d,
@@ -495,8 +494,11 @@ impl TangentialProblem {
                     g_new += r[c][i] * gradient[c][i];
                 }
             }
-            let joined = (0..n).any(|i| free[i] && !free_before[i]);
-            let beta = if !joined && g_old > 0.0 {
+            // Restarted only where the direction would not descend: restarting whenever a cell
+            // joins the free set (as Polonsky and Keer do) restarts at nearly every iteration
+            // of a large rough contact and costs a fifth more iterations.
+            let descends = (0..n).map(|i| r[0][i] * t[0][i] + r[1][i] * t[1][i]).sum::<f64>() > 0.0;
+            let beta = if descends && g_old > 0.0 {
                 g_new / g_old
             } else {
                 0.0
@@ -540,7 +542,6 @@ impl TangentialProblem {
                 self.fix_force(&mut tau, q);
             }
             g_old = g_new;
-            free_before.clone_from(&free);
         }
         let gross = (0..n).all(|i| !free[i]);
         let mut report = self.report(&tau, &tau_prev, Some((&r, &free)), capacity, d);
