@@ -78,12 +78,9 @@ impl SolveControl {
             bail!("--tangential-angle must be a finite angle [rad], got {angle}");
         }
         let (c, s) = (angle.cos(), angle.sin());
-        let (values, make): (&Vec<f64>, fn([f64; 2]) -> solver::TangentialControl) = match (
-            &self.tangential_loads,
-            &self.tangential_displacements,
-        ) {
-            (Some(v), None) => (v, Force),
-            (None, Some(v)) => (v, Displacement),
+        let (values, force) = match (&self.tangential_loads, &self.tangential_displacements) {
+            (Some(v), None) => (v, true),
+            (None, Some(v)) => (v, false),
             (None, None) => {
                 if self.tangential_angle.is_some() {
                     bail!(
@@ -102,6 +99,7 @@ impl SolveControl {
         if let Some(v) = values.iter().find(|v| !v.is_finite()) {
             bail!("the tangential path's values must be finite, got {v}");
         }
+        let make = |v: [f64; 2]| if force { Force(v) } else { Displacement(v) };
         Ok(Some(values.iter().map(|v| make([v * c, v * s])).collect()))
     }
 

@@ -349,76 +349,49 @@ impl TangentialProblem {
         if !(v[0].is_finite() && v[1].is_finite()) {
             return Err(invalid("tangential control", v[0] + v[1], "must be finite"));
         }
-        let n = self.cells.len();
-        let area = self.cell_area;
         let capacity = self.capacity();
         let cell = self.operator.cell_compliance();
         let self_compliance = cell[0].max(cell[1]);
         let scale = self.bound.iter().fold(0.0f64, |m, &g| m.max(g)) * self_compliance;
-        let flat = |a: &Array2<f64>| -> Vec<f64> {
-            let s = a
-                .as_slice()
-                .map(|s| s.to_vec())
-                .unwrap_or_else(|| a.iter().copied().collect());
-            self.cells.iter().map(|&k| s[k]).collect()
-        };
-        let s_prev = [flat(&previous.slip[0]), flat(&previous.slip[1])];
-        let tau_prev = [flat(&previous.traction[0]), flat(&previous.traction[1])];
+        let s_prev = self.on_cells(&previous.slip);
+        let tau_prev = self.on_cells(&previous.traction);
         let mut tau = tau_prev.clone();
-        let force_of = |tau: &[Vec<f64>; 2]| {
-            [
-                tau[0].iter().sum::<f64>() * area,
-                tau[1].iter().sum::<f64>() * area,
-            ]
-        };
-        let project = |tau: &mut [Vec<f64>; 2]| {
-            for i in 0..n {
-                let m = tau[0][i].hypot(tau[1][i]);
-                if m > self.bound[i] {
-                    let f = self.bound[i] / m;
-                    tau[0][i] *= f;
-                    tau[1][i] *= f;
-                }
-            }
-        };
         let target = match control {
             TangentialControl::Force(q) => Some(q),
             TangentialControl::Displacement(_) => None,
         };
         if let Some(q) = target {
-            let magnitude = q[0].hypot(q[1]);
+            let magnitude = norm(q);
             if magnitude >= capacity {
                 // More than the contact carries: every cell slides along the force.
-                let dir = [q[0] / magnitude, q[1] / magnitude];
-                for i in 0..n {
-                    tau[0][i] = self.bound[i] * dir[0];
-                    tau[1][i] = self.bound[i] * dir[1];
+                for (t, g) in tau.iter_mut().zip(&self.bound) {
+                    *t = times(g / magnitude, q);
                 }
-                let mut report = self.report(&tau, &tau_prev, None, capacity, [f64::NAN; 2]);
+                let mut report = self.report(&tau, &tau_prev, None, [f64::NAN; 2]);
                 report.gross_sliding = true;
-                report.termination = Termination::Converged;
-                let mut energy = None;
-                let state = self.state(&tau, &s_prev, None, [f64::NAN; 2], &mut energy)?;
-                report.elastic_energy = energy.unwrap_or(0.0);
+                let (state, energy) = self.state(&tau, &s_prev, None, [f64::NAN; 2])?;
+                report.elastic_energy = energy;
                 report.wall_time_s = started.elapsed().as_secs_f64();
                 return Ok((state, report));
             }
             // The change of force spread in proportion to the bounds, then made exact.
-            let f = force_of(&tau);
-            for i in 0..n {
-                tau[0][i] += self.bound[i] * (q[0] - f[0]) / capacity;
-                tau[1][i] += self.bound[i] * (q[1] - f[1]) / capacity;
+            let change = sub(q, self.force(&tau));
+            for (t, g) in tau.iter_mut().zip(&self.bound) {
+                *t = add(*t, times(g / capacity, change));
             }
-            project(&mut tau);
+            self.project(&mut tau);
             self.fix_force(&mut tau, q);
         }
+        let n = self.cells.len();
         let mut ws = self.operator.make_workspace();
         let mut fields = Fields::new(self.shape);
-        let mut w = [vec![0.0; n], vec![0.0; n]];
-        let mut r = [vec![0.0; n], vec![0.0; n]];
-        let mut t = [vec![0.0; n], vec![0.0; n]];
-        let mut kt = [vec![0.0; n], vec![0.0; n]];
-        let mut gradient = [vec![0.0; n], vec![0.0; n]];
+        let (mut w, mut r, mut t, mut kt, mut gradient) = (
+            vec![[0.0; 2]; n],
+            vec![[0.0; 2]; n],
+            vec![[0.0; 2]; n],
+            vec![[0.0; 2]; n],
+            vec![[0.0; 2]; n],
+        );
         let mut curvature = vec![0.0; n];
         let mut free = vec![false; n];
         let (mut g_old, mut residual, mut iterations) = (0.0f64, f64::INFINITY, 0);
@@ -430,198 +403,188 @@ impl TangentialProblem {
         while iterations < options.max_iterations {
             // The surface's displacement plus the slip before: sticking cells hold it at D.
             fields.apply(&self.operator, &self.cells, &tau, &mut w, &mut ws)?;
-            for c in 0..2 {
-                w[c].iter_mut().zip(&s_prev[c]).for_each(|(w, s)| *w += s);
-            }
-            let at_bound =
-                |i: usize, tau: &[Vec<f64>; 2]| tau[0][i].hypot(tau[1][i]) >= self.bound[i] * (1.0 - 1e-12);
-            // D under force control: the mean over the sticking cells (then those released
-            // from their discs join them).
+            w.iter_mut().zip(&s_prev).for_each(|(w, s)| *w = add(*w, *s));
+            // D under force control: the mean over the cells inside their discs, then over the
+            // free cells (those released from their rims join them).
             for pass in 0..2 {
                 if target.is_some() {
                     let (mut sum, mut count) = ([0.0; 2], 0usize);
-                    for i in 0..n {
-                        if (pass == 0 && !at_bound(i, &tau)) || (pass == 1 && free[i]) {
-                            sum[0] += w[0][i];
-                            sum[1] += w[1][i];
+                    for (i, wi) in w.iter().enumerate() {
+                        if (pass == 0 && !self.on_rim(i, tau[i])) || (pass == 1 && free[i]) {
+                            sum = add(sum, *wi);
                             count += 1;
                         }
                     }
                     if count > 0 {
-                        d = [sum[0] / count as f64, sum[1] / count as f64];
+                        d = times(1.0 / count as f64, sum);
                     }
                 }
-                for i in 0..n {
-                    r[0][i] = w[0][i] - d[0];
-                    r[1][i] = w[1][i] - d[1];
-                    // A cell on its disc stays there while it slips outwards (-r along q).
-                    free[i] = !at_bound(i, &tau) || r[0][i] * tau[0][i] + r[1][i] * tau[1][i] > 0.0;
+                for (i, (ri, wi)) in r.iter_mut().zip(&w).enumerate() {
+                    *ri = sub(*wi, d);
+                    // A cell on its rim stays there while it slips outwards (-r along q).
+                    free[i] = !self.on_rim(i, tau[i]) || dot(*ri, tau[i]) > 0.0;
                 }
             }
             // The gradient on the set each cell may move in: a free cell's whole slip, a
             // slipping cell's slip across its shear (it moves along its disc's rim), with the
             // rim's curvature `|slip| / g` that the step must respect there.
             for i in 0..n {
-                if free[i] {
-                    gradient[0][i] = r[0][i];
-                    gradient[1][i] = r[1][i];
-                    curvature[i] = 0.0;
+                (gradient[i], curvature[i]) = if free[i] {
+                    (r[i], 0.0)
                 } else {
-                    let m = tau[0][i].hypot(tau[1][i]);
-                    let along = (r[0][i] * tau[0][i] + r[1][i] * tau[1][i]) / m;
-                    gradient[0][i] = r[0][i] - along * tau[0][i] / m;
-                    gradient[1][i] = r[1][i] - along * tau[1][i] / m;
-                    curvature[i] = (-along).max(0.0) / self.bound[i];
-                }
+                    let along = dot(r[i], tau[i]) / norm(tau[i]);
+                    (across(r[i], tau[i]), (-along).max(0.0) / self.bound[i])
+                };
             }
-            let worst = (0..n).fold(0.0f64, |m, i| m.max(gradient[0][i].hypot(gradient[1][i])));
-            residual = worst / scale;
+            residual = gradient.iter().fold(0.0f64, |m, g| m.max(norm(*g))) / scale;
             if residual <= options.tolerance {
                 termination = Termination::Converged;
                 break;
             }
             iterations += 1;
             // A conjugate direction, preconditioned by each cell's own stiffness (its
-            // compliance, plus the rim's curvature on a slipping cell), restarted when a cell
-            // joins the free set (as Polonsky and Keer restart when a cell joins the contact);
-            // a slipping cell's stays along its rim, and under a force the free cells take the
-            // direction's sum out (so that the step keeps the force, and D drops out of it).
+            // compliance, plus the rim's curvature on a slipping cell); a slipping cell's stays
+            // along its rim, and under a force the free cells take the direction's sum out (so
+            // that the step keeps the force, and D drops out of it).
             let mut g_new = 0.0;
-            for i in 0..n {
-                let precondition = self_compliance / (self_compliance + curvature[i]);
-                for c in 0..2 {
-                    gradient[c][i] *= precondition;
-                    g_new += r[c][i] * gradient[c][i];
-                }
+            for ((g, k), ri) in gradient.iter_mut().zip(&curvature).zip(&r) {
+                *g = times(self_compliance / (self_compliance + k), *g);
+                g_new += dot(*ri, *g);
             }
             // Restarted only where the direction would not descend: restarting whenever a cell
             // joins the free set (as Polonsky and Keer do) restarts at nearly every iteration
             // of a large rough contact and costs a fifth more iterations.
-            let descends = (0..n).map(|i| r[0][i] * t[0][i] + r[1][i] * t[1][i]).sum::<f64>() > 0.0;
+            let descends = r.iter().zip(&t).map(|(r, t)| dot(*r, *t)).sum::<f64>() > 0.0;
             let beta = if descends && g_old > 0.0 {
                 g_new / g_old
             } else {
                 0.0
             };
             for i in 0..n {
-                for c in 0..2 {
-                    t[c][i] = gradient[c][i] + beta * t[c][i];
-                }
+                t[i] = add(gradient[i], times(beta, t[i]));
                 if !free[i] {
-                    let m2 = tau[0][i] * tau[0][i] + tau[1][i] * tau[1][i];
-                    let along = (t[0][i] * tau[0][i] + t[1][i] * tau[1][i]) / m2;
-                    t[0][i] -= along * tau[0][i];
-                    t[1][i] -= along * tau[1][i];
+                    t[i] = across(t[i], tau[i]);
                 }
             }
             if target.is_some() {
                 let count = free.iter().filter(|&&f| f).count();
                 if count > 0 {
-                    for c in 0..2 {
-                        let mean = t[c].iter().sum::<f64>() / count as f64;
-                        (0..n).filter(|&i| free[i]).for_each(|i| t[c][i] -= mean);
-                    }
+                    let mean = times(1.0 / count as f64, t.iter().fold([0.0; 2], |s, t| add(s, *t)));
+                    t.iter_mut()
+                        .zip(&free)
+                        .filter(|(_, f)| **f)
+                        .for_each(|(t, _)| *t = sub(*t, mean));
                 }
             }
             fields.apply(&self.operator, &self.cells, &t, &mut kt, &mut ws)?;
             let (mut num, mut den) = (0.0, 0.0);
             for i in 0..n {
-                for c in 0..2 {
-                    num += r[c][i] * t[c][i];
-                    den += t[c][i] * (kt[c][i] + curvature[i] * t[c][i]);
-                }
+                num += dot(r[i], t[i]);
+                den += dot(t[i], kt[i]) + curvature[i] * dot(t[i], t[i]);
             }
             if den > 0.0 {
                 let alpha = num / den;
-                for c in 0..2 {
-                    tau[c].iter_mut().zip(&t[c]).for_each(|(v, t)| *v -= alpha * t);
-                }
+                tau.iter_mut()
+                    .zip(&t)
+                    .for_each(|(v, t)| *v = sub(*v, times(alpha, *t)));
             }
-            project(&mut tau);
+            self.project(&mut tau);
             if let Some(q) = target {
                 self.fix_force(&mut tau, q);
             }
             g_old = g_new;
         }
-        let gross = (0..n).all(|i| !free[i]);
-        let mut report = self.report(&tau, &tau_prev, Some((&r, &free)), capacity, d);
-        report.gross_sliding = gross;
+        let mut report = self.report(&tau, &tau_prev, Some((&r, &free)), d);
+        report.gross_sliding = free.iter().all(|f| !f);
         report.iterations = iterations;
         report.residual = residual;
         report.termination = termination;
-        let mut energy = None;
-        let state = self.state(&tau, &s_prev, Some((&r, &free)), d, &mut energy)?;
-        report.elastic_energy = energy.unwrap_or(0.0);
+        let (state, energy) = self.state(&tau, &s_prev, Some((&r, &free)), d)?;
+        report.elastic_energy = energy;
         report.wall_time_s = started.elapsed().as_secs_f64();
         Ok((state, report))
     }
 
-    /// Makes the total shear force `q` \[N\] exact by a uniform shear added to the cells inside
-    /// their discs, projecting again, until it holds or no cell is left inside.
-    fn fix_force(&self, tau: &mut [Vec<f64>; 2], q: [f64; 2]) {
-        let n = self.cells.len();
-        for _ in 0..50 {
-            let f = [
-                tau[0].iter().sum::<f64>() * self.cell_area,
-                tau[1].iter().sum::<f64>() * self.cell_area,
-            ];
-            let error = [q[0] - f[0], q[1] - f[1]];
-            if error[0].hypot(error[1]) <= 1e-13 * self.capacity() {
-                return;
-            }
-            let inside: Vec<usize> = (0..n)
-                .filter(|&i| tau[0][i].hypot(tau[1][i]) < self.bound[i] * (1.0 - 1e-12))
-                .collect();
-            if inside.is_empty() {
-                return;
-            }
-            let per = [
-                error[0] / (inside.len() as f64 * self.cell_area),
-                error[1] / (inside.len() as f64 * self.cell_area),
-            ];
-            for &i in &inside {
-                tau[0][i] += per[0];
-                tau[1][i] += per[1];
-                let m = tau[0][i].hypot(tau[1][i]);
-                if m > self.bound[i] {
-                    tau[0][i] *= self.bound[i] / m;
-                    tau[1][i] *= self.bound[i] / m;
-                }
+    /// A pair of fields' values on the contact cells.
+    fn on_cells(&self, fields: &[Array2<f64>; 2]) -> Vec<[f64; 2]> {
+        self.cells
+            .iter()
+            .map(|&k| {
+                let (j, i) = (k / self.shape.1, k % self.shape.1);
+                [fields[0][(j, i)], fields[1][(j, i)]]
+            })
+            .collect()
+    }
+
+    /// Whether cell `i`'s shear `q` is on its disc's rim.
+    fn on_rim(&self, i: usize, q: [f64; 2]) -> bool {
+        norm(q) >= self.bound[i] * (1.0 - 1e-12)
+    }
+
+    /// Every shear brought back inside its disc.
+    fn project(&self, tau: &mut [[f64; 2]]) {
+        for (t, &g) in tau.iter_mut().zip(&self.bound) {
+            let m = norm(*t);
+            if m > g {
+                *t = times(g / m, *t);
             }
         }
     }
 
-    /// The step's scalars (the solver's counts are filled in by the caller).
+    /// The total shear force \[N\].
+    fn force(&self, tau: &[[f64; 2]]) -> [f64; 2] {
+        times(self.cell_area, tau.iter().fold([0.0; 2], |s, t| add(s, *t)))
+    }
+
+    /// Makes the total shear force `q` \[N\] exact by a uniform shear added to the cells inside
+    /// their discs, projecting again, until it holds or no cell is left inside.
+    fn fix_force(&self, tau: &mut [[f64; 2]], q: [f64; 2]) {
+        for _ in 0..50 {
+            let error = sub(q, self.force(tau));
+            if norm(error) <= 1e-13 * self.capacity() {
+                return;
+            }
+            let inside: Vec<usize> = (0..tau.len()).filter(|&i| !self.on_rim(i, tau[i])).collect();
+            if inside.is_empty() {
+                return;
+            }
+            let per = times(1.0 / (inside.len() as f64 * self.cell_area), error);
+            for &i in &inside {
+                let moved = add(tau[i], per);
+                let m = norm(moved);
+                tau[i] = if m > self.bound[i] {
+                    times(self.bound[i] / m, moved)
+                } else {
+                    moved
+                };
+            }
+        }
+    }
+
+    /// The step's scalars (the solver's counts are filled in by the caller); `slip` gives each
+    /// cell's `r = -(slip increment)` and whether it is free (without it every cell slides).
     fn report(
         &self,
-        tau: &[Vec<f64>; 2],
-        tau_prev: &[Vec<f64>; 2],
-        slip: Option<(&[Vec<f64>; 2], &[bool])>,
-        capacity: f64,
+        tau: &[[f64; 2]],
+        tau_prev: &[[f64; 2]],
+        slip: Option<(&[[f64; 2]], &[bool])>,
         d: [f64; 2],
     ) -> ShearReport {
         let n = self.cells.len();
         let total = (self.shape.0 * self.shape.1) as f64;
-        let mut work = 0.0;
-        let mut slipping = 0usize;
+        let (mut work, mut slipping) = (0.0, n);
         if let Some((r, free)) = slip {
+            slipping = 0;
             for i in (0..n).filter(|&i| !free[i]) {
                 slipping += 1;
                 // The slip increment is -r; the shear averaged over the step.
-                for c in 0..2 {
-                    work -= 0.5 * (tau[c][i] + tau_prev[c][i]) * r[c][i];
-                }
+                work -= 0.5 * dot(add(tau[i], tau_prev[i]), r[i]);
             }
-        } else {
-            slipping = n;
         }
         ShearReport {
-            force: [
-                tau[0].iter().sum::<f64>() * self.cell_area,
-                tau[1].iter().sum::<f64>() * self.cell_area,
-            ],
+            force: self.force(tau),
             displacement: d,
-            capacity,
+            capacity: self.capacity(),
             stick_area_fraction: (n - slipping) as f64 / total,
             slip_area_fraction: slipping as f64 / total,
             frictional_work: work * self.cell_area,
@@ -634,49 +597,66 @@ impl TangentialProblem {
         }
     }
 
-    /// The state after the step: the shear, and the slip grown by each slipping cell's
-    /// increment (sticking cells keep theirs). `energy` receives the shear's elastic energy.
+    /// The state after the step, with the shear's elastic energy \[J\]: the shear, and the slip
+    /// grown by each slipping cell's increment (sticking cells keep theirs).
     fn state(
         &self,
-        tau: &[Vec<f64>; 2],
-        s_prev: &[Vec<f64>; 2],
-        slip: Option<(&[Vec<f64>; 2], &[bool])>,
+        tau: &[[f64; 2]],
+        s_prev: &[[f64; 2]],
+        slip: Option<(&[[f64; 2]], &[bool])>,
         d: [f64; 2],
-        energy: &mut Option<f64>,
-    ) -> Result<ShearState> {
+    ) -> Result<(ShearState, f64)> {
         let mut state = ShearState::unloaded(self.shape);
-        for c in 0..2 {
-            let traction = state.traction[c].as_slice_mut().expect("standard layout");
-            let slip_field = state.slip[c].as_slice_mut().expect("standard layout");
-            for (i, &k) in self.cells.iter().enumerate() {
-                traction[k] = tau[c][i];
-                slip_field[k] = s_prev[c][i]
-                    + match slip {
-                        Some((r, free)) if !free[i] => -r[c][i],
-                        _ => 0.0,
-                    };
+        for (i, &k) in self.cells.iter().enumerate() {
+            let (j, x) = (k / self.shape.1, k % self.shape.1);
+            let increment = match slip {
+                Some((r, free)) if !free[i] => times(-1.0, r[i]),
+                _ => [0.0; 2],
+            };
+            for c in 0..2 {
+                state.traction[c][(j, x)] = tau[i][c];
+                state.slip[c][(j, x)] = s_prev[i][c] + increment[c];
             }
         }
-        {
-            let (mut ux, mut uy) = (Array2::zeros(self.shape), Array2::zeros(self.shape));
-            let mut ws = self.operator.make_workspace();
-            self.operator.apply(
-                [state.traction[0].view(), state.traction[1].view()],
-                [ux.view_mut(), uy.view_mut()],
-                &mut ws,
-            )?;
-            *energy = Some(self.operator.energy(
-                [state.traction[0].view(), state.traction[1].view()],
-                [ux.view(), uy.view()],
-            ));
-        }
+        let (mut ux, mut uy) = (Array2::zeros(self.shape), Array2::zeros(self.shape));
+        let [tx, ty] = &state.traction;
+        self.operator.apply(
+            [tx.view(), ty.view()],
+            [ux.view_mut(), uy.view_mut()],
+            &mut self.operator.make_workspace(),
+        )?;
+        let energy = self
+            .operator
+            .energy([tx.view(), ty.view()], [ux.view(), uy.view()]);
         state.displacement = d;
-        state.force = [
-            tau[0].iter().sum::<f64>() * self.cell_area,
-            tau[1].iter().sum::<f64>() * self.cell_area,
-        ];
-        Ok(state)
+        state.force = self.force(tau);
+        Ok((state, energy))
     }
+}
+
+fn add(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] + b[0], a[1] + b[1]]
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn times(s: f64, a: [f64; 2]) -> [f64; 2] {
+    [s * a[0], s * a[1]]
+}
+
+fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+fn norm(a: [f64; 2]) -> f64 {
+    a[0].hypot(a[1])
+}
+
+/// `a` less its part along `q`.
+fn across(a: [f64; 2], q: [f64; 2]) -> [f64; 2] {
+    sub(a, times(dot(a, q) / dot(q, q), q))
 }
 
 /// Full-grid buffers for applying the shear compliance to values on the contact cells.
@@ -698,24 +678,26 @@ impl Fields {
         &mut self,
         op: &Shear,
         cells: &[usize],
-        values: &[Vec<f64>; 2],
-        out: &mut [Vec<f64>; 2],
+        values: &[[f64; 2]],
+        out: &mut [[f64; 2]],
         ws: &mut elastic::ShearWorkspace,
     ) -> Result<()> {
-        for c in 0..2 {
-            let field = self.traction[c].as_slice_mut().expect("standard layout");
-            for (i, &k) in cells.iter().enumerate() {
-                field[k] = values[c][i];
-            }
+        let [tx, ty] = &mut self.traction;
+        let (sx, sy) = (
+            tx.as_slice_mut().expect("standard layout"),
+            ty.as_slice_mut().expect("standard layout"),
+        );
+        for (&k, v) in cells.iter().zip(values) {
+            (sx[k], sy[k]) = (v[0], v[1]);
         }
-        let [tx, ty] = &self.traction;
         let [ux, uy] = &mut self.displacement;
         op.apply([tx.view(), ty.view()], [ux.view_mut(), uy.view_mut()], ws)?;
-        for c in 0..2 {
-            let field = self.displacement[c].as_slice().expect("standard layout");
-            for (i, &k) in cells.iter().enumerate() {
-                out[c][i] = field[k];
-            }
+        let (dx, dy) = (
+            ux.as_slice().expect("standard layout"),
+            uy.as_slice().expect("standard layout"),
+        );
+        for (&k, o) in cells.iter().zip(out.iter_mut()) {
+            *o = [dx[k], dy[k]];
         }
         Ok(())
     }
