@@ -124,14 +124,5 @@ pub fn friction_rough() -> Result<()> {
             ));
         }
     }
-    let path = std::path::PathBuf::from(figure);
-    if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir)?;
-    }
-    let stem = path
-        .file_name()
-        .and_then(|s| s.to_str())
-        .unwrap_or("friction-rough");
-    chart.save(path.parent().unwrap_or(std::path::Path::new(".")), stem)?;
-    Ok(())
+    crate::study::save_figure(&chart, &figure)
 }

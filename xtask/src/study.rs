@@ -92,6 +92,16 @@ pub fn run(name: &str) -> Result<()> {
     }
 }
 
+/// Writes `chart` to `figure` (a path without extension: `.png` and `.svg`), making its
+/// directory.
+pub(crate) fn save_figure(chart: &plot::Chart, figure: &str) -> Result<()> {
+    let path = std::path::Path::new(figure);
+    let dir = path.parent().unwrap_or(std::path::Path::new("."));
+    std::fs::create_dir_all(dir)?;
+    let stem = path.file_name().and_then(|s| s.to_str()).unwrap_or("figure");
+    chart.save(dir, stem)
+}
+
 /// `w0` [J/m^2] of the smooth sphere (R, E*, z0 of [`crate::sphere`]) at Tabor parameter
 /// `mu`: `mu^3 = R w0^2 / (E*^2 z0^3)`.
 pub(crate) fn work_of_adhesion(mu: f64) -> f64 {

@@ -266,16 +266,7 @@ pub fn rate_retraction() -> Result<()> {
         Mark::Triangles,
         PALETTE[2],
     ));
-    let path = std::path::PathBuf::from(figure);
-    if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir)?;
-    }
-    let stem = path
-        .file_name()
-        .and_then(|s| s.to_str())
-        .unwrap_or("rate-retraction");
-    chart.save(path.parent().unwrap_or(std::path::Path::new(".")), stem)?;
-    Ok(())
+    crate::study::save_figure(&chart, &figure)
 }
 
 /// How far the sphere is pressed in \[z0\].

@@ -128,11 +128,6 @@ impl Shear {
         ShearWorkspace([self.fft.make_workspace(), self.fft.make_workspace()])
     }
 
-    /// Bytes a workspace holds.
-    pub fn workspace_bytes(ws: &ShearWorkspace) -> usize {
-        ws.0[0].bytes() + ws.0[1].bytes()
-    }
-
     /// Writes the tangential displacements \[m\] `(u_x, u_y)` under the shear tractions
     /// `(q_x, q_y)` \[Pa\]: two forward and two inverse transforms.
     ///
