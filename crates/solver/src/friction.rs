@@ -11,9 +11,9 @@
 //! `g = tau0 + mu p_c`, and slips along its shear when on it. A step is then the convex problem
 //! `min 1/2 q.Kq - q.(D - s_prev)` over shears inside their discs (its optimality conditions
 //! are exactly these), under a prescribed `D` or, with `D` its multiplier, a prescribed total
-//! force `Q = sum q dA` \[N\]. It is solved by conjugate gradients on the sticking cells with
-//! the slipping cells held on their discs, each turned along its slip, and every iterate
-//! projected back inside (the tangential form of Polonsky & Keer's method, 1999).
+//! force `Q = sum q dA` \[N\]. It is solved by conjugate gradients over the free cells and
+//! along the slipping cells' rims (the rim's curvature in the step), every iterate projected
+//! back onto the discs: a tangential form of Polonsky & Keer's method (1999).
 //!
 //! The problem is the decoupled one: the normal pressure is the normal solution's, whatever the
 //! shear ([`elastic::shear`] says when that is exact).
