@@ -29,7 +29,7 @@ fn check(what: &'static str, expected: (usize, usize), got: (usize, usize)) -> R
 }
 
 /// Wavevector [rad/m] of DFT index `k` on an axis of `n` points spanning `l` metres.
-fn wavevector(k: usize, n: usize, l: f64) -> f64 {
+pub(crate) fn wavevector(k: usize, n: usize, l: f64) -> f64 {
     let signed = if k <= n / 2 { k as f64 } else { k as f64 - n as f64 };
     2.0 * PI * signed / l
 }

@@ -20,6 +20,7 @@
 use crate::error::{ElasticError, Result};
 use crate::love::cell_influence;
 use crate::material::check_poisson;
+use crate::operators::wavevector;
 use crate::{Compliance, Domain};
 use fft2::{Complex64, Fft2, Workspace as FftWorkspace};
 use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip};
@@ -246,20 +247,13 @@ fn cell_integral(kernel: Kernel, x: f64, y: f64, a: f64, b: f64) -> f64 {
     corner(x + a, y + b) - corner(x + a, y - b) - corner(x - a, y + b) + corner(x - a, y - b)
 }
 
-/// Wavevector [rad/m] of DFT index `k` on an axis of `n` points spanning `l` metres, and
-/// whether it is the Nyquist index (whose sign is ambiguous).
-fn wavevector(k: usize, n: usize, l: f64) -> (f64, bool) {
-    let signed = if k <= n / 2 { k as f64 } else { k as f64 - n as f64 };
-    (2.0 * PI * signed / l, 2 * k == n)
-}
-
 fn periodic_kernels(domain: &Domain, g: f64, nu: f64) -> (Fft2, [Array2<f64>; 3]) {
     let Domain { nx, ny, dx, dy, .. } = *domain;
     let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
     let scale = 1.0 / (nx * ny) as f64;
     let make = |which: usize| {
         Array2::from_shape_fn((nx / 2 + 1, ny), |(kx, ky)| {
-            let ((qx, nyq_x), (qy, nyq_y)) = (wavevector(kx, nx, lx), wavevector(ky, ny, ly));
+            let (qx, qy) = (wavevector(kx, nx, lx), wavevector(ky, ny, ly));
             let q = qx.hypot(qy);
             if q == 0.0 {
                 return 0.0;
@@ -269,7 +263,7 @@ fn periodic_kernels(domain: &Domain, g: f64, nu: f64) -> (Fft2, [Array2<f64>; 3]
                 0 => c * (1.0 - nu * qx * qx / (q * q)),
                 1 => c * (1.0 - nu * qy * qy / (q * q)),
                 // At a Nyquist index `+q` and `-q` are one mode: the odd coupling averages out.
-                _ if nyq_x || nyq_y => 0.0,
+                _ if 2 * kx == nx || 2 * ky == ny => 0.0,
                 _ => -c * nu * qx * qy / (q * q),
             }
         })

@@ -382,7 +382,6 @@ fn shear(
     )?;
     let mut value = serde_json::to_value(solver::TangentialSummary::of(&reports))?;
     value["steps"] = serde_json::to_value(&reports)?;
-    value["contact_area_fraction"] = serde_json::to_value(tangential.contact_area_fraction())?;
     summary["tangential"] = value;
     let [shear_x, shear_y] = state.traction;
     let [slip_x, slip_y] = state.slip;

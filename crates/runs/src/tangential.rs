@@ -90,10 +90,6 @@ pub fn run(
     if let Value::Object(map) = &mut value {
         map.insert("steps".into(), json!(reports.len()));
         map.insert(
-            "contact_area_fraction".into(),
-            json!(tangential.contact_area_fraction()),
-        );
-        map.insert(
             "units".into(),
             json!({
                 "static_friction": "N", "frictional_work": "J", "work": "J",

@@ -360,6 +360,8 @@ impl TangentialProblem {
             TangentialControl::Force(q) => Some(q),
             TangentialControl::Displacement(_) => None,
         };
+        let mut ws = self.operator.make_workspace();
+        let mut fields = Fields::new(self.shape);
         if let Some(q) = target {
             let magnitude = norm(q);
             if magnitude >= capacity {
@@ -369,8 +371,8 @@ impl TangentialProblem {
                 }
                 let mut report = self.report(&tau, &tau_prev, None, [f64::NAN; 2]);
                 report.gross_sliding = true;
-                let (state, energy) = self.state(&tau, &s_prev, None, [f64::NAN; 2])?;
-                report.elastic_energy = energy;
+                report.elastic_energy = fields.energy(&self.operator, &self.cells, &tau, &mut ws)?;
+                let state = self.state(&tau, &s_prev, None, [f64::NAN; 2]);
                 report.wall_time_s = started.elapsed().as_secs_f64();
                 return Ok((state, report));
             }
@@ -383,8 +385,6 @@ impl TangentialProblem {
             self.fix_force(&mut tau, q);
         }
         let n = self.cells.len();
-        let mut ws = self.operator.make_workspace();
-        let mut fields = Fields::new(self.shape);
         let (mut w, mut r, mut t, mut kt, mut gradient) = (
             vec![[0.0; 2]; n],
             vec![[0.0; 2]; n],
@@ -499,8 +499,8 @@ impl TangentialProblem {
         report.iterations = iterations;
         report.residual = residual;
         report.termination = termination;
-        let (state, energy) = self.state(&tau, &s_prev, Some((&r, &free)), d)?;
-        report.elastic_energy = energy;
+        report.elastic_energy = fields.energy(&self.operator, &self.cells, &tau, &mut ws)?;
+        let state = self.state(&tau, &s_prev, Some((&r, &free)), d);
         report.wall_time_s = started.elapsed().as_secs_f64();
         Ok((state, report))
     }
@@ -544,19 +544,17 @@ impl TangentialProblem {
             if norm(error) <= 1e-13 * self.capacity() {
                 return;
             }
-            let inside: Vec<usize> = (0..tau.len()).filter(|&i| !self.on_rim(i, tau[i])).collect();
-            if inside.is_empty() {
+            let inside = (0..tau.len()).filter(|&i| !self.on_rim(i, tau[i])).count();
+            if inside == 0 {
                 return;
             }
-            let per = times(1.0 / (inside.len() as f64 * self.cell_area), error);
-            for &i in &inside {
-                let moved = add(tau[i], per);
-                let m = norm(moved);
-                tau[i] = if m > self.bound[i] {
-                    times(self.bound[i] / m, moved)
-                } else {
-                    moved
-                };
+            let per = times(1.0 / (inside as f64 * self.cell_area), error);
+            for (i, g) in self.bound.iter().enumerate() {
+                if !self.on_rim(i, tau[i]) {
+                    let moved = add(tau[i], per);
+                    let m = norm(moved);
+                    tau[i] = if m > *g { times(g / m, moved) } else { moved };
+                }
             }
         }
     }
@@ -597,15 +595,15 @@ impl TangentialProblem {
         }
     }
 
-    /// The state after the step, with the shear's elastic energy \[J\]: the shear, and the slip
-    /// grown by each slipping cell's increment (sticking cells keep theirs).
+    /// The state after the step: the shear, and the slip grown by each slipping cell's
+    /// increment (sticking cells keep theirs).
     fn state(
         &self,
         tau: &[[f64; 2]],
         s_prev: &[[f64; 2]],
         slip: Option<(&[[f64; 2]], &[bool])>,
         d: [f64; 2],
-    ) -> Result<(ShearState, f64)> {
+    ) -> ShearState {
         let mut state = ShearState::unloaded(self.shape);
         for (i, &k) in self.cells.iter().enumerate() {
             let (j, x) = (k / self.shape.1, k % self.shape.1);
@@ -618,19 +616,9 @@ impl TangentialProblem {
                 state.slip[c][(j, x)] = s_prev[i][c] + increment[c];
             }
         }
-        let (mut ux, mut uy) = (Array2::zeros(self.shape), Array2::zeros(self.shape));
-        let [tx, ty] = &state.traction;
-        self.operator.apply(
-            [tx.view(), ty.view()],
-            [ux.view_mut(), uy.view_mut()],
-            &mut self.operator.make_workspace(),
-        )?;
-        let energy = self
-            .operator
-            .energy([tx.view(), ty.view()], [ux.view(), uy.view()]);
         state.displacement = d;
         state.force = self.force(tau);
-        Ok((state, energy))
+        state
     }
 }
 
@@ -673,13 +661,13 @@ impl Fields {
         }
     }
 
-    /// `out = K values` on the contact `cells` (values zero elsewhere).
-    fn apply(
+    /// The full fields of `values` on the contact `cells` (zero elsewhere) and their
+    /// displacements.
+    fn load(
         &mut self,
         op: &Shear,
         cells: &[usize],
         values: &[[f64; 2]],
-        out: &mut [[f64; 2]],
         ws: &mut elastic::ShearWorkspace,
     ) -> Result<()> {
         let [tx, ty] = &mut self.traction;
@@ -692,6 +680,20 @@ impl Fields {
         }
         let [ux, uy] = &mut self.displacement;
         op.apply([tx.view(), ty.view()], [ux.view_mut(), uy.view_mut()], ws)?;
+        Ok(())
+    }
+
+    /// `out = K values` on the contact `cells`.
+    fn apply(
+        &mut self,
+        op: &Shear,
+        cells: &[usize],
+        values: &[[f64; 2]],
+        out: &mut [[f64; 2]],
+        ws: &mut elastic::ShearWorkspace,
+    ) -> Result<()> {
+        self.load(op, cells, values, ws)?;
+        let [ux, uy] = &self.displacement;
         let (dx, dy) = (
             ux.as_slice().expect("standard layout"),
             uy.as_slice().expect("standard layout"),
@@ -700,6 +702,19 @@ impl Fields {
             *o = [dx[k], dy[k]];
         }
         Ok(())
+    }
+
+    /// The elastic energy \[J\] of the shear `values` on the contact `cells`.
+    fn energy(
+        &mut self,
+        op: &Shear,
+        cells: &[usize],
+        values: &[[f64; 2]],
+        ws: &mut elastic::ShearWorkspace,
+    ) -> Result<f64> {
+        self.load(op, cells, values, ws)?;
+        let ([tx, ty], [ux, uy]) = (&self.traction, &self.displacement);
+        Ok(op.energy([tx.view(), ty.view()], [ux.view(), uy.view()]))
     }
 }
 
@@ -718,6 +733,8 @@ pub struct TangentialSummary {
     pub work: f64,
     /// Whether every step converged.
     pub all_converged: bool,
+    /// The cells that carry shear, as a fraction of the grid [-].
+    pub contact_area_fraction: f64,
 }
 
 impl TangentialSummary {
@@ -739,6 +756,9 @@ impl TangentialSummary {
             frictional_work: reports.iter().map(|r| r.frictional_work).sum(),
             work,
             all_converged: reports.iter().all(|r| r.termination == Termination::Converged),
+            contact_area_fraction: reports
+                .first()
+                .map_or(0.0, |r| r.stick_area_fraction + r.slip_area_fraction),
         }
     }
 }

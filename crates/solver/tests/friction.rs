@@ -34,6 +34,19 @@ fn hertz_contact(n: usize, cells: f64) -> (ContactProblem, ContactState, f64, f6
     (problem, state, load, a)
 }
 
+/// The tangential problem of a non-adhesive normal solution under Coulomb's `MU`, for
+/// Poisson's ratio `nu`.
+fn coulomb(problem: &ContactProblem, normal: &ContactState, nu: f64) -> TangentialProblem {
+    TangentialProblem::new(
+        problem.operator.as_ref(),
+        nu,
+        Friction::new(MU, 0.0).unwrap(),
+        normal,
+        0.0,
+    )
+    .unwrap()
+}
+
 fn options() -> ShearOptions {
     ShearOptions::default()
 }
@@ -45,14 +58,7 @@ fn options() -> ShearOptions {
 fn cattaneo_mindlin_partial_slip() {
     let (problem, normal, load, a) = hertz_contact(128, 24.0);
     for nu in [0.5, 0.3] {
-        let tangential = TangentialProblem::new(
-            problem.operator.as_ref(),
-            nu,
-            Friction::new(MU, 0.0).unwrap(),
-            &normal,
-            0.0,
-        )
-        .unwrap();
+        let tangential = coulomb(&problem, &normal, nu);
         let g = E_STAR * (1.0 - nu) / 2.0;
         let mu_p = MU * load;
         // The grid's contact carries mu times its load.
@@ -104,14 +110,7 @@ fn fretting_loop_dissipates_mindlin_deresiewicz() {
     let (problem, normal, load, a) = hertz_contact(128, 24.0);
     let nu = 0.3;
     let g = E_STAR * (1.0 - nu) / 2.0;
-    let tangential = TangentialProblem::new(
-        problem.operator.as_ref(),
-        nu,
-        Friction::new(MU, 0.0).unwrap(),
-        &normal,
-        0.0,
-    )
-    .unwrap();
+    let tangential = coulomb(&problem, &normal, nu);
     let mu_p = MU * load;
     let amplitude = 0.6 * mu_p;
     let steps = 16;
@@ -166,14 +165,7 @@ fn fretting_loop_dissipates_mindlin_deresiewicz() {
 #[test]
 fn displacement_control_matches_force_control() {
     let (problem, normal, load, _) = hertz_contact(96, 16.0);
-    let tangential = TangentialProblem::new(
-        problem.operator.as_ref(),
-        0.4,
-        Friction::new(MU, 0.0).unwrap(),
-        &normal,
-        0.0,
-    )
-    .unwrap();
+    let tangential = coulomb(&problem, &normal, 0.4);
     let start = ShearState::unloaded((96, 96));
     // Along a diagonal, to exercise the coupling.
     let q = 0.5 * MU * load / 2f64.sqrt();
