@@ -7,11 +7,14 @@
 //! ratio `nu` displaces it by (Johnson 1985, Eq. 3.86)
 //! `u_x = Q_x / (2 pi G) [(1 - nu) / r + nu x^2 / r^3]`, `u_y = Q_x / (2 pi G) nu x y / r^3`,
 //! and by the same in `y` for `Q_y`; in Fourier space the multipliers are
-//! `(1 - nu qx^2/q^2) / (G q)`, `(1 - nu qy^2/q^2) / (G q)` and `-nu qx qy / (G q^3)`. The
-//! normal displacement a shear traction also makes, `(1 - 2 nu)` times a kernel of its own, is
-//! left out: it vanishes for an incompressible body and between bodies of like materials, and
-//! the problems built on this operator are the decoupled ones (docs/method.md says how large
-//! the neglected coupling is).
+//! `(1 - nu qx^2/q^2) / (G q)`, `(1 - nu qy^2/q^2) / (G q)` and `-nu qx qy / (G q^3)`.
+//!
+//! Unless `nu = 1/2`, normal and tangential loads are coupled (Johnson 1985, Eqs. 3.19 and
+//! 3.86): the shear moves the surface into the body by `u_z = (1 - 2 nu)/(4 pi G) Q_x x / r^2`,
+//! and a compressive point load `P` moves it inwards, `u_x = -(1 - 2 nu)/(4 pi G) P x / r^2`;
+//! in Fourier space the multiplier `-i (1 - 2 nu) qx / (2 G q^2)` and its negative
+//! ([`Shear::coupled_normal`], [`Shear::coupled_tangential`]). Between bodies of like materials
+//! the coupling cancels; against a rigid counterface it does not.
 //!
 //! As the normal operators: [`Shear`] is periodic (the mean mode, which a uniform shear moves
 //! without bound, is left out: displacements are measured from the mean surface) or free
@@ -40,6 +43,9 @@ pub struct Shear {
     /// The diagonal: a cell's displacement along x and along y under a unit traction on itself
     /// along the same axis \[m/Pa\].
     cell: [f64; 2],
+    /// The coupling's multipliers `m_x`, `m_y` (layout of `kernels`; `None` at `nu = 1/2`):
+    /// `u_z = i (m_x q_x + m_y q_y)` and `u_c = -i m_c p` in Fourier space.
+    coupling: Option<[Array2<f64>; 2]>,
 }
 
 /// Buffers for [`Shear::apply`]: one per concurrent caller.
@@ -77,6 +83,13 @@ impl Shear {
         } else {
             free_kernels(&domain, scale, poisson)
         };
+        let coupling = (poisson < 0.5).then(|| {
+            if domain.periodic {
+                periodic_coupling(&domain, shear_modulus, poisson)
+            } else {
+                free_coupling(&domain, &fft, shear_modulus, poisson)
+            }
+        });
         Ok(Shear {
             domain,
             shear_modulus,
@@ -84,6 +97,7 @@ impl Shear {
             fft,
             kernels,
             cell,
+            coupling,
         })
     }
 
@@ -140,21 +154,12 @@ impl Shear {
         displacement: [ArrayViewMut2<f64>; 2],
         ws: &mut ShearWorkspace,
     ) -> Result<()> {
-        let shape = self.domain.shape();
-        for (what, got) in [
+        self.check_shapes(&[
             ("traction x", traction[0].dim()),
             ("traction y", traction[1].dim()),
             ("displacement x", displacement[0].dim()),
             ("displacement y", displacement[1].dim()),
-        ] {
-            if got != shape {
-                return Err(ElasticError::ShapeMismatch {
-                    what,
-                    expected: shape,
-                    got,
-                });
-            }
-        }
+        ])?;
         let [wx, wy] = &mut ws.0;
         self.fft.forward_into(traction[0], wx);
         self.fft.forward_into(traction[1], wy);
@@ -175,6 +180,94 @@ impl Shear {
         Ok(())
     }
 
+    /// Whether pressure and shear are coupled (`nu < 1/2`).
+    pub fn coupled(&self) -> bool {
+        self.coupling.is_some()
+    }
+
+    /// Writes the normal displacement \[m\] (into the body, as a compressive pressure's) under the
+    /// shear tractions `(q_x, q_y)` \[Pa\]; zero at `nu = 1/2`. On periodic grids relative to
+    /// its mean.
+    ///
+    /// # Errors
+    /// [`ElasticError::ShapeMismatch`] if a field is not `(ny, nx)`.
+    pub fn coupled_normal(
+        &self,
+        traction: [ArrayView2<f64>; 2],
+        mut normal: ArrayViewMut2<f64>,
+        ws: &mut ShearWorkspace,
+    ) -> Result<()> {
+        self.check_shapes(&[
+            ("traction x", traction[0].dim()),
+            ("traction y", traction[1].dim()),
+            ("normal displacement", normal.dim()),
+        ])?;
+        let Some([mx, my]) = &self.coupling else {
+            normal.fill(0.0);
+            return Ok(());
+        };
+        let [wx, wy] = &mut ws.0;
+        self.fft.forward_into(traction[0], wx);
+        self.fft.forward_into(traction[1], wy);
+        Zip::from(wx.spectrum_mut())
+            .and(wy.spectrum())
+            .and(mx)
+            .and(my)
+            .par_for_each(|x, &y, &a, &b| *x = Complex64::i() * (*x * a + y * b));
+        self.fft.inverse_into(wx, normal, 1.0);
+        Ok(())
+    }
+
+    /// Writes the tangential displacements \[m\] `(u_x, u_y)` under the compressive pressure
+    /// \[Pa\] (inwards, towards where it presses); zero at `nu = 1/2`. On periodic grids relative
+    /// to their means.
+    ///
+    /// # Errors
+    /// [`ElasticError::ShapeMismatch`] if a field is not `(ny, nx)`.
+    pub fn coupled_tangential(
+        &self,
+        pressure: ArrayView2<f64>,
+        displacement: [ArrayViewMut2<f64>; 2],
+        ws: &mut ShearWorkspace,
+    ) -> Result<()> {
+        self.check_shapes(&[
+            ("pressure", pressure.dim()),
+            ("displacement x", displacement[0].dim()),
+            ("displacement y", displacement[1].dim()),
+        ])?;
+        let [mut ux, mut uy] = displacement;
+        let Some([mx, my]) = &self.coupling else {
+            ux.fill(0.0);
+            uy.fill(0.0);
+            return Ok(());
+        };
+        let [wx, wy] = &mut ws.0;
+        self.fft.forward_into(pressure, wx);
+        Zip::from(wx.spectrum_mut())
+            .and(wy.spectrum_mut())
+            .and(mx)
+            .and(my)
+            .par_for_each(|x, y, &a, &b| {
+                let p = -Complex64::i() * *x;
+                (*x, *y) = (p * a, p * b);
+            });
+        self.fft.inverse_into(wx, ux, 1.0);
+        self.fft.inverse_into(wy, uy, 1.0);
+        Ok(())
+    }
+
+    fn check_shapes(&self, fields: &[(&'static str, (usize, usize))]) -> Result<()> {
+        let shape = self.domain.shape();
+        match fields.iter().find(|(_, got)| *got != shape) {
+            Some(&(what, got)) => Err(ElasticError::ShapeMismatch {
+                what,
+                expected: shape,
+                got,
+            }),
+            None => Ok(()),
+        }
+    }
+
     /// Elastic energy `(1/2) sum q . u dx dy` \[J\] stored by `traction`, given its displacement.
     pub fn energy(&self, traction: [ArrayView2<f64>; 2], displacement: [ArrayView2<f64>; 2]) -> f64 {
         let mut sum = 0.0;
@@ -185,13 +278,16 @@ impl Shear {
     }
 }
 
-/// The point kernels integrated over a cell: `1/r`, `x^2/r^3`, `y^2/r^3` and `x y/r^3`.
+/// The point kernels integrated over a cell: `1/r`, `x^2/r^3`, `y^2/r^3` and `x y/r^3`; the
+/// coupling's `x/r^2` and `y/r^2`.
 #[derive(Clone, Copy)]
 enum Kernel {
     One,
     Xx,
     Yy,
     Xy,
+    X,
+    Y,
 }
 
 /// `x ln(y + r)`, vanishing with `x`, and evaluated without cancellation for `y <= 0` (as in
@@ -206,6 +302,15 @@ fn x_log(x: f64, y: f64) -> f64 {
     } else {
         (x * x / (r - y)).ln()
     }
+}
+
+/// `x atan(y/x) + (y/2) ln(x^2 + y^2)`, whose mixed derivative is `x / (x^2 + y^2)`; its limits
+/// on the axes.
+fn x_atan(x: f64, y: f64) -> f64 {
+    let r2 = x * x + y * y;
+    let along = if x == 0.0 { 0.0 } else { x * (y / x).atan() };
+    let log = if y == 0.0 { 0.0 } else { 0.5 * y * r2.ln() };
+    along + log
 }
 
 /// Distance in half-sides beyond which [`cell_integral`] integrates by Gauss quadrature: the
@@ -230,10 +335,12 @@ fn cell_integral(kernel: Kernel, x: f64, y: f64, a: f64, b: f64) -> f64 {
                 let (s, t) = (x - u * a, y - v * b);
                 let r = s.hypot(t);
                 let f = match kernel {
-                    Kernel::Xx => s * s,
-                    Kernel::Yy => t * t,
-                    _ => s * t,
-                } / (r * r * r);
+                    Kernel::Xx => s * s / r,
+                    Kernel::Yy => t * t / r,
+                    Kernel::X => s,
+                    Kernel::Y => t,
+                    _ => s * t / r,
+                } / (r * r);
                 sum += wu * wv * f;
             }
         }
@@ -242,6 +349,8 @@ fn cell_integral(kernel: Kernel, x: f64, y: f64, a: f64, b: f64) -> f64 {
     let corner = |s: f64, t: f64| match kernel {
         Kernel::Xx => x_log(t, s),
         Kernel::Yy => x_log(s, t),
+        Kernel::X => x_atan(s, t),
+        Kernel::Y => x_atan(t, s),
         _ => -s.hypot(t),
     };
     corner(x + a, y + b) - corner(x + a, y - b) - corner(x - a, y + b) + corner(x - a, y - b)
@@ -315,4 +424,60 @@ fn free_kernels(domain: &Domain, scale: f64, nu: f64) -> (Fft2, [Array2<f64>; 3]
     let kyy = spectrum(&|k| (1.0 - nu) * one[k] + nu * yy[k], false, &mut ws);
     let kxy = spectrum(&|k| nu * xy[k], true, &mut ws);
     (fft, [kxx, kyy, kxy])
+}
+
+/// The coupling's multipliers on a periodic grid: `m_x = -(1 - 2 nu) qx / (2 G q^2)`, zero at
+/// the mean and, along its own axis, at the Nyquist index (where `+q` and `-q` are one mode and
+/// the odd kernel averages out).
+fn periodic_coupling(domain: &Domain, g: f64, nu: f64) -> [Array2<f64>; 2] {
+    let Domain { nx, ny, dx, dy, .. } = *domain;
+    let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
+    let c = -(1.0 - 2.0 * nu) / (2.0 * g * (nx * ny) as f64);
+    let make = |along_x: bool| {
+        Array2::from_shape_fn((nx / 2 + 1, ny), |(kx, ky)| {
+            let (qx, qy) = (wavevector(kx, nx, lx), wavevector(ky, ny, ly));
+            let q2 = qx * qx + qy * qy;
+            let nyquist = if along_x { 2 * kx == nx } else { 2 * ky == ny };
+            if q2 == 0.0 || nyquist {
+                0.0
+            } else {
+                c * if along_x { qx } else { qy } / q2
+            }
+        })
+    };
+    [make(true), make(false)]
+}
+
+/// The coupling's multipliers on a free grid: the imaginary spectra of the cell integrals of
+/// `(1 - 2 nu)/(4 pi G) x / r^2` and `... y / r^2`, odd along their own axis.
+fn free_coupling(domain: &Domain, fft: &Fft2, g: f64, nu: f64) -> [Array2<f64>; 2] {
+    let Domain { nx, ny, dx, dy, .. } = *domain;
+    let (a, b) = (dx / 2.0, dy / 2.0);
+    let (mx, my) = fft.shape();
+    let scale = (1.0 - 2.0 * nu) / (4.0 * PI * g) / (mx * my) as f64;
+    let fold = |k: usize, n: usize| if k <= n { (k, 1.0) } else { (2 * n - k, -1.0) };
+    let mut ws = fft.make_workspace();
+    let mut make = |kernel: Kernel, along_x: bool| {
+        let values: Vec<f64> = (0..(ny + 1) * (nx + 1))
+            .into_par_iter()
+            .map(|k| {
+                let (j, i) = (k / (nx + 1), k % (nx + 1));
+                cell_integral(kernel, i as f64 * dx, j as f64 * dy, a, b)
+            })
+            .collect();
+        let row = |j: usize, out: &mut [f64]| {
+            let (jj, sy) = fold(j, ny);
+            out.iter_mut().enumerate().for_each(|(i, o)| {
+                let (ii, sx) = fold(i, nx);
+                let (nyquist, sign) = if along_x { (ii == nx, sx) } else { (jj == ny, sy) };
+                *o = if nyquist {
+                    0.0
+                } else {
+                    sign * values[jj * (nx + 1) + ii]
+                };
+            });
+        };
+        fft.imaginary_spectrum(row, &mut ws).mapv(|m| m * scale)
+    };
+    [make(Kernel::X, true), make(Kernel::Y, false)]
 }

@@ -217,10 +217,21 @@ impl Fft2 {
     /// (`row(y, out)` writes row `y`, `mx` values): the spectrum of an even kernel, which is
     /// real. The field itself is never stored.
     pub fn real_spectrum(&self, row: impl Fn(usize, &mut [f64]) + Sync, ws: &mut Workspace) -> Array2<f64> {
+        self.rows_forward(row, ws);
+        ws.spectrum.mapv(|c| c.re)
+    }
+
+    /// The imaginary part of the same transform: the spectrum of a kernel odd along one axis
+    /// and even along the other, which is imaginary.
+    pub fn imaginary_spectrum(&self, row: impl Fn(usize, &mut [f64]) + Sync, ws: &mut Workspace) -> Array2<f64> {
+        self.rows_forward(row, ws);
+        ws.spectrum.mapv(|c| c.im)
+    }
+
+    fn rows_forward(&self, row: impl Fn(usize, &mut [f64]) + Sync, ws: &mut Workspace) {
         self.check_workspace(ws);
         self.scatter(self.my, row, &mut ws.spectrum, &ws.scratch);
         self.along_y(&mut ws.spectrum, self.my, AlongY::Forward, &ws.scratch);
-        ws.spectrum.mapv(|c| c.re)
     }
 
     /// Inverse transform of a transposed half spectrum into `field` (shape `(my, mx)`), each
