@@ -58,6 +58,9 @@ pub struct ContactProblem {
     /// The body's Poisson's ratio [-], which its tangential compliance needs (the normal one
     /// takes E* alone). `None`: not given.
     pub poisson: Option<f64>,
+    /// What presses the body: whether its normal and tangential loads couple
+    /// ([`crate::friction::Counterface`]).
+    pub counterface: crate::friction::Counterface,
     /// Things the user should know before trusting the result: a grid too coarse for the law,
     /// attraction cut off at a free grid's edge.
     pub warnings: Vec<String>,
@@ -105,6 +108,7 @@ impl ContactProblem {
             interface: Interface::default(),
             solid: None,
             poisson: None,
+            counterface: Default::default(),
             warnings: Vec::new(),
         };
         problem.warnings = problem.check();
@@ -386,6 +390,7 @@ pub struct ProblemBuilder {
     body: Body,
     maxwell: Option<(Vec<f64>, Vec<f64>)>,
     poisson: Option<f64>,
+    counterface: crate::friction::Counterface,
 }
 
 impl ProblemBuilder {
@@ -461,6 +466,13 @@ impl ProblemBuilder {
     /// layer's is the layer's own).
     pub fn poisson(mut self, poisson: f64) -> Self {
         self.poisson = Some(poisson);
+        self
+    }
+
+    /// What presses the body ([`crate::friction::Counterface`]); of its own material by
+    /// default (the decoupled tangential problem).
+    pub fn counterface(mut self, counterface: crate::friction::Counterface) -> Self {
+        self.counterface = counterface;
         self
     }
 
@@ -573,6 +585,7 @@ impl ProblemBuilder {
         problem.interface = self.interface;
         problem.solid = solid;
         problem.poisson = self.poisson;
+        problem.counterface = self.counterface;
         Ok(problem)
     }
 }

@@ -15,8 +15,9 @@
 //! along the slipping cells' rims (the rim's curvature in the step), every iterate projected
 //! back onto the discs: a tangential form of Polonsky & Keer's method (1999).
 //!
-//! The problem is the decoupled one: the normal pressure is the normal solution's, whatever the
-//! shear ([`elastic::shear`] says when that is exact).
+//! Against a counterface of the body's own material the problem is the decoupled one: the
+//! normal pressure is the normal solution's, whatever the shear. Against a rigid one, a body of
+//! Poisson's ratio below 1/2 couples the two ([`coupled`]).
 
 use crate::error::{Result, SolverError, invalid};
 use crate::report::Termination;
@@ -24,7 +25,11 @@ use crate::state::ContactState;
 use elastic::{Compliance, Shear};
 use ljadhesion::{AdhesionLaw, Cells};
 use ndarray::Array2;
+use std::sync::Arc;
 use std::time::Instant;
+
+pub mod coupled;
+pub use coupled::{Counterface, Normal, NormalSolver, NormalState, TangentialPath};
 
 /// Coulomb friction with Derjaguin's adhesive term: a contact cell carries a shear up to
 /// `shear_strength + coefficient p_c` \[Pa\].
@@ -183,6 +188,12 @@ pub struct ShearOptions {
     pub tolerance: f64,
     /// Iteration limit.
     pub max_iterations: usize,
+    /// Under the coupling, the rounds of normal and tangential solves stop when the largest
+    /// change of the compressive pressure over a round is at most this fraction of its
+    /// largest value [-].
+    pub coupling_tolerance: f64,
+    /// The most rounds a coupled step takes.
+    pub max_coupling_iterations: usize,
 }
 
 impl ShearOptions {
@@ -190,13 +201,22 @@ impl ShearOptions {
     pub const DEFAULT_TOLERANCE: f64 = 1e-8;
     /// The default iteration limit.
     pub const DEFAULT_MAX_ITERATIONS: usize = 10_000;
+    /// The default coupling tolerance.
+    pub const DEFAULT_COUPLING_TOLERANCE: f64 = 1e-6;
 
     /// Refuses a tolerance that is not finite and positive, or no iterations.
     pub fn validate(&self) -> Result<()> {
         if !(self.tolerance.is_finite() && self.tolerance > 0.0) {
             return Err(invalid("tolerance", self.tolerance, "must be finite and > 0"));
         }
-        if self.max_iterations == 0 {
+        if !(self.coupling_tolerance.is_finite() && self.coupling_tolerance > 0.0) {
+            return Err(invalid(
+                "coupling_tolerance",
+                self.coupling_tolerance,
+                "must be finite and > 0",
+            ));
+        }
+        if self.max_iterations == 0 || self.max_coupling_iterations == 0 {
             return Err(invalid("max_iterations", 0.0, "must be at least 1"));
         }
         Ok(())
@@ -208,6 +228,8 @@ impl Default for ShearOptions {
         ShearOptions {
             tolerance: ShearOptions::DEFAULT_TOLERANCE,
             max_iterations: ShearOptions::DEFAULT_MAX_ITERATIONS,
+            coupling_tolerance: ShearOptions::DEFAULT_COUPLING_TOLERANCE,
+            max_coupling_iterations: 50,
         }
     }
 }
@@ -234,7 +256,9 @@ pub struct ShearReport {
     pub elastic_energy: f64,
     /// Every cell in contact slips: the contact slides as a whole.
     pub gross_sliding: bool,
-    /// Iterations run.
+    /// Rounds of the normal and tangential solves under the coupling (0 when decoupled).
+    pub coupling_iterations: usize,
+    /// Iterations run (of the last round's tangential solve).
     pub iterations: usize,
     /// Final residual ([`ShearOptions::tolerance`]).
     pub residual: f64,
@@ -247,7 +271,7 @@ pub struct ShearReport {
 /// The tangential problem on one normal solution: the shear compliance, and each contact
 /// cell's bound.
 pub struct TangentialProblem {
-    operator: Shear,
+    operator: Arc<Shear>,
     /// Flat indices of the cells in contact, and their bounds \[Pa\].
     cells: Vec<usize>,
     bound: Vec<f64>,
@@ -272,8 +296,13 @@ impl TangentialProblem {
         contact_gap: f64,
     ) -> Result<Self> {
         friction.validate()?;
-        let operator = Shear::of(normal, poisson)?;
-        let domain = *normal.domain();
+        let operator = Arc::new(Shear::of(normal, poisson)?);
+        TangentialProblem::on(operator, friction, state, contact_gap)
+    }
+
+    /// [`TangentialProblem::new`] with the shear compliance made.
+    fn on(operator: Arc<Shear>, friction: Friction, state: &ContactState, contact_gap: f64) -> Result<Self> {
+        let domain = *operator.domain();
         let shape = domain.shape();
         for (what, field) in [("normal pressure", &state.pressure), ("normal gap", &state.gap)] {
             if field.dim() != shape {
@@ -588,6 +617,7 @@ impl TangentialProblem {
             frictional_work: work * self.cell_area,
             elastic_energy: 0.0,
             gross_sliding: false,
+            coupling_iterations: 0,
             iterations: 0,
             residual: 0.0,
             termination: Termination::Converged,
