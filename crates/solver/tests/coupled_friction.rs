@@ -126,7 +126,9 @@ fn coupled_partial_slip_is_consistent_and_holds_the_load() {
 }
 
 /// Over a closed fretting cycle friction dissipates the work the shear force does (the normal
-/// load, held, does none over it: the approach returns), coupled as decoupled.
+/// load, held, does none over it: the approach returns). The coupling shrinks the loop: measured
+/// 0.946 of the decoupled path's area on the same grid and steps (and 2.6e-4 between the work
+/// and friction's sum).
 #[test]
 fn coupled_fretting_cycle_balances_its_work() {
     let steps = 8;
@@ -136,19 +138,22 @@ fn coupled_fretting_cycle_balances_its_work() {
         .chain(leg(amplitude, -amplitude))
         .chain(leg(-amplitude, amplitude))
         .collect();
-    let (rigid, load) = path(&sphere(0.3, Counterface::Rigid), &ratios);
-    let cycle = &rigid.reports[steps - 1..];
-    let summary = TangentialSummary::of(&rigid.reports);
-    assert!(summary.all_converged && !summary.gross_sliding);
-    let mut work = 0.0;
-    for w in cycle.windows(2) {
-        work += 0.5 * (w[0].force[0] + w[1].force[0]) * (w[1].displacement[0] - w[0].displacement[0]);
-    }
-    let friction: f64 = cycle[1..].iter().map(|r| r.frictional_work).sum();
-    // (Measured: 2.6e-4 apart at 8 steps a leg.)
-    println!("cycle: work {work:e} J, friction {friction:e} J");
-    assert!((work - friction).abs() < 1e-3 * work, "work {work:e}, friction {friction:e}");
-    assert!(work > 1e-3 * MU * load * 24.0 * DX);
+    let loop_area = |counterface: Counterface| {
+        let (path, _) = path(&sphere(0.3, counterface), &ratios);
+        let cycle = &path.reports[steps - 1..];
+        let summary = TangentialSummary::of(&path.reports);
+        assert!(summary.all_converged && !summary.gross_sliding);
+        let mut work = 0.0;
+        for w in cycle.windows(2) {
+            work += 0.5 * (w[0].force[0] + w[1].force[0]) * (w[1].displacement[0] - w[0].displacement[0]);
+        }
+        let friction: f64 = cycle[1..].iter().map(|r| r.frictional_work).sum();
+        assert!((work - friction).abs() < 1e-3 * work, "{counterface:?}: work {work:e}, friction {friction:e}");
+        work
+    };
+    let (rigid, similar) = (loop_area(Counterface::Rigid), loop_area(Counterface::Similar));
+    println!("the coupled loop's area {:.4} of the decoupled", rigid / similar);
+    assert!(rigid < 0.98 * similar && rigid > 0.9 * similar);
 }
 
 /// The coupling vanishes with `1 - 2 nu`: at `nu = 1/2` the rigid counterface's path is the
