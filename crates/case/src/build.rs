@@ -2,7 +2,7 @@
 //! geometry, material and law put together.
 
 use crate::error::{Context, Error, Result, bail};
-use crate::{Built, Case, DomainKind, LawKind, LayerBase, fingerprint};
+use crate::{Built, Case, Counterface, DomainKind, LawKind, LayerBase, fingerprint};
 use solver::geometry::SphereProfile;
 use solver::{ContactProblem, ProblemBuilder, Shape};
 use std::path::Path;
@@ -24,7 +24,7 @@ impl Case {
             LawKind::None
         });
         let coating = self.layer_base == Some(LayerBase::Elastic);
-        let refused: [(&str, bool, &str); 18] = [
+        let refused: [(&str, bool, &str); 19] = [
             (
                 "rms_height",
                 self.rms_height.is_some() && (file || self.rms_gradient.is_some()),
@@ -96,6 +96,12 @@ impl Case {
                 self.poisson.is_some() && self.thickness.is_none() && !self.frictional(),
                 "is a layer's Poisson's ratio (give --thickness) or the body's for a tangential \
                  path (give --friction-coefficient): a half-space under a normal load takes E* alone",
+            ),
+            (
+                "counterface",
+                self.counterface.is_some() && !self.frictional(),
+                "sets how a tangential path couples to the normal contact: give \
+                 --friction-coefficient or --shear-strength",
             ),
             (
                 "layer_base",
@@ -188,7 +194,13 @@ impl Case {
             let nu = self
                 .poisson
                 .context("friction needs the body's --poisson: its tangential compliance depends on it")?;
-            builder = builder.friction(friction).poisson(nu);
+            builder = builder
+                .friction(friction)
+                .poisson(nu)
+                .counterface(match self.counterface {
+                    Some(Counterface::Rigid) => solver::Counterface::Rigid,
+                    Some(Counterface::Similar) | None => solver::Counterface::Similar,
+                });
         } else if let Some(nu) = self.poisson {
             builder = builder.poisson(nu);
         }

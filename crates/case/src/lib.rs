@@ -49,6 +49,19 @@ pub enum LayerBase {
     Elastic,
 }
 
+/// What presses the body, for a tangential path.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+#[serde(rename_all = "snake_case")]
+pub enum Counterface {
+    /// Of the body's material (--modulus the pair's E*): normal and tangential loads do not
+    /// couple, the pressure stays the normal solution's.
+    Similar,
+    /// Rigid: for --poisson below 0.5 the shear changes the pressure and the pressure the
+    /// slip; each step iterates the two solves.
+    Rigid,
+}
+
 /// A contact case: every flag is also a key of the TOML case file (`--config`), with the same
 /// name in snake_case. Flags override the file.
 #[derive(Debug, Default, Clone, Serialize, Deserialize)]
@@ -159,6 +172,9 @@ pub struct Case {
     /// (Derjaguin's adhesive friction; default 0).
     #[cfg_attr(feature = "clap", arg(long))]
     pub shear_strength: Option<f64>,
+    /// What presses the body along a tangential path (default similar: the decoupled problem).
+    #[cfg_attr(feature = "clap", arg(long, value_enum))]
+    pub counterface: Option<Counterface>,
     /// A viscoelastic body (generalized Maxwell solid): the moduli E_k [Pa] of its branches,
     /// comma-separated, beside the relaxed --modulus; the glassy modulus is their sum with it.
     /// Needs --maxwell-times, and times for a sweep's steps (--step-time or `times`).
@@ -223,8 +239,8 @@ impl Case {
     pub fn refuse_friction(&self) -> Result<()> {
         if self.frictional() {
             return Err(Error::Key(
-                "--friction-coefficient and --shear-strength bound a tangential path, which follows \
-                 a single normal solve: `roughcontact solve ... --tangential-loads` (a sweep has \
+                "--friction-coefficient, --shear-strength and --counterface set a tangential path, \
+                 which follows a single normal solve: `roughcontact solve ... --tangential-loads` (a sweep has \
                  none)"
                     .into(),
             ));

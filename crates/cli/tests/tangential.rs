@@ -84,6 +84,47 @@ fn a_partial_slip_loop_writes_its_steps_fields_and_summary() {
     assert_eq!(summary["case"]["friction_coefficient"], 0.3);
 }
 
+/// A rigid counterface couples the path to the normal contact: rounds of both solves, the load
+/// held, the approach moved.
+#[test]
+fn a_rigid_counterface_couples_the_path() {
+    let out = dir("rigid");
+    let o = sphere(
+        &out,
+        &[
+            "--poisson",
+            "0.3",
+            "--friction-coefficient",
+            "0.3",
+            "--counterface",
+            "rigid",
+            "--tangential-loads",
+            "2e-3,4e-3",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("tangential.csv")).unwrap();
+    let rows: Vec<Vec<String>> = csv
+        .lines()
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    let column = |name: &str| rows[0].iter().position(|c| c == name).unwrap();
+    let (load, approach, rounds) = (
+        column("normal_load"),
+        column("approach"),
+        column("coupling_iterations"),
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let normal_approach = summary["approach"].as_f64().unwrap();
+    for row in &rows[1..] {
+        assert!((row[load].parse::<f64>().unwrap() - 0.0184).abs() < 1e-12);
+        assert!(row[rounds].parse::<usize>().unwrap() >= 2);
+        assert!(row[approach].parse::<f64>().unwrap() != normal_approach);
+    }
+    assert_eq!(summary["case"]["counterface"], "rigid");
+}
+
 #[test]
 fn more_than_the_contact_carries_is_reported_as_sliding() {
     let out = dir("slide");
@@ -168,6 +209,10 @@ fn bad_tangential_input_is_refused_by_name() {
             "cannot be used with",
         ),
         (&["--poisson", "0.3"], "--poisson does not apply to this case"),
+        (
+            &["--counterface", "rigid"],
+            "--counterface does not apply to this case",
+        ),
     ];
     for (k, (extra, message)) in cases.iter().enumerate() {
         let o = sphere(&dir(&format!("bad{k}")), extra);

@@ -213,10 +213,22 @@ fn periodic_coupling_modes_match_the_closed_form() {
             for k in 0..n * n {
                 let (j, i) = (k / n, k % n);
                 let s = sine[(j, i)];
-                assert!((ux[(j, i)] + c * qx * s).abs() < tol, "nu {nu} mode ({mx}, {my}) u_x");
-                assert!((uy[(j, i)] + c * qy * s).abs() < tol, "nu {nu} mode ({mx}, {my}) u_y");
-                assert!((uz_x[(j, i)] - c * qx * s).abs() < tol, "nu {nu} mode ({mx}, {my}) u_z");
-                assert!((uz_y[(j, i)] - c * qy * s).abs() < tol, "nu {nu} mode ({mx}, {my}) u_z");
+                assert!(
+                    (ux[(j, i)] + c * qx * s).abs() < tol,
+                    "nu {nu} mode ({mx}, {my}) u_x"
+                );
+                assert!(
+                    (uy[(j, i)] + c * qy * s).abs() < tol,
+                    "nu {nu} mode ({mx}, {my}) u_y"
+                );
+                assert!(
+                    (uz_x[(j, i)] - c * qx * s).abs() < tol,
+                    "nu {nu} mode ({mx}, {my}) u_z"
+                );
+                assert!(
+                    (uz_y[(j, i)] - c * qy * s).abs() < tol,
+                    "nu {nu} mode ({mx}, {my}) u_z"
+                );
             }
         }
     }

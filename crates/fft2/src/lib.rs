@@ -223,7 +223,11 @@ impl Fft2 {
 
     /// The imaginary part of the same transform: the spectrum of a kernel odd along one axis
     /// and even along the other, which is imaginary.
-    pub fn imaginary_spectrum(&self, row: impl Fn(usize, &mut [f64]) + Sync, ws: &mut Workspace) -> Array2<f64> {
+    pub fn imaginary_spectrum(
+        &self,
+        row: impl Fn(usize, &mut [f64]) + Sync,
+        ws: &mut Workspace,
+    ) -> Array2<f64> {
         self.rows_forward(row, ws);
         ws.spectrum.mapv(|c| c.im)
     }

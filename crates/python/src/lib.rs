@@ -323,7 +323,11 @@ fn solve<'py>(
                 let mut summary = summary(problem, head, &report, edge)?;
                 let sheared = shear(
                     problem,
-                    &state.contact,
+                    || solver::Normal {
+                        state: solver::NormalState::Adhesive(state.clone()),
+                        control,
+                        solver: solver::NormalSolver::Adhesive(&settings),
+                    },
                     tangential.as_deref(),
                     &mut summary,
                     &cancel_flag,
@@ -338,7 +342,17 @@ fn solve<'py>(
                 let edge = problem.edge_warning(&state.gap, &state.pressure);
                 let head = (report.converged(), report.termination);
                 let mut summary = summary(problem, head, &report, edge)?;
-                let sheared = shear(problem, &state, tangential.as_deref(), &mut summary, &cancel_flag)?;
+                let sheared = shear(
+                    problem,
+                    || solver::Normal {
+                        state: solver::NormalState::WithoutAdhesion(state.clone()),
+                        control,
+                        solver: solver::NormalSolver::WithoutAdhesion(&options),
+                    },
+                    tangential.as_deref(),
+                    &mut summary,
+                    &cancel_flag,
+                )?;
                 let mut fields = vec![
                     ("pressure", state.pressure),
                     ("gap", state.gap),
@@ -361,11 +375,12 @@ fn solve<'py>(
     Ok((summary.to_string(), fields))
 }
 
-/// Runs the tangential path, if any, on the normal solution: adds the summary's `tangential`
-/// (the path's summary and its steps' reports) and returns the last step's shear and slip.
-fn shear(
+/// Runs the tangential path, if any, on the normal solution `normal` makes: adds the summary's
+/// `tangential` (the path's summary and its steps' reports) and returns the last step's shear
+/// and slip.
+fn shear<'a>(
     problem: &ContactProblem,
-    normal: &solver::ContactState,
+    normal: impl FnOnce() -> solver::Normal<'a>,
     controls: Option<&[solver::TangentialControl]>,
     summary: &mut serde_json::Value,
     cancel: &AtomicBool,
@@ -373,10 +388,13 @@ fn shear(
     let Some(controls) = controls else {
         return Ok(Vec::new());
     };
-    let tangential = problem.tangential(normal)?;
-    let (state, reports) = tangential.path(
+    let solver::TangentialPath {
+        shear: state,
+        reports,
+        ..
+    } = problem.tangential_path(
+        normal(),
         controls,
-        solver::ShearState::unloaded(normal.pressure.dim()),
         &solver::ShearOptions::default(),
         &mut |_, _, _| !cancel.load(Ordering::SeqCst),
     )?;

@@ -334,6 +334,13 @@ def test_a_tangential_path_slips_and_refuses_what_it_cannot_take():
         rc.solve(**sphere, friction_coefficient=-0.1, tangential_loads=[1e-3])
     with pytest.raises(ValueError, match="shear_strength must be a finite shear stress"):
         rc.solve(**sphere, shear_strength=-1.0, tangential_loads=[1e-3])
+    # A rigid counterface couples the path to the normal contact: the load held, the approach moved.
+    rigid = rc.solve(**sphere, friction_coefficient=0.3, counterface="rigid", tangential_loads=[2e-3, 4e-3])
+    assert (rigid.tangential.coupling_iterations >= 2).all() and (t.coupling_iterations == 0).all()
+    assert np.allclose(rigid.tangential.normal_load, 0.0184, rtol=1e-12)
+    assert rigid.tangential.approach[1] != s.approach
+    with pytest.raises(ValueError, match="counterface does not apply"):
+        rc.solve(**plain, counterface="rigid")
     # More than the contact carries: it slides, reported, not a failure.
     slid = rc.solve(**sphere, friction_coefficient=0.3, tangential_loads=[1e-3, 1.0, 2.0])
     assert slid.tangential.gross_sliding and len(slid.tangential.steps) == 2

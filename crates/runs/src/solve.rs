@@ -116,7 +116,17 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         &report,
     )?;
     print_summary(out, &report, problem.interface.hardness.is_some())?;
-    let sheared = shear(problem, &state, tangential.as_deref(), &run, &mut summary)?;
+    let sheared = shear(
+        problem,
+        || solver::Normal {
+            state: solver::NormalState::WithoutAdhesion(state.clone()),
+            control,
+            solver: solver::NormalSolver::WithoutAdhesion(&options),
+        },
+        tangential.as_deref(),
+        &run,
+        &mut summary,
+    )?;
     run.write_summary(&case, &built, summary)?;
     if !args.no_png {
         pressure_map(
@@ -142,11 +152,11 @@ pub fn solve(args: SolveArgs) -> Result<()> {
 const SHEAR_NOT_CONVERGED: &str =
     "a step of the tangential path did not converge (tangential.csv says which)";
 
-/// Runs the tangential path, if any, on the normal solution, adding its summary; whether every
-/// step converged (true without a path).
-fn shear(
+/// Runs the tangential path, if any, on the normal solution `normal` makes, adding its summary;
+/// whether every step converged (true without a path).
+fn shear<'a>(
     problem: &solver::ContactProblem,
-    normal: &solver::ContactState,
+    normal: impl FnOnce() -> solver::Normal<'a>,
     controls: Option<&[solver::TangentialControl]>,
     run: &RunDir,
     summary: &mut serde_json::Value,
@@ -154,7 +164,7 @@ fn shear(
     let Some(controls) = controls else {
         return Ok(true);
     };
-    let (tangential, converged) = crate::tangential::run(problem, normal, controls, run)?;
+    let (tangential, converged) = crate::tangential::run(problem, normal(), controls, run)?;
     if let serde_json::Value::Object(map) = summary {
         map.insert("tangential".into(), tangential);
     }
@@ -277,7 +287,17 @@ fn solve_adhesive(
         }),
         &report,
     )?;
-    let sheared = shear(problem, &state.contact, tangential, run, &mut summary)?;
+    let sheared = shear(
+        problem,
+        || solver::Normal {
+            state: solver::NormalState::Adhesive(state.clone()),
+            control,
+            solver: solver::NormalSolver::Adhesive(&settings),
+        },
+        tangential,
+        run,
+        &mut summary,
+    )?;
     run.write_summary(case, built, summary)?;
     if !args.no_png {
         pressure_map(

@@ -5,46 +5,44 @@ use crate::run::{RunDir, on_workers};
 use crate::{note, say};
 use anyhow::Result;
 use serde_json::{Value, json};
-use solver::{ContactProblem, ContactState, ShearOptions, ShearState, TangentialControl, TangentialSummary};
+use solver::{ContactProblem, Normal, ShearOptions, TangentialControl, TangentialPath, TangentialSummary};
 
 /// The columns of `tangential.csv`.
 pub const HEADER: &str = "step,force_x,force_y,displacement_x,displacement_y,stick_area_fraction,\
-slip_area_fraction,frictional_work,elastic_energy,gross_sliding,iterations,residual,converged,\
-wall_time_s";
+slip_area_fraction,frictional_work,elastic_energy,gross_sliding,normal_load,approach,\
+coupling_iterations,iterations,residual,converged,wall_time_s";
 
-/// Runs `controls` on the normal solution `normal` of `problem`, writing into `run`; returns
-/// the summary's `tangential` object and whether every step converged.
+/// Runs `controls` on the `normal` solution of `problem`, writing into `run`; returns the
+/// summary's `tangential` object and whether every step converged.
 pub fn run(
     problem: &ContactProblem,
-    normal: &ContactState,
+    normal: Normal,
     controls: &[TangentialControl],
     run: &RunDir,
 ) -> Result<(Value, bool)> {
-    let tangential = problem.tangential(normal)?;
     let options = ShearOptions::default();
     let total = controls.len();
-    let (state, reports) = on_workers(|| {
-        tangential.path(
-            controls,
-            ShearState::unloaded(normal.pressure.dim()),
-            &options,
-            &mut |k, _, r| {
-                crate::note_unchecked!(
-                    "tangential step {}/{total}: force ({:.4e}, {:.4e}) N, stick area fraction {:.4}{}",
-                    k + 1,
-                    r.force[0],
-                    r.force[1],
-                    r.stick_area_fraction,
-                    if r.gross_sliding { ", sliding" } else { "" }
-                );
-                true
-            },
-        )
+    let TangentialPath {
+        shear: state,
+        reports,
+        ..
+    } = on_workers(|| {
+        problem.tangential_path(normal, controls, &options, &mut |k, _, r| {
+            crate::note_unchecked!(
+                "tangential step {}/{total}: force ({:.4e}, {:.4e}) N, stick area fraction {:.4}{}",
+                k + 1,
+                r.force[0],
+                r.force[1],
+                r.stick_area_fraction,
+                if r.gross_sliding { ", sliding" } else { "" }
+            );
+            true
+        })
     })?;
     let mut csv = format!("{HEADER}\n");
     for (k, r) in reports.iter().enumerate() {
         csv += &format!(
-            "{k},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{:e},{},{:.3}\n",
+            "{k},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{:e},{},{},{:e},{},{:.3}\n",
             r.force[0],
             r.force[1],
             r.displacement[0],
@@ -54,6 +52,9 @@ pub fn run(
             r.frictional_work,
             r.elastic_energy,
             r.gross_sliding,
+            r.normal_load,
+            r.approach,
+            r.coupling_iterations,
             r.iterations,
             r.residual,
             r.termination == solver::report::Termination::Converged,

@@ -63,8 +63,8 @@ pub mod time;
 pub use adhesive::{AdhesiveReport, AdhesiveState, Iterations, Start};
 pub use error::{Result, SolverError};
 pub use friction::{
-    Counterface, Friction, Normal, NormalSolver, NormalState, ShearOptions, ShearReport, ShearState, TangentialControl,
-    TangentialPath, TangentialProblem, TangentialSummary,
+    Counterface, Friction, Normal, NormalSolver, NormalState, ShearOptions, ShearReport, ShearState,
+    TangentialControl, TangentialPath, TangentialProblem, TangentialSummary,
 };
 pub use interface::{Interface, Yield};
 pub use method::{Method, Mixing, Settings};

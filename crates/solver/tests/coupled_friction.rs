@@ -4,8 +4,8 @@
 //! forces, and the coupling vanishes with `1 - 2 nu`.
 
 use solver::{
-    ContactOptions, ContactProblem, Control, Counterface, Friction, Normal, NormalSolver, NormalState, ShearOptions,
-    TangentialControl, TangentialPath, TangentialSummary,
+    ContactOptions, ContactProblem, Control, Counterface, Friction, Normal, NormalSolver, NormalState,
+    ShearOptions, TangentialControl, TangentialPath, TangentialSummary,
 };
 
 const E_STAR: f64 = 1e9;
@@ -110,7 +110,11 @@ fn coupled_partial_slip_is_consistent_and_holds_the_load() {
         .iter()
         .zip(pressure)
         .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    assert!(worst < 1e-5 * peak, "pressure differs by {:e} of its peak", worst / peak);
+    assert!(
+        worst < 1e-5 * peak,
+        "pressure differs by {:e} of its peak",
+        worst / peak
+    );
     // The moment: the contact's centre of pressure shifts along the shear's line only.
     let moment = |axis: usize| {
         let mut m = 0.0;
@@ -121,7 +125,10 @@ fn coupled_partial_slip_is_consistent_and_holds_the_load() {
         m / load
     };
     // (Measured: 0.69 cells, 2.9 % of the contact radius, against the shear.)
-    println!("centre of pressure moves {:.4} cells along the shear", moment(0) / DX);
+    println!(
+        "centre of pressure moves {:.4} cells along the shear",
+        moment(0) / DX
+    );
     assert!(moment(1).abs() < 1e-9 * DX && moment(0).abs() > 0.1 * DX);
 }
 
@@ -148,7 +155,10 @@ fn coupled_fretting_cycle_balances_its_work() {
             work += 0.5 * (w[0].force[0] + w[1].force[0]) * (w[1].displacement[0] - w[0].displacement[0]);
         }
         let friction: f64 = cycle[1..].iter().map(|r| r.frictional_work).sum();
-        assert!((work - friction).abs() < 1e-3 * work, "{counterface:?}: work {work:e}, friction {friction:e}");
+        assert!(
+            (work - friction).abs() < 1e-3 * work,
+            "{counterface:?}: work {work:e}, friction {friction:e}"
+        );
         work
     };
     let (rigid, similar) = (loop_area(Counterface::Rigid), loop_area(Counterface::Similar));

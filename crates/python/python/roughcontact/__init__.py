@@ -368,7 +368,9 @@ class Tangential:
     """A tangential path after a normal solve, step by step (numpy arrays, one value a step):
     ``force_x``, ``force_y`` [N], ``displacement_x``, ``displacement_y`` [m] (NaN under a force
     the contact cannot carry), ``stick_area_fraction``, ``slip_area_fraction`` [-],
-    ``frictional_work`` [J] (each step's), ``elastic_energy`` [J], ``iterations``,
+    ``frictional_work`` [J] (each step's), ``elastic_energy`` [J], ``normal_load`` [N] and
+    ``approach`` [m] under the shear, ``coupling_iterations`` (rounds of the normal and
+    tangential solves against a rigid counterface, 0 decoupled), ``iterations``,
     ``residual``, ``converged``; and the path's ``static_friction`` [N] (the contact's
     capacity, sum (tau0 + mu p_c) dA), ``gross_sliding`` (whether it was reached),
     ``total_frictional_work`` [J], ``work`` [J] (the shear force's, sum Q . dD),
@@ -392,9 +394,18 @@ class Tangential:
         self.force_y = column(lambda r: r["force"][1])
         self.displacement_x = column(lambda r: nan if r["displacement"][0] is None else r["displacement"][0])
         self.displacement_y = column(lambda r: nan if r["displacement"][1] is None else r["displacement"][1])
-        for name in ("stick_area_fraction", "slip_area_fraction", "frictional_work", "elastic_energy", "residual"):
+        for name in (
+            "stick_area_fraction",
+            "slip_area_fraction",
+            "frictional_work",
+            "elastic_energy",
+            "normal_load",
+            "approach",
+            "residual",
+        ):
             setattr(self, name, column(lambda r, name=name: r[name]))
         self.iterations = np.array([r["iterations"] for r in self.steps], dtype=int)
+        self.coupling_iterations = np.array([r["coupling_iterations"] for r in self.steps], dtype=int)
         self.converged = np.array([r["termination"] == "Converged" for r in self.steps], dtype=bool)
 
     def __repr__(self) -> str:
@@ -504,7 +515,8 @@ def solve(
     A tangential path after the normal solve: ``tangential_loads`` [N] or
     ``tangential_displacements`` [m] (lists, each step from the last; negative reverses) along
     ``tangential_angle`` [rad], with ``friction_coefficient`` [-] and/or ``shear_strength``
-    [Pa] and the body's ``poisson`` [-]; the result's ``tangential``.
+    [Pa] and the body's ``poisson`` [-]; ``counterface="rigid"`` couples it to the normal
+    contact (``poisson`` < 0.5; default ``"similar"``: decoupled); the result's ``tangential``.
     ``progress(info)`` is called after every iteration with ``{'step', 'iteration',
     'residual'}``; an exception it raises stops the solve. ``threads``: threads of this
     solve's own pool (None: all cores, shared). The GIL is released while solving; Ctrl-C

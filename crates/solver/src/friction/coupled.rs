@@ -54,6 +54,21 @@ impl NormalState {
             NormalState::Adhesive(a) => &a.contact,
         }
     }
+
+    /// The normal load \[N\] on cells of `cell_area` \[m^2\], the adhesive pressure included.
+    pub fn load(&self, cell_area: f64) -> f64 {
+        cell_area
+            * match self {
+                NormalState::WithoutAdhesion(c) => c.pressure.sum(),
+                NormalState::Adhesive(a) => a.total_pressure().sum(),
+            }
+    }
+
+    /// Writes its load and approach into `report`.
+    fn describe(&self, report: &mut ShearReport, cell_area: f64) {
+        report.normal_load = self.load(cell_area);
+        report.approach = self.contact().approach;
+    }
 }
 
 /// The normal contact a tangential path starts from: its solution, the control that reached it
@@ -97,8 +112,17 @@ impl ContactProblem {
         options.validate()?;
         let first = self.tangential(normal.state.contact())?;
         let start = ShearState::unloaded(self.domain().shape());
+        let cell_area = self.domain().cell_area();
         if self.counterface == Counterface::Similar || !first.operator.coupled() {
-            let (shear, reports) = first.path(controls, start, options, step)?;
+            let mut step = |k: usize, s: &ShearState, r: &ShearReport| {
+                let mut r = r.clone();
+                normal.state.describe(&mut r, cell_area);
+                step(k, s, &r)
+            };
+            let (shear, mut reports) = first.path(controls, start, options, &mut step)?;
+            reports
+                .iter_mut()
+                .for_each(|r| normal.state.describe(r, cell_area));
             return Ok(TangentialPath {
                 shear,
                 reports,
@@ -118,7 +142,9 @@ impl ContactProblem {
         let (mut shear, mut state, mut last) = (start, normal.state, first);
         let mut reports = Vec::with_capacity(controls.len());
         for (k, control) in controls.iter().enumerate() {
-            let (next, report, next_state, solved_on) = coupled.step(*control, &shear, &last, &state, options)?;
+            let (next, mut report, next_state, solved_on) =
+                coupled.step(*control, &shear, &last, &state, options)?;
+            next_state.describe(&mut report, cell_area);
             let slid_away = report.gross_sliding && matches!(control, TangentialControl::Force(_));
             let go_on = step(k, &next, &report);
             reports.push(report);
@@ -245,7 +271,11 @@ impl Coupled<'_> {
 
     /// The tangential displacement \[m\] the change of compressive pressure since the path
     /// began makes.
-    fn pressure_displacement(&self, pressure: &Array2<f64>, ws: &mut ShearWorkspace) -> Result<[Array2<f64>; 2]> {
+    fn pressure_displacement(
+        &self,
+        pressure: &Array2<f64>,
+        ws: &mut ShearWorkspace,
+    ) -> Result<[Array2<f64>; 2]> {
         let shape = pressure.dim();
         let mut u = [Array2::zeros(shape), Array2::zeros(shape)];
         let [ux, uy] = &mut u;

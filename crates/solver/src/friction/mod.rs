@@ -258,6 +258,12 @@ pub struct ShearReport {
     pub gross_sliding: bool,
     /// Rounds of the normal and tangential solves under the coupling (0 when decoupled).
     pub coupling_iterations: usize,
+    /// The normal load \[N\] under the shear (compressive, adhesive pressure included): the
+    /// normal solution's when decoupled, and under load control.
+    pub normal_load: f64,
+    /// The normal approach \[m\] under the shear: the normal solution's when decoupled, and
+    /// under approach control.
+    pub approach: f64,
     /// Iterations run (of the last round's tangential solve).
     pub iterations: usize,
     /// Final residual ([`ShearOptions::tolerance`]).
@@ -618,6 +624,8 @@ impl TangentialProblem {
             elastic_energy: 0.0,
             gross_sliding: false,
             coupling_iterations: 0,
+            normal_load: 0.0,
+            approach: 0.0,
             iterations: 0,
             residual: 0.0,
             termination: Termination::Converged,
