@@ -231,10 +231,10 @@ impl Coupled<'_> {
                 reference.slip[c] = &base[c] + &offset[c];
             }
             let (mut shear, mut report) = on.solve(control, &reference, options)?;
-            for c in 0..2 {
+            for (slip, offset) in shear.slip.iter_mut().zip(&offset) {
                 for &k in &on.cells {
                     let (j, i) = (k / shape.1, k % shape.1);
-                    shear.slip[c][(j, i)] -= offset[c][(j, i)];
+                    slip[(j, i)] -= offset[(j, i)];
                 }
             }
             let mut lift = Array2::zeros(shape);
