@@ -394,9 +394,10 @@ fn shear<'a>(
         ..
     } = problem.tangential_path(
         normal(),
+        None,
         controls,
         &solver::ShearOptions::default(),
-        &mut |_, _, _| !cancel.load(Ordering::SeqCst),
+        &mut |_, _, _, _| !cancel.load(Ordering::SeqCst),
     )?;
     let mut value = serde_json::to_value(solver::TangentialSummary::of(&reports))?;
     value["steps"] = serde_json::to_value(&reports)?;

@@ -36,7 +36,7 @@ retries,plastic_area_fraction,permanent_set_volume,plastic_work,time,elastic_ene
 
 /// The files and directories a run writes: what makes a directory "another run's", and what
 /// `--overwrite` removes (nothing else in the directory is touched).
-const RUN_FILES: [&str; 16] = [
+const RUN_FILES: [&str; 24] = [
     "case.toml",
     "summary.json",
     "curve.csv",
@@ -52,6 +52,14 @@ const RUN_FILES: [&str; 16] = [
     "state.new",
     "state.old",
     "states",
+    "tangential.csv",
+    "shear_x.npy",
+    "shear_y.npy",
+    "slip_x.npy",
+    "slip_y.npy",
+    crate::tangential::STATE,
+    "tangential_state.new",
+    "tangential_state.old",
     PROGRESS,
 ];
 
@@ -122,13 +130,18 @@ impl RunDir {
         let found: Vec<&str> = RUN_FILES.into_iter().filter(|f| path.join(f).exists()).collect();
         match reuse {
             _ if found.is_empty() => {}
-            // Only a sweep's run is continued: a solve's would be overwritten under its name.
-            Reuse::Resume if !path.join("curve.csv").exists() => bail!(
-                "--resume: {} holds no sweep to continue ({}): give another --out, or --overwrite \
-                 to replace what it holds",
-                path.display(),
-                found.join(", ")
-            ),
+            // Only a sweep or a tangential path is continued: a plain solve's run would be
+            // overwritten under its name.
+            Reuse::Resume
+                if !path.join("curve.csv").exists() && !path.join(crate::tangential::STATE).exists() =>
+            {
+                bail!(
+                    "--resume: {} holds no sweep or tangential path to continue ({}): give another \
+                 --out, or --overwrite to replace what it holds",
+                    path.display(),
+                    found.join(", ")
+                )
+            }
             Reuse::Resume => {}
             Reuse::Refuse => bail!(
                 "{} already holds a run ({}); give --overwrite to replace it (or, for a sweep, --resume \
@@ -395,6 +408,16 @@ fn parse_curve(text: &str) -> Result<Vec<CyclePoint>> {
 /// either the old state or the new one (or, between the two renames, only `<name>.new`, which
 /// [`read_state`] takes).
 fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
+    let mut manifest = serde_json::json!({ "approach": state.contact.approach });
+    if let Some(h) = &state.contact.history {
+        manifest["time"] = h.time.into();
+    }
+    write_fields(dir, &state_fields(state), manifest)
+}
+
+/// Writes `fields` (`name.npy`) and `manifest` with a fingerprint of each field added, into
+/// `dir` as [`write_state`] does: a reader finds the old set or the new one, whole.
+pub fn write_fields(dir: &Path, fields: &[(String, &Array2<f64>)], mut manifest: Value) -> Result<()> {
     let sibling = |ext: &str| {
         let mut name = dir.file_name().unwrap_or_default().to_os_string();
         name.push(ext);
@@ -407,15 +430,12 @@ fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
         }
     }
     std::fs::create_dir_all(&new).with_context(|| format!("creating {}", new.display()))?;
-    let mut fields = serde_json::Map::new();
-    for (name, field) in state_fields(state) {
-        crate::output::field(&new, &name, field)?;
-        fields.insert(name, Value::String(fingerprint(field)));
+    let mut prints = serde_json::Map::new();
+    for (name, field) in fields {
+        crate::output::field(&new, name, field)?;
+        prints.insert(name.clone(), Value::String(fingerprint(field)));
     }
-    let mut manifest = serde_json::json!({ "approach": state.contact.approach, "fields": fields });
-    if let Some(h) = &state.contact.history {
-        manifest["time"] = h.time.into();
-    }
+    manifest["fields"] = Value::Object(prints);
     crate::output::text(
         &new.join(MANIFEST),
         &(serde_json::to_string_pretty(&manifest)? + "\n"),
@@ -491,29 +511,11 @@ pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
                 )
             }
         })?;
+    let (manifest, read) = read_fields(&dir)?;
     let manifest_path = dir.join(MANIFEST);
-    let manifest: Value = serde_json::from_str(
-        &std::fs::read_to_string(&manifest_path)
-            .with_context(|| format!("reading {}", manifest_path.display()))?,
-    )
-    .with_context(|| format!("{}: not a state manifest", manifest_path.display()))?;
     let approach = manifest["approach"]
         .as_f64()
         .with_context(|| format!("{}: no approach", manifest_path.display()))?;
-    let read = |name: &str| -> Result<Array2<f64>> {
-        let path = dir.join(format!("{name}.npy"));
-        let field: Array2<f64> =
-            ndarray_npy::read_npy(&path).with_context(|| format!("reading {}", path.display()))?;
-        if manifest["fields"][name].as_str() != Some(fingerprint(&field).as_str()) {
-            bail!(
-                "{} is not the field its manifest ({}) names: the state is torn (parts of two steps); \
-                 start from another one",
-                path.display(),
-                manifest_path.display()
-            );
-        }
-        Ok(field)
-    };
     let state = AdhesiveState {
         contact: ContactState {
             pressure: read("compressive_pressure")?,
@@ -551,6 +553,33 @@ pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
         bail!("{}: the fields' shapes differ", dir.display());
     }
     Ok(state)
+}
+
+/// The manifest of the fields [`write_fields`] wrote into `dir`, and a reader of each field that
+/// refuses one its manifest does not fingerprint (a set torn between two writes).
+pub fn read_fields(dir: &Path) -> Result<(Value, impl Fn(&str) -> Result<Array2<f64>> + '_)> {
+    let manifest_path = dir.join(MANIFEST);
+    let manifest: Value = serde_json::from_str(
+        &std::fs::read_to_string(&manifest_path)
+            .with_context(|| format!("reading {}", manifest_path.display()))?,
+    )
+    .with_context(|| format!("{}: not a state manifest", manifest_path.display()))?;
+    let prints = manifest["fields"].clone();
+    let read = move |name: &str| -> Result<Array2<f64>> {
+        let path = dir.join(format!("{name}.npy"));
+        let field: Array2<f64> =
+            ndarray_npy::read_npy(&path).with_context(|| format!("reading {}", path.display()))?;
+        if prints[name].as_str() != Some(fingerprint(&field).as_str()) {
+            bail!(
+                "{} is not the field its manifest ({}) names: the state is torn (parts of two steps); \
+                 start from another one",
+                path.display(),
+                dir.join(MANIFEST).display()
+            );
+        }
+        Ok(field)
+    };
+    Ok((manifest, read))
 }
 
 /// `extra` (a JSON object) with the fields of `report` added: the summary's results.

@@ -30,8 +30,12 @@ pub struct SolveArgs {
     keep_going: bool,
     /// Replace the run already in --out (its case, summary, fields and plot; nothing else in
     /// the directory is touched).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "resume")]
     overwrite: bool,
+    /// Continue an interrupted tangential path in --out: the normal solve is run again, the
+    /// finished tangential steps are kept, not redone.
+    #[arg(long)]
+    resume: bool,
     /// Do not draw the pressure map.
     #[arg(long)]
     no_png: bool,
@@ -60,8 +64,9 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         &mut case.surface,
     );
     case.fill_defaults("run/solve");
+    let resolved = to_toml(&case, &control)?;
     if args.print_config {
-        say!("{}", to_toml(&case, &control)?);
+        say!("{resolved}");
         return Ok(());
     }
     let built = case.build()?;
@@ -78,13 +83,32 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     if !problem.adhesive() {
         control.validate_without_adhesion()?;
     }
-    let reuse = if args.overwrite {
+    let reuse = if args.resume {
+        if tangential.is_none() {
+            bail!("--resume continues an interrupted tangential path; this solve has none (it is run whole)");
+        }
+        Reuse::Resume
+    } else if args.overwrite {
         Reuse::Overwrite
     } else {
         Reuse::Refuse
     };
     let run = RunDir::open(&case.out.clone().expect("defaulted"), reuse)?;
     let out = run.path();
+    if tangential.is_some() {
+        // (A --resume where nothing was begun runs the path whole, as a sweep's does.)
+        if args.resume
+            && run
+                .case()
+                .is_some_and(|c| !crate::sweep::same_case(&c, &resolved))
+        {
+            bail!(
+                "--resume: {} holds a different case; rerun without --resume (or with the same settings)",
+                out.display()
+            );
+        }
+        run.write_case(&resolved)?;
+    }
     if problem.adhesive() {
         return solve_adhesive(&args, &case, control, tangential.as_deref(), &built, &run);
     }
@@ -124,7 +148,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
             solver: solver::NormalSolver::WithoutAdhesion(&options),
         },
         tangential.as_deref(),
-        &run,
+        (&run, args.resume),
         &mut summary,
     )?;
     run.write_summary(&case, &built, summary)?;
@@ -158,13 +182,13 @@ fn shear<'a>(
     problem: &solver::ContactProblem,
     normal: impl FnOnce() -> solver::Normal<'a>,
     controls: Option<&[solver::TangentialControl]>,
-    run: &RunDir,
+    (run, resume): (&RunDir, bool),
     summary: &mut serde_json::Value,
 ) -> Result<bool> {
     let Some(controls) = controls else {
         return Ok(true);
     };
-    let (tangential, converged) = crate::tangential::run(problem, normal(), controls, run)?;
+    let (tangential, converged) = crate::tangential::run(problem, normal(), controls, run, resume)?;
     if let serde_json::Value::Object(map) = summary {
         map.insert("tangential".into(), tangential);
     }
@@ -295,7 +319,7 @@ fn solve_adhesive(
             solver: solver::NormalSolver::Adhesive(&settings),
         },
         tangential,
-        run,
+        (run, args.resume),
         &mut summary,
     )?;
     run.write_summary(case, built, summary)?;

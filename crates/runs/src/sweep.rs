@@ -538,7 +538,7 @@ fn exact_on(layer: elastic::Layer, e_star: f64) -> theory::layer::LayerContact<i
 
 /// Whether two resolved cases (TOML) are the same apart from their output directory, which
 /// may be spelt differently or moved between a sweep and its resumption.
-fn same_case(a: &str, b: &str) -> bool {
+pub(crate) fn same_case(a: &str, b: &str) -> bool {
     matches!((without_out(a), without_out(b)), (Some(a), Some(b)) if a == b)
 }
 

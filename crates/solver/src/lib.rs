@@ -63,7 +63,7 @@ pub mod time;
 pub use adhesive::{AdhesiveReport, AdhesiveState, Iterations, Start};
 pub use error::{Result, SolverError};
 pub use friction::{
-    Counterface, Friction, Normal, NormalSolver, NormalState, ShearOptions, ShearReport, ShearState,
+    Counterface, Friction, Normal, NormalSolver, NormalState, Reached, ShearOptions, ShearReport, ShearState,
     TangentialControl, TangentialPath, TangentialProblem, TangentialSummary,
 };
 pub use interface::{Interface, Yield};

@@ -51,7 +51,13 @@ fn path(problem: &ContactProblem, ratios: &[f64]) -> (TangentialPath, f64) {
         solver: NormalSolver::WithoutAdhesion(&options),
     };
     let path = problem
-        .tangential_path(normal, &controls, &ShearOptions::default(), &mut |_, _, _| true)
+        .tangential_path(
+            normal,
+            None,
+            &controls,
+            &ShearOptions::default(),
+            &mut |_, _, _, _| true,
+        )
         .unwrap();
     (path, load)
 }

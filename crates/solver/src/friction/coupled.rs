@@ -4,7 +4,8 @@
 //! pressure settles: the tangential step at the latest pressure, with the pressure's own
 //! tangential displacement since the path began added to the slip's reference, then the normal
 //! contact again (same control, same method, warm) with the shear's normal displacement added
-//! to the initial gap. A cell that enters the contact sticks where the surfaces then are.
+//! to the initial gap. A cell that enters the contact sticks where the surfaces then are (the
+//! state's slip is their relative displacement everywhere).
 
 use super::{Friction, ShearOptions, ShearReport, ShearState, TangentialControl, TangentialProblem};
 use crate::adhesive::{AdhesiveState, Start};
@@ -93,11 +94,22 @@ pub struct TangentialPath {
     pub normal: NormalState,
 }
 
+/// Where an interrupted path stood: its last step's shear and the normal contact under it.
+pub struct Reached {
+    /// The shear and slip.
+    pub shear: ShearState,
+    /// The normal contact (the starting one when decoupled).
+    pub normal: NormalState,
+}
+
 impl ContactProblem {
-    /// Follows the tangential `controls` from `normal`, unloaded, calling `step` after each (its
-    /// index, state and report; `false` stops the path). Decoupled unless the counterface is
-    /// rigid and the body's Poisson's ratio below 1/2 ([`Counterface`]). Under a force the
-    /// contact cannot carry the path ends at that step (it slides away).
+    /// Follows the tangential `controls` from `normal`, unloaded, or from where an interrupted
+    /// path on it stood (`reached`; `controls` are then the steps left), calling `step` after
+    /// each (its index among `controls`, its shear, the normal contact under it and its report;
+    /// `false` stops the path). Decoupled
+    /// unless the counterface is rigid and the body's Poisson's ratio below 1/2
+    /// ([`Counterface`]). Under a force the contact cannot carry the path ends at that step
+    /// (it slides away).
     ///
     /// # Errors
     /// As [`ContactProblem::tangential`] and [`TangentialProblem::solve`]; a normal state of
@@ -105,50 +117,61 @@ impl ContactProblem {
     pub fn tangential_path(
         &self,
         normal: Normal,
+        reached: Option<Reached>,
         controls: &[TangentialControl],
         options: &ShearOptions,
-        step: &mut dyn FnMut(usize, &ShearState, &ShearReport) -> bool,
+        step: &mut dyn FnMut(usize, &ShearState, &NormalState, &ShearReport) -> bool,
     ) -> Result<TangentialPath> {
         options.validate()?;
         let first = self.tangential(normal.state.contact())?;
-        let start = ShearState::unloaded(self.domain().shape());
         let cell_area = self.domain().cell_area();
-        if self.counterface == Counterface::Similar || !first.operator.coupled() {
-            let mut step = |k: usize, s: &ShearState, r: &ShearReport| {
-                let mut r = r.clone();
-                normal.state.describe(&mut r, cell_area);
-                step(k, s, &r)
-            };
-            let (shear, mut reports) = first.path(controls, start, options, &mut step)?;
-            reports
-                .iter_mut()
-                .for_each(|r| normal.state.describe(r, cell_area));
-            return Ok(TangentialPath {
-                shear,
-                reports,
-                normal: normal.state,
-            });
-        }
-        let (friction, _) = self.check_tangential()?;
-        let coupled = Coupled {
-            problem: self,
-            operator: first.operator.clone(),
-            friction,
-            contact_gap: super::contact_gap(self.law.as_ref())?,
-            reference: normal.state.contact().pressure.clone(),
-            control: normal.control,
-            solver: normal.solver,
+        let coupled = (self.counterface == Counterface::Rigid && first.operator.coupled())
+            .then(|| -> Result<Coupled> {
+                Ok(Coupled {
+                    problem: self,
+                    operator: first.operator.clone(),
+                    friction: self.check_tangential()?.0,
+                    contact_gap: super::contact_gap(self.law.as_ref())?,
+                    reference: normal.state.contact().pressure.clone(),
+                    control: normal.control,
+                    solver: normal.solver,
+                })
+            })
+            .transpose()?;
+        let (mut shear, mut state) = match reached {
+            Some(Reached { shear, normal: under }) => {
+                for field in shear
+                    .traction
+                    .iter()
+                    .chain(&shear.slip)
+                    .chain([&under.contact().pressure])
+                {
+                    if field.dim() != first.shape {
+                        return Err(crate::error::SolverError::ShapeMismatch {
+                            what: "the path's reached state",
+                            expected: first.shape,
+                            got: field.dim(),
+                        });
+                    }
+                }
+                (shear, if coupled.is_some() { under } else { normal.state })
+            }
+            None => (ShearState::unloaded(first.shape), normal.state),
         };
-        let (mut shear, mut state, mut last) = (start, normal.state, first);
         let mut reports = Vec::with_capacity(controls.len());
         for (k, control) in controls.iter().enumerate() {
-            let (next, mut report, next_state, solved_on) =
-                coupled.step(*control, &shear, &last, &state, options)?;
+            let (next, mut report, next_state) = match &coupled {
+                Some(coupled) => coupled.step(*control, &shear, &state, options)?,
+                None => {
+                    let (next, report) = first.solve(*control, &shear, options)?;
+                    (next, report, state)
+                }
+            };
             next_state.describe(&mut report, cell_area);
             let slid_away = report.gross_sliding && matches!(control, TangentialControl::Force(_));
-            let go_on = step(k, &next, &report);
+            let go_on = step(k, &next, &next_state, &report);
             reports.push(report);
-            (shear, state, last) = (next, next_state, solved_on);
+            (shear, state) = (next, next_state);
             if slid_away || !go_on {
                 break;
             }
@@ -174,68 +197,35 @@ struct Coupled<'a> {
 }
 
 impl Coupled<'_> {
-    /// One step from `previous` (solved on the contact of `last`) and the normal `state`; the
-    /// new shear, its report, the normal state under it and the contact it was solved on.
+    /// One step from `previous` and the normal `state` under it: the new shear, its report and
+    /// the normal state under it.
     fn step(
         &self,
         control: TangentialControl,
         previous: &ShearState,
-        last: &TangentialProblem,
         state: &NormalState,
         options: &ShearOptions,
-    ) -> Result<(ShearState, ShearReport, NormalState, TangentialProblem)> {
+    ) -> Result<(ShearState, ShearReport, NormalState)> {
         let shape = self.reference.dim();
         let mut ws = self.operator.make_workspace();
-        // Where a cell out of the last step's contact sticks if it enters: the surfaces'
-        // relative displacement D - u then.
-        let mut base = self.pressure_displacement(&state.contact().pressure, &mut ws)?;
-        let mut shear_u = [Array2::zeros(shape), Array2::zeros(shape)];
-        let [ux, uy] = &mut shear_u;
-        self.operator.apply(
-            [previous.traction[0].view(), previous.traction[1].view()],
-            [ux.view_mut(), uy.view_mut()],
-            &mut ws,
-        )?;
-        let mut in_last = vec![false; shape.0 * shape.1];
-        last.cells.iter().for_each(|&k| in_last[k] = true);
-        for c in 0..2 {
-            Zip::from(&mut base[c])
-                .and(&shear_u[c])
-                .and(&previous.slip[c])
-                .and(ndarray::ArrayView2::from_shape(shape, &in_last).expect("grid shape"))
-                .for_each(|b, &u, &s, &inside| {
-                    *b = if inside {
-                        s
-                    } else {
-                        previous.displacement[c] - u - *b
-                    }
-                });
-        }
-        let (mut current, mut tangential) = (state.clone(), None);
-        let mut converged_normal = true;
+        let (mut current, mut converged_normal) = (state.clone(), true);
         for round in 1..=options.max_coupling_iterations {
-            let on = match tangential.take() {
-                Some(t) => t,
-                None => TangentialProblem::on(
-                    self.operator.clone(),
-                    self.friction,
-                    current.contact(),
-                    self.contact_gap,
-                )?,
-            };
+            let on = TangentialProblem::on(
+                self.operator.clone(),
+                self.friction,
+                current.contact(),
+                self.contact_gap,
+            )?;
             // The pressure's tangential displacement since the path began joins the slip's
             // reference: a sticking cell holds D - K q - offset.
             let offset = self.pressure_displacement(&current.contact().pressure, &mut ws)?;
             let mut reference = previous.clone();
-            for c in 0..2 {
-                reference.slip[c] = &base[c] + &offset[c];
+            for (slip, offset) in reference.slip.iter_mut().zip(&offset) {
+                *slip += offset;
             }
             let (mut shear, mut report) = on.solve(control, &reference, options)?;
             for (slip, offset) in shear.slip.iter_mut().zip(&offset) {
-                for &k in &on.cells {
-                    let (j, i) = (k / shape.1, k % shape.1);
-                    slip[(j, i)] -= offset[(j, i)];
-                }
+                *slip -= offset;
             }
             let mut lift = Array2::zeros(shape);
             self.operator.coupled_normal(
@@ -257,14 +247,8 @@ impl Coupled<'_> {
                 if !(settled && converged_normal) {
                     report.termination = Termination::MaxIterations;
                 }
-                return Ok((shear, report, current, on));
+                return Ok((shear, report, current));
             }
-            tangential = Some(TangentialProblem::on(
-                self.operator.clone(),
-                self.friction,
-                current.contact(),
-                self.contact_gap,
-            )?);
         }
         unreachable!("the loop returns at its last round")
     }

@@ -29,7 +29,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 pub mod coupled;
-pub use coupled::{Counterface, Normal, NormalSolver, NormalState, TangentialPath};
+pub use coupled::{Counterface, Normal, NormalSolver, NormalState, Reached, TangentialPath};
 
 /// Coulomb friction with Derjaguin's adhesive term: a contact cell carries a shear up to
 /// `shear_strength + coefficient p_c` \[Pa\].
@@ -111,8 +111,9 @@ pub enum TangentialControl {
 pub struct ShearState {
     /// Shear traction on the body `[q_x, q_y]` \[Pa\].
     pub traction: [Array2<f64>; 2],
-    /// Slip accumulated since the tangential path began, `[s_x, s_y]` \[m\]: the rigid body's
-    /// displacement less the surface's, on the cells in contact (zero elsewhere).
+    /// The surfaces' relative tangential displacement since the path began, `[s_x, s_y]` \[m\]:
+    /// the rigid body's displacement less the surface's, `D - u`. On the cells in contact, the
+    /// slip; a cell that enters the contact sticks at its value.
     pub slip: [Array2<f64>; 2],
     /// The rigid body's tangential displacement \[m\].
     pub displacement: [f64; 2],
@@ -407,7 +408,7 @@ impl TangentialProblem {
                 let mut report = self.report(&tau, &tau_prev, None, [f64::NAN; 2]);
                 report.gross_sliding = true;
                 report.elastic_energy = fields.energy(&self.operator, &self.cells, &tau, &mut ws)?;
-                let state = self.state(&tau, &s_prev, None, [f64::NAN; 2]);
+                let state = self.state(&tau, previous, &s_prev, None, None, [f64::NAN; 2]);
                 report.wall_time_s = started.elapsed().as_secs_f64();
                 return Ok((state, report));
             }
@@ -535,7 +536,14 @@ impl TangentialProblem {
         report.residual = residual;
         report.termination = termination;
         report.elastic_energy = fields.energy(&self.operator, &self.cells, &tau, &mut ws)?;
-        let state = self.state(&tau, &s_prev, Some((&r, &free)), d);
+        let state = self.state(
+            &tau,
+            previous,
+            &s_prev,
+            Some((&r, &free)),
+            Some(&fields.displacement),
+            d,
+        );
         report.wall_time_s = started.elapsed().as_secs_f64();
         Ok((state, report))
     }
@@ -634,15 +642,24 @@ impl TangentialProblem {
     }
 
     /// The state after the step: the shear, and the slip grown by each slipping cell's
-    /// increment (sticking cells keep theirs).
+    /// increment (sticking cells keep theirs); out of contact `D - u` from the surface's
+    /// displacement `u` (unchanged from `previous` without it: gross sliding under a force).
     fn state(
         &self,
         tau: &[[f64; 2]],
+        previous: &ShearState,
         s_prev: &[[f64; 2]],
         slip: Option<(&[[f64; 2]], &[bool])>,
+        u: Option<&[Array2<f64>; 2]>,
         d: [f64; 2],
     ) -> ShearState {
         let mut state = ShearState::unloaded(self.shape);
+        for c in 0..2 {
+            state.slip[c] = match u {
+                Some(u) => u[c].mapv(|u| d[c] - u),
+                None => previous.slip[c].clone(),
+            };
+        }
         for (i, &k) in self.cells.iter().enumerate() {
             let (j, x) = (k / self.shape.1, k % self.shape.1);
             let increment = match slip {
