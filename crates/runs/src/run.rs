@@ -511,7 +511,8 @@ pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
                 )
             }
         })?;
-    let (manifest, read) = read_fields(&dir)?;
+    let saved = read_fields(&dir)?;
+    let (manifest, read) = (&saved.manifest, |name: &str| saved.read(name));
     let manifest_path = dir.join(MANIFEST);
     let approach = manifest["approach"]
         .as_f64()
@@ -555,31 +556,41 @@ pub fn read_state(dir: &Path) -> Result<AdhesiveState> {
     Ok(state)
 }
 
-/// The manifest of the fields [`write_fields`] wrote into `dir`, and a reader of each field that
-/// refuses one its manifest does not fingerprint (a set torn between two writes).
-pub fn read_fields(dir: &Path) -> Result<(Value, impl Fn(&str) -> Result<Array2<f64>> + '_)> {
+/// The fields [`write_fields`] wrote into a directory, and their manifest.
+pub struct SavedFields<'a> {
+    /// The manifest, with each field's fingerprint under `fields`.
+    pub manifest: Value,
+    dir: &'a Path,
+}
+
+impl SavedFields<'_> {
+    /// Field `name`, refused unless its manifest fingerprints it (a set torn between two
+    /// writes).
+    pub fn read(&self, name: &str) -> Result<Array2<f64>> {
+        let path = self.dir.join(format!("{name}.npy"));
+        let field: Array2<f64> =
+            ndarray_npy::read_npy(&path).with_context(|| format!("reading {}", path.display()))?;
+        if self.manifest["fields"][name].as_str() != Some(fingerprint(&field).as_str()) {
+            bail!(
+                "{} is not the field its manifest ({}) names: the state is torn (parts of two steps); \
+                 start from another one",
+                path.display(),
+                self.dir.join(MANIFEST).display()
+            );
+        }
+        Ok(field)
+    }
+}
+
+/// The fields [`write_fields`] wrote into `dir`.
+pub fn read_fields(dir: &Path) -> Result<SavedFields<'_>> {
     let manifest_path = dir.join(MANIFEST);
     let manifest: Value = serde_json::from_str(
         &std::fs::read_to_string(&manifest_path)
             .with_context(|| format!("reading {}", manifest_path.display()))?,
     )
     .with_context(|| format!("{}: not a state manifest", manifest_path.display()))?;
-    let prints = manifest["fields"].clone();
-    let read = move |name: &str| -> Result<Array2<f64>> {
-        let path = dir.join(format!("{name}.npy"));
-        let field: Array2<f64> =
-            ndarray_npy::read_npy(&path).with_context(|| format!("reading {}", path.display()))?;
-        if prints[name].as_str() != Some(fingerprint(&field).as_str()) {
-            bail!(
-                "{} is not the field its manifest ({}) names: the state is torn (parts of two steps); \
-                 start from another one",
-                path.display(),
-                dir.join(MANIFEST).display()
-            );
-        }
-        Ok(field)
-    };
-    Ok((manifest, read))
+    Ok(SavedFields { manifest, dir })
 }
 
 /// `extra` (a JSON object) with the fields of `report` added: the summary's results.

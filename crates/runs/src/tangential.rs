@@ -249,7 +249,8 @@ fn save(
 /// The rows and state an interrupted path saved in `dir`; `normal` is the path's starting
 /// normal solution (the normal contact of a decoupled path, and the kind of a coupled one's).
 fn saved(dir: &std::path::Path, normal: &NormalState) -> Result<(Vec<String>, Option<Reached>)> {
-    let (manifest, read) = read_fields(dir)?;
+    let saved = read_fields(dir)?;
+    let (manifest, read) = (&saved.manifest, |name: &str| saved.read(name));
     let rows: Vec<String> = manifest["rows"]
         .as_array()
         .context("a tangential state without its rows")?
