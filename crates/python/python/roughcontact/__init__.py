@@ -324,7 +324,8 @@ class Solution:
     ``termination``, ``residual``, ``wall_time_s`` [s]; every number of the solver's report
     is in ``report``, the resolved case in ``case``. After a tangential path, ``tangential``
     (a :class:`Tangential`) and the last step's fields ``shear_x``, ``shear_y`` [Pa],
-    ``slip_x``, ``slip_y`` [m]; otherwise ``tangential`` is None."""
+    ``slip_x``, ``slip_y`` [m] (the surfaces' relative tangential displacement since the path
+    began: on the contact the slip); otherwise ``tangential`` is None."""
 
     def __init__(self, summary: Dict[str, Any], fields: Dict[str, np.ndarray]) -> None:
         self.fields = fields
