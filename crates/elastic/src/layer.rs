@@ -159,10 +159,85 @@ impl Layer {
         }
     }
 
+    /// The tangential factors at wavenumber `q` \[1/m\] (`q > 0`) of a layer of shear modulus
+    /// `G`: along the wave (plane strain) `C_LL = (1 - nu) r_LL / (G q)`, across it (antiplane)
+    /// `C_TT = r_TT / (G q)`, and the coupling `C_zL = i c_zL / (G q)` (the normal displacement
+    /// under a shear along the wave; the half-space's `r = 1`, `c_zL = -(1 - 2 nu)/2`). From
+    /// Navier's equations through the layer (docs/method.md section 14); `None` on a
+    /// substrate, whose factors are not derived.
+    pub fn shear_factors(&self, q: f64) -> Option<ShearFactors> {
+        let x = q * self.thickness;
+        let nu = self.poisson;
+        let a = 3.0 - 4.0 * nu;
+        Some(match self.base {
+            Base::Substrate { .. } => return None,
+            Base::Bonded => {
+                let c = 5.0 - 12.0 * nu + 8.0 * nu * nu;
+                if x < SMALL {
+                    let denominator = a * (2.0 * x).cosh() + 2.0 * x * x + c;
+                    let s = x.sinh();
+                    ShearFactors {
+                        along: (a * sinh_less_linear(2.0 * x) + (a + 1.0) * 2.0 * x) / denominator,
+                        across: x.tanh(),
+                        coupling: (x * x - (1.0 - 2.0 * nu) * a * s * s) / denominator,
+                    }
+                } else {
+                    let (e2, e4) = ((-2.0 * x).exp(), (-4.0 * x).exp());
+                    let denominator = a * (1.0 + e4) + 2.0 * e2 * (2.0 * x * x + c);
+                    ShearFactors {
+                        along: (a * (1.0 - e4) + 4.0 * x * e2) / denominator,
+                        across: x.tanh(),
+                        coupling: (4.0 * x * x * e2 - (1.0 - 2.0 * nu) * a * (1.0 - e2) * (1.0 - e2))
+                            / (2.0 * denominator),
+                    }
+                }
+            }
+            Base::Frictionless => {
+                if x < SMALL {
+                    let (c, s2) = (x.cosh(), (2.0 * x).sinh());
+                    ShearFactors {
+                        along: 2.0 * c * c / (s2 + 2.0 * x),
+                        across: 1.0 / x.tanh(),
+                        coupling: (2.0 * x - (1.0 - 2.0 * nu) * s2) / (2.0 * (2.0 * x + s2)),
+                    }
+                } else {
+                    let (e2, e4) = ((-2.0 * x).exp(), (-4.0 * x).exp());
+                    let denominator = 1.0 - e4 + 4.0 * x * e2;
+                    ShearFactors {
+                        along: (1.0 + e2) * (1.0 + e2) / denominator,
+                        across: 1.0 / x.tanh(),
+                        coupling: (4.0 * x * e2 - (1.0 - 2.0 * nu) * (1.0 - e4)) / (2.0 * denominator),
+                    }
+                }
+            }
+        })
+    }
+
+    /// The tangential compliance \[m/Pa\] of a uniform shear on a layer of shear modulus `g`
+    /// \[Pa\]: `h / G` bonded; `None` on a frictionless base (the layer slides) or a substrate.
+    pub fn mean_shear_compliance(&self, g: f64) -> Option<f64> {
+        match self.base {
+            Base::Bonded => Some(self.thickness / g),
+            _ => None,
+        }
+    }
+
     /// The layer's influence in real space (tabulated once: about 3 million Bessel functions).
     pub(crate) fn real_space(&self, e_star: f64) -> RealSpace {
         RealSpace::new(self, e_star)
     }
+}
+
+/// A layer's tangential compliance at one wavenumber over the half-space's
+/// ([`Layer::shear_factors`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShearFactors {
+    /// `r_LL`, along the wave.
+    pub along: f64,
+    /// `r_TT`, across it.
+    pub across: f64,
+    /// `c_zL`, the coupling.
+    pub coupling: f64,
 }
 
 /// 8-point Gauss-Legendre nodes and weights on `[-1, 1]`.
@@ -541,6 +616,12 @@ mod tests {
     /// depth (RK4) with its four boundary conditions: no shear and the pressure on top, no
     /// normal displacement at the base and no shear (frictionless) or no slip (bonded) there.
     fn navier(q: f64, nu: f64, base: Base) -> f64 {
+        navier_surface(q, nu, base, (1.0, 0.0)).1
+    }
+
+    /// [`navier`]'s surface displacement `(U, W)` (`u_x = i U e^{iqx}`, `u_z = W e^{iqx}`)
+    /// under a pressure `p` and a shear `t` (the traction `i t e^{iqx}` along x on the surface).
+    fn navier_surface(q: f64, nu: f64, base: Base, (p, t): (f64, f64)) -> (f64, f64) {
         let mu = 1.0 / (2.0 * (1.0 + nu));
         let lambda = nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
         // Y = (U, U', W, W') with u_x = i U e^{iqx}, u_z = W e^{iqx}, z down into the layer.
@@ -571,11 +652,11 @@ mod tests {
             })
             .collect();
         let row = |i: usize| [at_base[0][i], at_base[1][i], at_base[2][i], at_base[3][i]];
-        // sigma_zz(0) = lambda (-q U + W') + 2 mu W' = -1, sigma_xz(0) ~ U' + q W = 0,
+        // sigma_zz(0) = lambda (-q U + W') + 2 mu W' = -p, mu (U' + q W) = -t,
         // W(1) = 0, and U'(1) = 0 (frictionless) or U(1) = 0 (bonded).
         let a = [
-            [-lambda * q, 0.0, 0.0, lambda + 2.0 * mu, -1.0],
-            [0.0, 1.0, q, 0.0, 0.0],
+            [-lambda * q, 0.0, 0.0, lambda + 2.0 * mu, -p],
+            [0.0, mu, mu * q, 0.0, -t],
             [row(2)[0], row(2)[1], row(2)[2], row(2)[3], 0.0],
             match base {
                 Base::Frictionless => [row(1)[0], row(1)[1], row(1)[2], row(1)[3], 0.0],
@@ -584,7 +665,85 @@ mod tests {
             },
         ];
         // The pressure pushes the surface into the layer, W(0) > 0.
-        eliminate(a)[2]
+        let y = eliminate(a);
+        (y[0], y[2])
+    }
+
+    /// Along the wave, a shear's tangential and normal displacements are Navier's: the factors
+    /// `r_LL` and `c_zL` of [`Layer::shear_factors`] on either side of the switch, and Betti's
+    /// reciprocity between the shear's normal displacement and the pressure's tangential one.
+    #[test]
+    fn the_shear_factors_solve_navier_s_equations_through_the_layer() {
+        for base in [Base::Bonded, Base::Frictionless] {
+            for nu in [0.0, 0.25, 0.3, 0.45] {
+                let l = Layer::new(1.0, nu, base).unwrap();
+                let g = 1.0 / (2.0 * (1.0 + nu));
+                for q in [0.1, 0.3, 0.5, 1.0, 2.0] {
+                    let f = l.shear_factors(q).unwrap();
+                    let (u, w) = navier_surface(q, nu, base, (0.0, 1.0));
+                    let along = u * g * q / (1.0 - nu);
+                    let coupling = -w * g * q;
+                    assert!(
+                        (f.along / along - 1.0).abs() < 1e-9,
+                        "{base:?} nu {nu} q {q}: {f:?} {along}"
+                    );
+                    assert!(
+                        (f.coupling - coupling).abs() < 1e-9 * f.coupling.abs().max(1e-3),
+                        "{base:?} nu {nu} q {q}: {f:?} {coupling}"
+                    );
+                    // The pressure's tangential displacement: C_Lz = i U_p / p and C_zL = W / (i t),
+                    // and Betti's C_Lz = -C_zL is U_p = W.
+                    let (u_p, _) = navier_surface(q, nu, base, (1.0, 0.0));
+                    assert!(
+                        (u_p - w).abs() < 1e-9 * w.abs().max(1e-6),
+                        "{base:?} nu {nu} q {q}"
+                    );
+                }
+            }
+        }
+        // A substrate's are not derived.
+        let coating = Layer::new(
+            1.0,
+            0.3,
+            Base::Substrate {
+                e_star: 1.0,
+                poisson: 0.3,
+            },
+        )
+        .unwrap();
+        assert!(coating.shear_factors(1.0).is_none());
+    }
+
+    /// Thin layers: bonded, simple shear (`h / G` along and across the wave); on a frictionless
+    /// base, a membrane (along: `(1 - nu) / (2 G q^2 h)`, the in-plane stiffness `E h / (1 -
+    /// nu^2)`; across: `1 / (G q^2 h)`). Thick ones: the half-space, without overflow.
+    #[test]
+    fn thin_layers_shear_as_a_film_and_thick_ones_as_the_half_space() {
+        let nu = 0.3;
+        let x = 1e-3;
+        let at = |base: Base, x: f64| {
+            let l = layer(nu, base);
+            l.shear_factors(x / l.thickness).unwrap()
+        };
+        let bonded = at(Base::Bonded, x);
+        // C q G = (1 - nu) r_LL = x and r_TT = x at leading order.
+        assert!(((1.0 - nu) * bonded.along / x - 1.0).abs() < 1e-5 && (bonded.across / x - 1.0).abs() < 1e-6);
+        let frictionless = at(Base::Frictionless, x);
+        assert!(
+            (frictionless.along * 2.0 * x - 1.0).abs() < 1e-5,
+            "{frictionless:?}"
+        );
+        assert!((frictionless.across * x - 1.0).abs() < 1e-6);
+        for base in [Base::Bonded, Base::Frictionless] {
+            for x in [40.0, 400.0, 4e5] {
+                let f = at(base, x);
+                assert!((f.along - 1.0).abs() < 1e-15 && (f.across - 1.0).abs() < 1e-15);
+                assert!(
+                    (f.coupling + (1.0 - 2.0 * nu) / 2.0).abs() < 1e-15,
+                    "{base:?} {x}: {f:?}"
+                );
+            }
+        }
     }
 
     #[test]

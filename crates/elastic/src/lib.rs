@@ -47,7 +47,7 @@ pub mod viscoelastic;
 
 pub use body::Body;
 pub use error::{ElasticError, Result};
-pub use layer::{Base, Layer};
+pub use layer::{Base, Layer, ShearFactors};
 pub use material::{Material, composite_modulus};
 pub use operators::{Free, FreeStiffness, Periodic, PeriodicStiffness, Workspace};
 pub use shear::{Shear, ShearWorkspace};

@@ -21,10 +21,11 @@
 //! (exact cell integrals of the point kernel, applied by DC-FFT on a zero-padded grid).
 
 use crate::error::{ElasticError, Result};
+use crate::layer::ShearFactors;
 use crate::love::cell_influence;
 use crate::material::check_poisson;
 use crate::operators::wavevector;
-use crate::{Compliance, Domain};
+use crate::{Body, Compliance, Domain};
 use fft2::{Complex64, Fft2, Workspace as FftWorkspace};
 use ndarray::{Array2, ArrayView2, ArrayViewMut2, Zip};
 use rayon::prelude::*;
@@ -59,6 +60,18 @@ impl Shear {
     /// A bad domain, a shear modulus that is not finite and positive, a Poisson's ratio
     /// outside `(-1, 0.5]`.
     pub fn new(domain: Domain, shear_modulus: f64, poisson: f64) -> Result<Self> {
+        Shear::with_body(domain, shear_modulus, poisson, Body::HalfSpace)
+    }
+
+    /// The tangential compliance of `body` of shear modulus `shear_modulus` \[Pa\] and Poisson's
+    /// ratio `poisson` on `domain`: the half-space on either grid, a layer on a rigid base
+    /// (bonded or frictionless) on periodic grids.
+    ///
+    /// # Errors
+    /// As [`Shear::new`]; [`ElasticError::Unsupported`] for a layer on a free grid or on a
+    /// substrate, whose tangential compliances are not derived.
+    pub fn with_body(domain: Domain, shear_modulus: f64, poisson: f64, body: Body) -> Result<Self> {
+        Shear::supports(body, domain.periodic)?;
         if !(shear_modulus.is_finite() && shear_modulus > 0.0) {
             return Err(ElasticError::InvalidParameter {
                 name: "shear_modulus",
@@ -78,19 +91,32 @@ impl Shear {
                 * ((1.0 - poisson) * cell_integral(Kernel::One, 0.0, 0.0, a, b)
                     + poisson * cell_integral(Kernel::Yy, 0.0, 0.0, a, b)),
         ];
+        let factors = |q: f64| match body {
+            Body::HalfSpace => ShearFactors {
+                along: 1.0,
+                across: 1.0,
+                coupling: -(1.0 - 2.0 * poisson) / 2.0,
+            },
+            Body::Layer(layer) => layer.shear_factors(q).expect("supported"),
+        };
         let (fft, kernels) = if domain.periodic {
-            periodic_kernels(&domain, shear_modulus, poisson)
+            let mean = match body {
+                Body::HalfSpace => None,
+                Body::Layer(layer) => layer.mean_shear_compliance(shear_modulus),
+            };
+            periodic_kernels(&domain, shear_modulus, poisson, &factors, mean)
         } else {
             free_kernels(&domain, scale, poisson)
         };
-        let coupling = (poisson < 0.5).then(|| {
+        // The half-space's coupling vanishes at nu = 1/2; a layer's, held by its base, does not.
+        let coupling = (poisson < 0.5 || body != Body::HalfSpace).then(|| {
             if domain.periodic {
-                periodic_coupling(&domain, shear_modulus, poisson)
+                periodic_coupling(&domain, shear_modulus, &factors)
             } else {
                 free_coupling(&domain, &fft, shear_modulus, poisson)
             }
         });
-        Ok(Shear {
+        let mut shear = Shear {
             domain,
             shear_modulus,
             poisson,
@@ -98,23 +124,75 @@ impl Shear {
             kernels,
             cell,
             coupling,
-        })
+        };
+        if body != Body::HalfSpace {
+            // A layer's diagonal: the periodic operator's own, from a unit traction.
+            let shape = domain.shape();
+            let mut unit = Array2::zeros(shape);
+            unit[(0, 0)] = 1.0;
+            let (zero, mut ux, mut uy) = (Array2::zeros(shape), Array2::zeros(shape), Array2::zeros(shape));
+            let mut ws = shear.make_workspace();
+            shear.apply(
+                [unit.view(), zero.view()],
+                [ux.view_mut(), uy.view_mut()],
+                &mut ws,
+            )?;
+            shear.cell[0] = ux[(0, 0)];
+            shear.apply(
+                [zero.view(), unit.view()],
+                [ux.view_mut(), uy.view_mut()],
+                &mut ws,
+            )?;
+            shear.cell[1] = uy[(0, 0)];
+        }
+        Ok(shear)
+    }
+
+    /// Refuses a body whose tangential compliance is not derived on this kind of grid.
+    ///
+    /// # Errors
+    /// [`ElasticError::Unsupported`] for a layer on a free grid or on a substrate.
+    pub fn supports(body: Body, periodic: bool) -> Result<()> {
+        match body {
+            Body::HalfSpace => Ok(()),
+            Body::Layer(layer) if layer.shear_factors(1.0 / layer.thickness).is_none() => {
+                Err(ElasticError::Unsupported(
+                    "the tangential compliance of a coating on a substrate is not derived: a \
+                     tangential path takes a half-space or a layer on a rigid base",
+                ))
+            }
+            Body::Layer(_) if !periodic => Err(ElasticError::Unsupported(
+                "a layer's tangential compliance is implemented on periodic grids only: a \
+                 tangential path on a free grid takes the half-space",
+            )),
+            Body::Layer(_) => Ok(()),
+        }
     }
 
     /// The tangential compliance of the body whose normal operator is `normal` (of
-    /// plane-strain modulus `E*`) and whose Poisson's ratio is `poisson`, against a rigid
-    /// counterface: `G = E* (1 - nu) / 2`.
+    /// plane-strain modulus `E*`) and whose Poisson's ratio is `poisson` (a layer's own),
+    /// against a rigid counterface: `G = E* (1 - nu) / 2`.
     ///
     /// # Errors
-    /// As [`Shear::new`]; [`ElasticError::Unsupported`] for a body other than the half-space.
+    /// As [`Shear::with_body`]; a Poisson's ratio other than a layer's own.
     pub fn of(normal: &dyn Compliance, poisson: f64) -> Result<Self> {
-        if normal.body() != crate::Body::HalfSpace {
-            return Err(ElasticError::Unsupported(
-                "the tangential compliance is the half-space's (Cerruti's); a layer's is not implemented",
-            ));
-        }
         check_poisson("poisson_ratio", poisson)?;
-        Shear::new(*normal.domain(), normal.e_star() * (1.0 - poisson) / 2.0, poisson)
+        let body = normal.body();
+        if let Body::Layer(layer) = body
+            && layer.poisson != poisson
+        {
+            return Err(ElasticError::InvalidParameter {
+                name: "poisson_ratio",
+                value: poisson,
+                reason: "must be the layer's own",
+            });
+        }
+        Shear::with_body(
+            *normal.domain(),
+            normal.e_star() * (1.0 - poisson) / 2.0,
+            poisson,
+            body,
+        )
     }
 
     /// The grid.
@@ -356,7 +434,17 @@ fn cell_integral(kernel: Kernel, x: f64, y: f64, a: f64, b: f64) -> f64 {
     corner(x + a, y + b) - corner(x + a, y - b) - corner(x - a, y + b) + corner(x - a, y - b)
 }
 
-fn periodic_kernels(domain: &Domain, g: f64, nu: f64) -> (Fft2, [Array2<f64>; 3]) {
+/// The periodic multipliers of a body of `factors` ([`ShearFactors`]): along the wave
+/// `(1 - nu) r_LL / (G q)`, across it `r_TT / (G q)`, so `xx = (C_LL qx^2 + C_TT qy^2) / q^2`
+/// and `xy = (C_LL - C_TT) qx qy / q^2`; the mean mode `mean` \[m/Pa\] (a bonded layer's) or
+/// left out.
+fn periodic_kernels(
+    domain: &Domain,
+    g: f64,
+    nu: f64,
+    factors: &dyn Fn(f64) -> ShearFactors,
+    mean: Option<f64>,
+) -> (Fft2, [Array2<f64>; 3]) {
     let Domain { nx, ny, dx, dy, .. } = *domain;
     let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
     let scale = 1.0 / (nx * ny) as f64;
@@ -365,15 +453,21 @@ fn periodic_kernels(domain: &Domain, g: f64, nu: f64) -> (Fft2, [Array2<f64>; 3]
             let (qx, qy) = (wavevector(kx, nx, lx), wavevector(ky, ny, ly));
             let q = qx.hypot(qy);
             if q == 0.0 {
-                return 0.0;
+                return if which < 2 {
+                    scale * mean.unwrap_or(0.0)
+                } else {
+                    0.0
+                };
             }
-            let c = scale / (g * q);
+            let f = factors(q);
+            let (along, across) = ((1.0 - nu) * f.along, f.across);
+            let c = scale / (g * q * q * q);
             match which {
-                0 => c * (1.0 - nu * qx * qx / (q * q)),
-                1 => c * (1.0 - nu * qy * qy / (q * q)),
+                0 => c * (along * qx * qx + across * qy * qy),
+                1 => c * (along * qy * qy + across * qx * qx),
                 // At a Nyquist index `+q` and `-q` are one mode: the odd coupling averages out.
                 _ if 2 * kx == nx || 2 * ky == ny => 0.0,
-                _ => -c * nu * qx * qy / (q * q),
+                _ => c * (along - across) * qx * qy,
             }
         })
     };
@@ -426,13 +520,13 @@ fn free_kernels(domain: &Domain, scale: f64, nu: f64) -> (Fft2, [Array2<f64>; 3]
     (fft, [kxx, kyy, kxy])
 }
 
-/// The coupling's multipliers on a periodic grid: `m_x = -(1 - 2 nu) qx / (2 G q^2)`, zero at
-/// the mean and, along its own axis, at the Nyquist index (where `+q` and `-q` are one mode and
-/// the odd kernel averages out).
-fn periodic_coupling(domain: &Domain, g: f64, nu: f64) -> [Array2<f64>; 2] {
+/// The coupling's multipliers on a periodic grid: `m_x = c_zL qx / (G q^2)` (the half-space's
+/// `-(1 - 2 nu) qx / (2 G q^2)`), zero at the mean and, along its own axis, at the Nyquist
+/// index (where `+q` and `-q` are one mode and the odd kernel averages out).
+fn periodic_coupling(domain: &Domain, g: f64, factors: &dyn Fn(f64) -> ShearFactors) -> [Array2<f64>; 2] {
     let Domain { nx, ny, dx, dy, .. } = *domain;
     let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
-    let c = -(1.0 - 2.0 * nu) / (2.0 * g * (nx * ny) as f64);
+    let c = 1.0 / (g * (nx * ny) as f64);
     let make = |along_x: bool| {
         Array2::from_shape_fn((nx / 2 + 1, ny), |(kx, ky)| {
             let (qx, qy) = (wavevector(kx, nx, lx), wavevector(ky, ny, ly));
@@ -441,7 +535,7 @@ fn periodic_coupling(domain: &Domain, g: f64, nu: f64) -> [Array2<f64>; 2] {
             if q2 == 0.0 || nyquist {
                 0.0
             } else {
-                c * if along_x { qx } else { qy } / q2
+                c * factors(q2.sqrt()).coupling * if along_x { qx } else { qy } / q2
             }
         })
     };

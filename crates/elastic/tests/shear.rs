@@ -303,3 +303,67 @@ fn coupling_is_reciprocal() {
         );
     }
 }
+
+/// A layer on a rigid base: a uniform shear moves a bonded layer by `h / G` (and a
+/// frictionless one is refused nothing: its mean is left out, as the half-space's); a layer
+/// thicker than the box shears as the half-space; a bonded incompressible layer still couples,
+/// reciprocally; free grids and coatings are refused by name.
+#[test]
+fn layers_shear_as_films_and_thick_ones_as_the_half_space() {
+    use elastic::{Base, Body, Layer};
+    let (n, nu, h) = (32, 0.3, 2e-6);
+    let d = domain(n, true);
+    let bonded = Shear::with_body(d, G, nu, Body::Layer(Layer::new(h, nu, Base::Bonded).unwrap())).unwrap();
+    let uniform = Array2::from_elem((n, n), 1e6);
+    let (ux, uy) = apply(&bonded, &uniform, &Array2::zeros((n, n)));
+    assert!(
+        ux.iter().all(|u| (u - 1e6 * h / G).abs() < 1e-12 * 1e6 * h / G)
+            && uy.iter().all(|v| v.abs() < 1e-20)
+    );
+    let thick = Layer::new(1.0, nu, Base::Frictionless).unwrap();
+    let (a, b) = (
+        Shear::with_body(d, G, nu, Body::Layer(thick)).unwrap(),
+        Shear::new(d, G, nu).unwrap(),
+    );
+    let field = |seed: u64| {
+        Array2::from_shape_fn((n, n), |(j, i)| {
+            let k = (j * n + i) as u64 * 2654435761 + seed;
+            ((k % 1000) as f64 / 500.0) - 1.0
+        })
+    };
+    let (tx, ty, p) = (field(5), field(9), field(21));
+    let ((ax, ay), (bx, by)) = (apply(&a, &tx, &ty), apply(&b, &tx, &ty));
+    let scale = bx.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for (u, v) in ax.iter().chain(&ay).zip(bx.iter().chain(&by)) {
+        assert!((u - v).abs() < 1e-12 * scale);
+    }
+    let incompressible =
+        Shear::with_body(d, G, 0.5, Body::Layer(Layer::new(h, 0.5, Base::Bonded).unwrap())).unwrap();
+    assert!(incompressible.coupled());
+    let (ux, uy) = coupled_tangential(&incompressible, &p);
+    let uz = coupled_normal(&incompressible, &tx, &ty);
+    let dot = |x: &Array2<f64>, y: &Array2<f64>| x.iter().zip(y).map(|(a, b)| a * b).sum::<f64>();
+    let (left, right) = (dot(&tx, &ux) + dot(&ty, &uy), dot(&p, &uz));
+    assert!(
+        (left - right).abs() < 1e-12 * left.abs() && left.abs() > 0.0,
+        "{left} {right}"
+    );
+    let free = Shear::with_body(
+        domain(n, false),
+        G,
+        nu,
+        Body::Layer(Layer::new(h, nu, Base::Bonded).unwrap()),
+    );
+    assert!(free.is_err_and(|e| e.to_string().contains("periodic grids only")));
+    let coating = Layer::new(
+        h,
+        nu,
+        Base::Substrate {
+            e_star: 1e9,
+            poisson: 0.3,
+        },
+    )
+    .unwrap();
+    let refused = Shear::with_body(d, G, nu, Body::Layer(coating));
+    assert!(refused.is_err_and(|e| e.to_string().contains("coating")));
+}
