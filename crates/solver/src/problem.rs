@@ -190,8 +190,8 @@ impl ContactProblem {
     /// the interface's friction ([`crate::friction`]).
     ///
     /// # Errors
-    /// No friction law or Poisson's ratio, a viscoelastic body or a layer (their tangential
-    /// compliance is not implemented), no cell in contact.
+    /// No friction law or Poisson's ratio, a viscoelastic body, a layer on a free grid or a
+    /// coating (their tangential compliances are not implemented), no cell in contact.
     pub fn tangential(&self, normal: &ContactState) -> Result<crate::friction::TangentialProblem> {
         let (friction, poisson) = self.check_tangential()?;
         let contact_gap = crate::friction::contact_gap(self.law.as_ref())?;
@@ -223,13 +223,7 @@ impl ContactProblem {
                     .into(),
             ));
         }
-        if self.operator.body() != Body::HalfSpace {
-            return Err(SolverError::Unsupported(
-                "tangential loading of a layer is not implemented: its tangential compliance \
-                 differs from the half-space's (Cerruti's)"
-                    .into(),
-            ));
-        }
+        elastic::Shear::supports(self.operator.body(), self.operator.domain().periodic)?;
         Ok((friction, poisson))
     }
 

@@ -193,3 +193,52 @@ fn coupling_vanishes_for_an_incompressible_body() {
     println!("displacement change: {far:e} at nu 0.3, {near:e} at nu 0.45");
     assert!(near < 0.15 * far, "{near:e} vs {far:e}");
 }
+
+/// A bonded film in full contact, stuck (a shear strength far above the shear): the shear is
+/// uniform and the body moves by the film's simple shear, `D = Q h / (G A)`, decoupled and
+/// coupled alike (a uniform shear lifts nothing).
+#[test]
+fn a_stuck_film_in_full_contact_shears_simply() {
+    let (n, length, h, nu) = (32, 32e-6, 2e-6, 0.3);
+    for counterface in [Counterface::Similar, Counterface::Rigid] {
+        let problem = ContactProblem::builder()
+            .grid(n, n, length, length)
+            .wave(1e-8)
+            .modulus(E_STAR)
+            .layer(elastic::Layer::new(h, nu, elastic::Base::Bonded).unwrap())
+            .poisson(nu)
+            .friction(Friction::new(0.0, 1e9).unwrap())
+            .counterface(counterface)
+            .build()
+            .unwrap();
+        let options = normal_options();
+        let control = Control::MeanPressure(0.05 * E_STAR);
+        let (state, _) = problem
+            .solve_without_adhesion(control, &options, None, &mut ())
+            .unwrap();
+        assert!(state.pressure.iter().all(|&p| p > 0.0), "not in full contact");
+        let q = 1e-3 * E_STAR * length * length;
+        let normal = Normal {
+            state: NormalState::WithoutAdhesion(state),
+            control,
+            solver: NormalSolver::WithoutAdhesion(&options),
+        };
+        let path = problem
+            .tangential_path(
+                normal,
+                None,
+                &[TangentialControl::Force([q, 0.0])],
+                &ShearOptions::default(),
+                &mut |_, _, _, _| true,
+            )
+            .unwrap();
+        let r = &path.reports[0];
+        let g = E_STAR * (1.0 - nu) / 2.0;
+        let exact = q * h / (g * length * length);
+        assert!(
+            (r.displacement[0] / exact - 1.0).abs() < 1e-8 && r.stick_area_fraction == 1.0,
+            "{counterface:?}: {:e} vs {exact:e}",
+            r.displacement[0]
+        );
+    }
+}
