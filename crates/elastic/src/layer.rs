@@ -163,14 +163,28 @@ impl Layer {
     /// `G`: along the wave (plane strain) `C_LL = (1 - nu) r_LL / (G q)`, across it (antiplane)
     /// `C_TT = r_TT / (G q)`, and the coupling `C_zL = i c_zL / (G q)` (the normal displacement
     /// under a shear along the wave; the half-space's `r = 1`, `c_zL = -(1 - 2 nu)/2`). From
-    /// Navier's equations through the layer (docs/method.md section 14); `None` on a
-    /// substrate, whose factors are not derived.
-    pub fn shear_factors(&self, q: f64) -> Option<ShearFactors> {
+    /// Navier's equations through the layer (docs/method.md section 14); on a substrate by
+    /// the coating's six conditions ([`coating_ratio`]) and, across the wave, in closed form.
+    pub fn shear_factors(&self, q: f64, e_star: f64) -> ShearFactors {
         let x = q * self.thickness;
         let nu = self.poisson;
         let a = 3.0 - 4.0 * nu;
-        Some(match self.base {
-            Base::Substrate { .. } => return None,
+        match self.base {
+            Base::Substrate {
+                e_star: substrate,
+                poisson,
+            } => {
+                let (w0, u0) = coating_surface(x, (e_star, nu), (substrate, poisson), (0.0, 1.0));
+                // Shear moduli over the layer's, G = E* (1 - nu) / 2; G1 = (1 - nu1) / 2 in the
+                // units of coating_surface.
+                let ratio = substrate * (1.0 - poisson) / (e_star * (1.0 - nu));
+                let t = x.tanh();
+                ShearFactors {
+                    along: u0 / 2.0,
+                    across: (1.0 + ratio * t) / (t + ratio),
+                    coupling: -w0 * (1.0 - nu) / 2.0,
+                }
+            }
             Base::Bonded => {
                 let c = 5.0 - 12.0 * nu + 8.0 * nu * nu;
                 if x < SMALL {
@@ -210,11 +224,12 @@ impl Layer {
                     }
                 }
             }
-        })
+        }
     }
 
     /// The tangential compliance \[m/Pa\] of a uniform shear on a layer of shear modulus `g`
-    /// \[Pa\]: `h / G` bonded; `None` on a frictionless base (the layer slides) or a substrate.
+    /// \[Pa\]: `h / G` bonded; `None` on a frictionless base (the layer slides) or a substrate
+    /// (a half-space, displaced without bound).
     pub fn mean_shear_compliance(&self, g: f64) -> Option<f64> {
         match self.base {
             Base::Bonded => Some(self.thickness / g),
@@ -439,7 +454,13 @@ fn hankel(layer: &Layer, e_star: f64, s: f64) -> f64 {
 /// unit pressure no shear on top, and at the interface `W`, `U`, `s_zz` and `s_xz` continuous,
 /// with `s_zz = (l + 2m) W' - l U` and `s_xz = m (U' + W)` (times `q`). The ratio is
 /// `W(0) E* / 2` with the moduli in units of the layer's `E*`.
-fn coating_ratio(x: f64, (e1, nu1): (f64, f64), (e2, nu2): (f64, f64)) -> f64 {
+fn coating_ratio(x: f64, layer: (f64, f64), substrate: (f64, f64)) -> f64 {
+    coating_surface(x, layer, substrate, (1.0, 0.0)).0 / 2.0
+}
+
+/// [`coating_ratio`]'s surface displacement `(W(0), U(0))` under a pressure `p` and a shear
+/// `t` (the traction `i t e^{iqx}` along x: `s_xz(0) = -t`), in units of `1 / (E* q)`.
+fn coating_surface(x: f64, (e1, nu1): (f64, f64), (e2, nu2): (f64, f64), (p, t): (f64, f64)) -> (f64, f64) {
     // Lame's constants from E* and nu: E = E* (1 - nu^2), mu = E* (1 - nu) / 2.
     let lame = |e_star: f64, nu: f64| {
         let mu = e_star * (1.0 - nu) / 2.0;
@@ -500,11 +521,13 @@ fn coating_ratio(x: f64, (e1, nu1): (f64, f64), (e2, nu2): (f64, f64)) -> f64 {
             a[2 + q][4 + c] = -interface.2[q][c];
         }
     }
-    a[0][6] = -1.0;
+    a[0][6] = -p;
+    a[1][6] = -t;
     let y = eliminate(a);
     // W(0) = c1 + (c2 + d2 (-x)) e^{-x}, in units of 1 / (E* q); the half-space's is 2.
     let w0 = y[0] + top.1[0][0] * y[2] + top.1[0][1] * y[3];
-    w0 / 2.0
+    let u0 = top.0[1][0] * y[0] + top.0[1][1] * y[1] + top.1[1][0] * y[2] + top.1[1][1] * y[3];
+    (w0, u0)
 }
 
 /// Gaussian elimination with partial pivoting of an `N` x `N` system, its right-hand side the
@@ -679,7 +702,7 @@ mod tests {
                 let l = Layer::new(1.0, nu, base).unwrap();
                 let g = 1.0 / (2.0 * (1.0 + nu));
                 for q in [0.1, 0.3, 0.5, 1.0, 2.0] {
-                    let f = l.shear_factors(q).unwrap();
+                    let f = l.shear_factors(q, 1.0 / (1.0 - nu * nu));
                     let (u, w) = navier_surface(q, nu, base, (0.0, 1.0));
                     let along = u * g * q / (1.0 - nu);
                     let coupling = -w * g * q;
@@ -701,17 +724,38 @@ mod tests {
                 }
             }
         }
-        // A substrate's are not derived.
-        let coating = Layer::new(
-            1.0,
-            0.3,
-            Base::Substrate {
-                e_star: 1.0,
-                poisson: 0.3,
-            },
-        )
-        .unwrap();
-        assert!(coating.shear_factors(1.0).is_none());
+    }
+
+    /// A coating on its own material shears as the half-space; on a substrate 1e9 times
+    /// stiffer, as the bonded layer (across the wave too).
+    #[test]
+    fn a_coating_shears_as_the_half_space_or_the_bonded_layer() {
+        for nu in [0.0, 0.3, 0.45] {
+            let coating = |e_star: f64| Layer::new(1.0, nu, Base::Substrate { e_star, poisson: nu }).unwrap();
+            let bonded = Layer::new(1.0, nu, Base::Bonded).unwrap();
+            for x in [0.05, 0.5, 2.0, 20.0] {
+                let same = coating(1.0).shear_factors(x, 1.0);
+                assert!(
+                    (same.along - 1.0).abs() < 1e-12 && (same.across - 1.0).abs() < 1e-12,
+                    "{same:?}"
+                );
+                assert!(
+                    (same.coupling + (1.0 - 2.0 * nu) / 2.0).abs() < 1e-12,
+                    "nu {nu} x {x}: {same:?}"
+                );
+                let (hard, want) = (coating(1e9).shear_factors(x, 1.0), bonded.shear_factors(x, 1.0));
+                for (got, want) in [
+                    (hard.along, want.along),
+                    (hard.across, want.across),
+                    (hard.coupling, want.coupling),
+                ] {
+                    assert!(
+                        (got - want).abs() < 1e-5 * want.abs().max(1e-3),
+                        "nu {nu} x {x}: {hard:?} {want:?}"
+                    );
+                }
+            }
+        }
     }
 
     /// Thin layers: bonded, simple shear (`h / G` along and across the wave); on a frictionless
@@ -723,7 +767,7 @@ mod tests {
         let x = 1e-3;
         let at = |base: Base, x: f64| {
             let l = layer(nu, base);
-            l.shear_factors(x / l.thickness).unwrap()
+            l.shear_factors(x / l.thickness, E_STAR)
         };
         let bonded = at(Base::Bonded, x);
         // C q G = (1 - nu) r_LL = x and r_TT = x at leading order.

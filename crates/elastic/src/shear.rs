@@ -64,12 +64,11 @@ impl Shear {
     }
 
     /// The tangential compliance of `body` of shear modulus `shear_modulus` \[Pa\] and Poisson's
-    /// ratio `poisson` on `domain`: the half-space on either grid, a layer on a rigid base
-    /// (bonded or frictionless) on periodic grids.
+    /// ratio `poisson` on `domain`: the half-space on either grid, a layer on periodic grids.
     ///
     /// # Errors
-    /// As [`Shear::new`]; [`ElasticError::Unsupported`] for a layer on a free grid or on a
-    /// substrate, whose tangential compliances are not derived.
+    /// As [`Shear::new`]; [`ElasticError::Unsupported`] for a layer on a free grid, whose
+    /// tangential kernels are not derived.
     pub fn with_body(domain: Domain, shear_modulus: f64, poisson: f64, body: Body) -> Result<Self> {
         Shear::supports(body, domain.periodic)?;
         if !(shear_modulus.is_finite() && shear_modulus > 0.0) {
@@ -97,7 +96,7 @@ impl Shear {
                 across: 1.0,
                 coupling: -(1.0 - 2.0 * poisson) / 2.0,
             },
-            Body::Layer(layer) => layer.shear_factors(q).expect("supported"),
+            Body::Layer(layer) => layer.shear_factors(q, 2.0 * shear_modulus / (1.0 - poisson)),
         };
         let (fft, kernels) = if domain.periodic {
             let mean = match body {
@@ -151,16 +150,10 @@ impl Shear {
     /// Refuses a body whose tangential compliance is not derived on this kind of grid.
     ///
     /// # Errors
-    /// [`ElasticError::Unsupported`] for a layer on a free grid or on a substrate.
+    /// [`ElasticError::Unsupported`] for a layer on a free grid.
     pub fn supports(body: Body, periodic: bool) -> Result<()> {
         match body {
             Body::HalfSpace => Ok(()),
-            Body::Layer(layer) if layer.shear_factors(1.0 / layer.thickness).is_none() => {
-                Err(ElasticError::Unsupported(
-                    "the tangential compliance of a coating on a substrate is not derived: a \
-                     tangential path takes a half-space or a layer on a rigid base",
-                ))
-            }
             Body::Layer(_) if !periodic => Err(ElasticError::Unsupported(
                 "a layer's tangential compliance is implemented on periodic grids only: a \
                  tangential path on a free grid takes the half-space",
