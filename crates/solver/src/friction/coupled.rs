@@ -206,9 +206,11 @@ impl Coupled<'_> {
         state: &NormalState,
         options: &ShearOptions,
     ) -> Result<(ShearState, ShearReport, NormalState)> {
+        let started = std::time::Instant::now();
         let shape = self.reference.dim();
         let mut ws = self.operator.make_workspace();
         let (mut current, mut converged_normal) = (state.clone(), true);
+        let mut last: Option<ShearState> = None;
         for round in 1..=options.max_coupling_iterations {
             let on = TangentialProblem::on(
                 self.operator.clone(),
@@ -223,7 +225,9 @@ impl Coupled<'_> {
             for (slip, offset) in reference.slip.iter_mut().zip(&offset) {
                 *slip += offset;
             }
-            let (mut shear, mut report) = on.solve(control, &reference, options)?;
+            // Each round after the first starts from the last one's shear.
+            let warm = last.as_ref().map(|s| &s.traction);
+            let (mut shear, mut report) = on.solve_from(control, &reference, warm, options)?;
             for (slip, offset) in shear.slip.iter_mut().zip(&offset) {
                 *slip -= offset;
             }
@@ -242,6 +246,7 @@ impl Coupled<'_> {
                 .fold(0.0f64, |m, &a, &b| m.max((a - b).abs()));
             current = next;
             report.coupling_iterations = round;
+            report.wall_time_s = started.elapsed().as_secs_f64();
             let settled = change <= options.coupling_tolerance * largest;
             if settled || round == options.max_coupling_iterations {
                 if !(settled && converged_normal) {
@@ -249,6 +254,7 @@ impl Coupled<'_> {
                 }
                 return Ok((shear, report, current));
             }
+            last = Some(shear);
         }
         unreachable!("the loop returns at its last round")
     }

@@ -265,7 +265,7 @@ pub struct ShearReport {
     /// The normal approach \[m\] under the shear: the normal solution's when decoupled, and
     /// under approach control.
     pub approach: f64,
-    /// Iterations run (of the last round's tangential solve).
+    /// Iterations run (of the last round's tangential solve when coupled).
     pub iterations: usize,
     /// Final residual ([`ShearOptions::tolerance`]).
     pub residual: f64,
@@ -370,9 +370,21 @@ impl TangentialProblem {
         previous: &ShearState,
         options: &ShearOptions,
     ) -> Result<(ShearState, ShearReport)> {
+        self.solve_from(control, previous, None, options)
+    }
+
+    /// [`TangentialProblem::solve`] with the iteration started from the shear `warm` \[Pa\]
+    /// rather than the previous step's (a coupled step's last round).
+    fn solve_from(
+        &self,
+        control: TangentialControl,
+        previous: &ShearState,
+        warm: Option<&[Array2<f64>; 2]>,
+        options: &ShearOptions,
+    ) -> Result<(ShearState, ShearReport)> {
         options.validate()?;
         let started = Instant::now();
-        for field in previous.traction.iter().chain(&previous.slip) {
+        for field in previous.traction.iter().chain(&previous.slip).chain(warm.into_iter().flatten()) {
             if field.dim() != self.shape {
                 return Err(SolverError::ShapeMismatch {
                     what: "previous tangential state",
@@ -391,7 +403,14 @@ impl TangentialProblem {
         let scale = self.bound.iter().fold(0.0f64, |m, &g| m.max(g)) * self_compliance;
         let s_prev = self.on_cells(&previous.slip);
         let tau_prev = self.on_cells(&previous.traction);
-        let mut tau = tau_prev.clone();
+        let mut tau = match warm {
+            Some(warm) => {
+                let mut tau = self.on_cells(warm);
+                self.project(&mut tau);
+                tau
+            }
+            None => tau_prev.clone(),
+        };
         let target = match control {
             TangentialControl::Force(q) => Some(q),
             TangentialControl::Displacement(_) => None,
