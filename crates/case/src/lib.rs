@@ -57,8 +57,9 @@ pub enum Counterface {
     /// Of the body's material (--modulus the pair's E*): normal and tangential loads do not
     /// couple, the pressure stays the normal solution's.
     Similar,
-    /// Rigid: for --poisson below 0.5 the shear changes the pressure and the pressure the
-    /// slip; each step iterates the two solves.
+    /// Rigid: the shear changes the pressure and the pressure the slip (on a half-space for
+    /// --poisson below 0.5; a layer, held by its base, also at 0.5); each step iterates the
+    /// two solves.
     Rigid,
 }
 

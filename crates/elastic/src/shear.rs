@@ -251,7 +251,7 @@ impl Shear {
         Ok(())
     }
 
-    /// Whether pressure and shear are coupled (`nu < 1/2`).
+    /// Whether pressure and shear are coupled (a half-space's for `nu < 1/2`, a layer's always).
     pub fn coupled(&self) -> bool {
         self.coupling.is_some()
     }

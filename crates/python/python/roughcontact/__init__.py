@@ -517,7 +517,8 @@ def solve(
     ``tangential_displacements`` [m] (lists, each step from the last; negative reverses) along
     ``tangential_angle`` [rad], with ``friction_coefficient`` [-] and/or ``shear_strength``
     [Pa] and the body's ``poisson`` [-]; ``counterface="rigid"`` couples it to the normal
-    contact (``poisson`` < 0.5; default ``"similar"``: decoupled); the result's ``tangential``.
+    contact (a half-space's for ``poisson`` < 0.5, a layer's always; default ``"similar"``:
+    decoupled); the result's ``tangential``.
     ``progress(info)`` is called after every iteration with ``{'step', 'iteration',
     'residual'}``; an exception it raises stops the solve. ``threads``: threads of this
     solve's own pool (None: all cores, shared). The GIL is released while solving; Ctrl-C

@@ -1,5 +1,6 @@
-//! A tangential path on a body of Poisson's ratio below 1/2 pressed by a rigid counterface: the
-//! shear moves the surface normally and the pressure moves it tangentially
+//! A tangential path on a body pressed by a rigid counterface (a half-space of Poisson's ratio
+//! below 1/2, or a layer, which its base holds): the shear moves the surface normally and the
+//! pressure moves it tangentially
 //! ([`elastic::Shear::coupled_normal`]), so each step alternates the two solves until the
 //! pressure settles: the tangential step at the latest pressure, with the pressure's own
 //! tangential displacement since the path began added to the slip's reference, then the normal
@@ -24,8 +25,9 @@ pub enum Counterface {
     /// body).
     #[default]
     Similar,
-    /// Rigid: for `nu < 1/2` the shear and the pressure move the surface across each other's
-    /// directions, and the normal contact changes under the shear.
+    /// Rigid: the shear and the pressure move the surface across each other's directions (a
+    /// half-space's for `nu < 1/2`, a layer's at any `nu`), and the normal contact changes under
+    /// the shear.
     Rigid,
 }
 
@@ -106,10 +108,9 @@ impl ContactProblem {
     /// Follows the tangential `controls` from `normal`, unloaded, or from where an interrupted
     /// path on it stood (`reached`; `controls` are then the steps left), calling `step` after
     /// each (its index among `controls`, its shear, the normal contact under it and its report;
-    /// `false` stops the path). Decoupled
-    /// unless the counterface is rigid and the body's Poisson's ratio below 1/2
-    /// ([`Counterface`]). Under a force the contact cannot carry the path ends at that step
-    /// (it slides away).
+    /// `false` stops the path). Decoupled unless the counterface is rigid and the body couples
+    /// ([`Counterface`], [`elastic::Shear::coupled`]). Under a force the contact cannot carry
+    /// the path ends at that step (it slides away).
     ///
     /// # Errors
     /// As [`ContactProblem::tangential`] and [`TangentialProblem::solve`]; a normal state of

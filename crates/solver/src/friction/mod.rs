@@ -384,7 +384,12 @@ impl TangentialProblem {
     ) -> Result<(ShearState, ShearReport)> {
         options.validate()?;
         let started = Instant::now();
-        for field in previous.traction.iter().chain(&previous.slip).chain(warm.into_iter().flatten()) {
+        for field in previous
+            .traction
+            .iter()
+            .chain(&previous.slip)
+            .chain(warm.into_iter().flatten())
+        {
             if field.dim() != self.shape {
                 return Err(SolverError::ShapeMismatch {
                     what: "previous tangential state",
