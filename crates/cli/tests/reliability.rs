@@ -347,6 +347,37 @@ fn values_that_would_be_dropped_are_refused() {
         summary
     );
     assert!(!d.join("exact/curve.csv").exists());
+    // Nor a solve's tangential path, which solve --resume continues.
+    let path = [
+        "solve",
+        "--sphere-radius",
+        "1e-3",
+        "--n",
+        "32",
+        "--length",
+        "64e-6",
+        "--modulus",
+        "1e9",
+        "--load",
+        "1e-3",
+        "--poisson",
+        "0.3",
+        "--friction-coefficient",
+        "0.3",
+        "--tangential-loads",
+        "1e-4",
+        "--no-png",
+        "--out",
+        "sheared",
+    ];
+    check(&d, &path, Must::Succeed);
+    check(
+        &d,
+        &["sweep", "--example", "hertz", "--resume", "--out", "sheared"],
+        Must::Refuse("holds no sweep to continue"),
+    );
+    assert!(!d.join("sheared/curve.csv").exists());
+    check(&d, &[&path[..], &["--resume"]].concat(), Must::Succeed);
 }
 
 #[test]

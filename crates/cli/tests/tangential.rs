@@ -44,6 +44,19 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// `tangential.csv` in `out`, header first, split into cells.
+fn table(out: &Path) -> Vec<Vec<String>> {
+    std::fs::read_to_string(out.join("tangential.csv"))
+        .unwrap()
+        .lines()
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+fn summary(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
 #[test]
 fn a_partial_slip_loop_writes_its_steps_fields_and_summary() {
     let out = dir("loop");
@@ -61,11 +74,7 @@ fn a_partial_slip_loop_writes_its_steps_fields_and_summary() {
         ],
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    let csv = std::fs::read_to_string(out.join("tangential.csv")).unwrap();
-    let rows: Vec<Vec<String>> = csv
-        .lines()
-        .map(|l| l.split(',').map(str::to_string).collect())
-        .collect();
+    let rows = table(&out);
     assert_eq!(rows[0][1], "force_x");
     assert_eq!(rows.len(), 7);
     // Along y: the force's x part vanishes, its y part follows the path.
@@ -76,8 +85,7 @@ fn a_partial_slip_loop_writes_its_steps_fields_and_summary() {
     for name in ["shear_x", "shear_y", "slip_x", "slip_y"] {
         assert!(out.join(format!("{name}.npy")).exists(), "{name}.npy");
     }
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary(&out);
     let t = &summary["tangential"];
     assert!((t["static_friction"].as_f64().unwrap() - 0.3 * 0.0184).abs() < 1e-12);
     assert_eq!(t["steps"], 6);
@@ -104,19 +112,14 @@ fn a_rigid_counterface_couples_the_path() {
         ],
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    let csv = std::fs::read_to_string(out.join("tangential.csv")).unwrap();
-    let rows: Vec<Vec<String>> = csv
-        .lines()
-        .map(|l| l.split(',').map(str::to_string).collect())
-        .collect();
+    let rows = table(&out);
     let column = |name: &str| rows[0].iter().position(|c| c == name).unwrap();
     let (load, approach, rounds) = (
         column("normal_load"),
         column("approach"),
         column("coupling_iterations"),
     );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary(&out);
     let normal_approach = summary["approach"].as_f64().unwrap();
     for row in &rows[1..] {
         assert!((row[load].parse::<f64>().unwrap() - 0.0184).abs() < 1e-12);
@@ -142,10 +145,9 @@ fn more_than_the_contact_carries_is_reported_as_sliding() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("ended at step 2 of 3"), "{}", stderr(&o));
-    let csv = std::fs::read_to_string(out.join("tangential.csv")).unwrap();
-    let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
-    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
-    let column = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let rows = table(&out);
+    let (header, last) = (&rows[0], rows.last().unwrap());
+    let column = |name: &str| header.iter().position(|c| c == name).unwrap();
     assert_eq!(last[column("displacement_x")], "NaN");
     assert_eq!(last[column("gross_sliding")], "true");
 }
@@ -380,12 +382,7 @@ fn killed_and_resumed(name: &str, extra: &[&str], after: usize) {
             "{f}"
         );
     }
-    let summary = |out: &Path| -> serde_json::Value {
-        let mut s: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-        s["tangential"].take()
-    };
-    assert_eq!(summary(&killed), summary(&whole));
+    assert_eq!(summary(&killed)["tangential"], summary(&whole)["tangential"]);
 }
 
 #[test]
@@ -426,7 +423,7 @@ fn resume_is_refused_where_there_is_nothing_to_continue() {
     assert!(sphere(&plain, &[]).status.success());
     let o = sphere(&plain, &[&path[..], &["--resume"]].concat());
     assert!(
-        !o.status.success() && stderr(&o).contains("holds no sweep or tangential path"),
+        !o.status.success() && stderr(&o).contains("holds no tangential path to continue"),
         "{}",
         stderr(&o)
     );

@@ -323,11 +323,7 @@ fn solve<'py>(
                 let mut summary = summary(problem, head, &report, edge)?;
                 let sheared = shear(
                     problem,
-                    || solver::Normal {
-                        state: solver::NormalState::Adhesive(state.clone()),
-                        control,
-                        solver: solver::NormalSolver::Adhesive(&settings),
-                    },
+                    || solver::Normal::adhesive(state.clone(), control, &settings),
                     tangential.as_deref(),
                     &mut summary,
                     &cancel_flag,
@@ -344,11 +340,7 @@ fn solve<'py>(
                 let mut summary = summary(problem, head, &report, edge)?;
                 let sheared = shear(
                     problem,
-                    || solver::Normal {
-                        state: solver::NormalState::WithoutAdhesion(state.clone()),
-                        control,
-                        solver: solver::NormalSolver::WithoutAdhesion(&options),
-                    },
+                    || solver::Normal::without_adhesion(state.clone(), control, &options),
                     tangential.as_deref(),
                     &mut summary,
                     &cancel_flag,

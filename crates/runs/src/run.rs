@@ -95,10 +95,36 @@ pub fn busy(path: &Path) -> bool {
 pub enum Reuse {
     /// Refuse it.
     Refuse,
-    /// Continue it (`sweep --resume`): its files are kept.
-    Resume,
+    /// Continue it (`--resume`): its files are kept. What it continues, which the directory
+    /// must hold: a sweep (`curve.csv`) or a solve's tangential path.
+    Resume(Continued),
     /// Remove its files first (`--overwrite`).
     Overwrite,
+}
+
+/// What `--resume` continues.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Continued {
+    /// A sweep.
+    Sweep,
+    /// A solve's tangential path.
+    TangentialPath,
+}
+
+impl Continued {
+    fn file(self) -> &'static str {
+        match self {
+            Continued::Sweep => "curve.csv",
+            Continued::TangentialPath => crate::tangential::STATE,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Continued::Sweep => "sweep",
+            Continued::TangentialPath => "tangential path",
+        }
+    }
 }
 
 /// A run's output directory, locked for the lifetime of the value.
@@ -130,19 +156,16 @@ impl RunDir {
         let found: Vec<&str> = RUN_FILES.into_iter().filter(|f| path.join(f).exists()).collect();
         match reuse {
             _ if found.is_empty() => {}
-            // Only a sweep or a tangential path is continued: a plain solve's run would be
-            // overwritten under its name.
-            Reuse::Resume
-                if !path.join("curve.csv").exists() && !path.join(crate::tangential::STATE).exists() =>
-            {
-                bail!(
-                    "--resume: {} holds no sweep or tangential path to continue ({}): give another \
-                 --out, or --overwrite to replace what it holds",
-                    path.display(),
-                    found.join(", ")
-                )
-            }
-            Reuse::Resume => {}
+            // Only a sweep or a tangential path is continued, each by its own command: another
+            // run would be overwritten under its name.
+            Reuse::Resume(what) if !path.join(what.file()).exists() => bail!(
+                "--resume: {} holds no {} to continue ({}): give another --out, or --overwrite to \
+                 replace what it holds",
+                path.display(),
+                what.name(),
+                found.join(", ")
+            ),
+            Reuse::Resume(_) => {}
             Reuse::Refuse => bail!(
                 "{} already holds a run ({}); give --overwrite to replace it (or, for a sweep, --resume \
                  to continue it), or another --out",

@@ -87,7 +87,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
         if tangential.is_none() {
             bail!("--resume continues an interrupted tangential path; this solve has none (it is run whole)");
         }
-        Reuse::Resume
+        Reuse::Resume(crate::run::Continued::TangentialPath)
     } else if args.overwrite {
         Reuse::Overwrite
     } else {
@@ -142,11 +142,7 @@ pub fn solve(args: SolveArgs) -> Result<()> {
     print_summary(out, &report, problem.interface.hardness.is_some())?;
     let sheared = shear(
         problem,
-        || solver::Normal {
-            state: solver::NormalState::WithoutAdhesion(state.clone()),
-            control,
-            solver: solver::NormalSolver::WithoutAdhesion(&options),
-        },
+        || solver::Normal::without_adhesion(state.clone(), control, &options),
         tangential.as_deref(),
         (&run, args.resume),
         &mut summary,
@@ -313,11 +309,7 @@ fn solve_adhesive(
     )?;
     let sheared = shear(
         problem,
-        || solver::Normal {
-            state: solver::NormalState::Adhesive(state.clone()),
-            control,
-            solver: solver::NormalSolver::Adhesive(&settings),
-        },
+        || solver::Normal::adhesive(state.clone(), control, &settings),
         tangential,
         (run, args.resume),
         &mut summary,

@@ -104,7 +104,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
     case.validate_settings(problem.adhesive())?;
     let settings = case.settings();
     let reuse = match (args.resume, args.overwrite) {
-        (true, _) => Reuse::Resume,
+        (true, _) => Reuse::Resume(crate::run::Continued::Sweep),
         (false, true) => Reuse::Overwrite,
         (false, false) => Reuse::Refuse,
     };

@@ -4,8 +4,8 @@
 //! forces, and the coupling vanishes with `1 - 2 nu`.
 
 use solver::{
-    ContactOptions, ContactProblem, Control, Counterface, Friction, Normal, NormalSolver, NormalState,
-    ShearOptions, TangentialControl, TangentialPath, TangentialSummary,
+    ContactOptions, ContactProblem, Control, Counterface, Friction, Normal, ShearOptions, TangentialControl,
+    TangentialPath, TangentialSummary,
 };
 
 const E_STAR: f64 = 1e9;
@@ -45,11 +45,7 @@ fn path(problem: &ContactProblem, ratios: &[f64]) -> (TangentialPath, f64) {
         .iter()
         .map(|r| TangentialControl::Force([r * MU * load, 0.0]))
         .collect();
-    let normal = Normal {
-        state: NormalState::WithoutAdhesion(state),
-        control: Control::Force(load),
-        solver: NormalSolver::WithoutAdhesion(&options),
-    };
+    let normal = Normal::without_adhesion(state, Control::Force(load), &options);
     let path = problem
         .tangential_path(
             normal,
@@ -218,11 +214,7 @@ fn a_stuck_film_in_full_contact_shears_simply() {
             .unwrap();
         assert!(state.pressure.iter().all(|&p| p > 0.0), "not in full contact");
         let q = 1e-3 * E_STAR * length * length;
-        let normal = Normal {
-            state: NormalState::WithoutAdhesion(state),
-            control,
-            solver: NormalSolver::WithoutAdhesion(&options),
-        };
+        let normal = Normal::without_adhesion(state, control, &options);
         let path = problem
             .tangential_path(
                 normal,

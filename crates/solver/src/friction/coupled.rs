@@ -85,6 +85,26 @@ pub struct Normal<'a> {
     pub solver: NormalSolver<'a>,
 }
 
+impl<'a> Normal<'a> {
+    /// A solution of the conjugate gradients under `control` with `options`.
+    pub fn without_adhesion(state: ContactState, control: Control, options: &'a ContactOptions) -> Self {
+        Normal {
+            state: NormalState::WithoutAdhesion(state),
+            control,
+            solver: NormalSolver::WithoutAdhesion(options),
+        }
+    }
+
+    /// A solution of an adhesive method under `control` with `settings`.
+    pub fn adhesive(state: AdhesiveState, control: Control, settings: &'a Settings) -> Self {
+        Normal {
+            state: NormalState::Adhesive(state),
+            control,
+            solver: NormalSolver::Adhesive(settings),
+        }
+    }
+}
+
 /// A tangential path's end: the shear, each step's report, and the normal solution under the
 /// last step's shear (the starting one when decoupled).
 pub struct TangentialPath {
