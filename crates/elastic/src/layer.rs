@@ -164,7 +164,7 @@ impl Layer {
     /// `C_TT = r_TT / (G q)`, and the coupling `C_zL = i c_zL / (G q)` (the normal displacement
     /// under a shear along the wave; the half-space's `r = 1`, `c_zL = -(1 - 2 nu)/2`). From
     /// Navier's equations through the layer (docs/method.md section 14); on a substrate by
-    /// the coating's six conditions ([`coating_ratio`]) and, across the wave, in closed form.
+    /// the coating's six conditions (as its normal factor) and, across the wave, in closed form.
     pub fn shear_factors(&self, q: f64, e_star: f64) -> ShearFactors {
         let x = q * self.thickness;
         let nu = self.poisson;

@@ -112,10 +112,11 @@ pub enum Continued {
 }
 
 impl Continued {
-    fn file(self) -> &'static str {
+    /// Whether `dir` holds one to continue.
+    fn held_by(self, dir: &Path) -> bool {
         match self {
-            Continued::Sweep => "curve.csv",
-            Continued::TangentialPath => crate::tangential::STATE,
+            Continued::Sweep => dir.join("curve.csv").exists(),
+            Continued::TangentialPath => saved(&dir.join(crate::tangential::STATE)).is_some(),
         }
     }
 
@@ -158,7 +159,7 @@ impl RunDir {
             _ if found.is_empty() => {}
             // Only a sweep or a tangential path is continued, each by its own command: another
             // run would be overwritten under its name.
-            Reuse::Resume(what) if !path.join(what.file()).exists() => bail!(
+            Reuse::Resume(what) if !what.held_by(path) => bail!(
                 "--resume: {} holds no {} to continue ({}): give another --out, or --overwrite to \
                  replace what it holds",
                 path.display(),
@@ -426,10 +427,7 @@ fn parse_curve(text: &str) -> Result<Vec<CyclePoint>> {
     Ok(rows)
 }
 
-/// Writes a state into `dir` whole or not at all: into a sibling `<name>.new` first (its
-/// manifest last), then swapped in by renames, so that a run killed at any moment leaves
-/// either the old state or the new one (or, between the two renames, only `<name>.new`, which
-/// [`read_state`] takes).
+/// Writes a state into `dir` whole or not at all ([`write_fields`]).
 fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
     let mut manifest = serde_json::json!({ "approach": state.contact.approach });
     if let Some(h) = &state.contact.history {
@@ -439,7 +437,10 @@ fn write_state(dir: &Path, state: &AdhesiveState) -> Result<()> {
 }
 
 /// Writes `fields` (`name.npy`) and `manifest` with a fingerprint of each field added, into
-/// `dir` as [`write_state`] does: a reader finds the old set or the new one, whole.
+/// `dir` whole or not at all: into a sibling `<name>.new` first (its manifest last), then
+/// swapped in by renames, so that a run killed at any moment leaves either the old set or the
+/// new one (or, between the two renames, only `<name>.new`, which [`saved`] and
+/// [`read_state`] take).
 pub fn write_fields(dir: &Path, fields: &[(String, &Array2<f64>)], mut manifest: Value) -> Result<()> {
     let sibling = |ext: &str| {
         let mut name = dir.file_name().unwrap_or_default().to_os_string();
@@ -603,6 +604,16 @@ impl SavedFields<'_> {
         }
         Ok(field)
     }
+}
+
+/// Where [`write_fields`] left a whole set for `dir`: `dir`, or `<name>.new` when killed
+/// between its renames; `None` if neither holds one.
+pub fn saved(dir: &Path) -> Option<PathBuf> {
+    let mut new = dir.file_name()?.to_os_string();
+    new.push(".new");
+    [dir.to_path_buf(), dir.with_file_name(new)]
+        .into_iter()
+        .find(|d| d.join(MANIFEST).exists())
 }
 
 /// The fields [`write_fields`] wrote into `dir`.

@@ -3,7 +3,7 @@
 //! path's state (shear, slip, the rows so far and, when coupled, the normal contact under the
 //! shear) is saved in `tangential_state/`, so that `solve --resume` goes on from there.
 
-use crate::run::{RunDir, on_workers, read_fields, write_fields};
+use crate::run::{RunDir, on_workers, read_fields, saved as saved_dir, write_fields};
 use crate::{note, say};
 use anyhow::{Context, Result, bail};
 use ndarray::Array2;
@@ -36,10 +36,9 @@ pub fn run(
     let options = ShearOptions::default();
     let total = controls.len();
     let out = run.path();
-    let (mut rows, reached) = if resume && out.join(STATE).exists() {
-        saved(&out.join(STATE), &normal.state)?
-    } else {
-        (Vec::new(), None)
+    let (mut rows, reached) = match saved_dir(&out.join(STATE)).filter(|_| resume) {
+        Some(dir) => saved(&dir, &normal.state)?,
+        None => (Vec::new(), None),
     };
     if rows.len() > total {
         bail!(
