@@ -190,8 +190,8 @@ impl ContactProblem {
     /// the interface's friction ([`crate::friction`]).
     ///
     /// # Errors
-    /// No friction law or Poisson's ratio, a viscoelastic body, a layer on a free grid or a
-    /// coating (their tangential compliances are not implemented), no cell in contact.
+    /// No friction law or Poisson's ratio, a viscoelastic body or a layer on a free grid (their
+    /// tangential compliances are not implemented), no cell in contact.
     pub fn tangential(&self, normal: &ContactState) -> Result<crate::friction::TangentialProblem> {
         let (friction, poisson) = self.check_tangential()?;
         let contact_gap = crate::friction::contact_gap(self.law.as_ref())?;

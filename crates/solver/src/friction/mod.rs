@@ -16,8 +16,8 @@
 //! back onto the discs: a tangential form of Polonsky & Keer's method (1999).
 //!
 //! Against a counterface of the body's own material the problem is the decoupled one: the
-//! normal pressure is the normal solution's, whatever the shear. Against a rigid one, a body of
-//! Poisson's ratio below 1/2 couples the two ([`coupled`]).
+//! normal pressure is the normal solution's, whatever the shear. Against a rigid one, a
+//! half-space of Poisson's ratio below 1/2, or a layer, couples the two ([`coupled`]).
 
 use crate::error::{Result, SolverError, invalid};
 use crate::report::Termination;
