@@ -40,6 +40,9 @@ fn sphere(out: &Path, extra: &[&str]) -> Output {
     run(&args)
 }
 
+/// The body's Poisson's ratio and Coulomb's coefficient of every path here.
+const COULOMB: [&str; 4] = ["--poisson", "0.3", "--friction-coefficient", "0.3"];
+
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
@@ -63,15 +66,15 @@ fn a_partial_slip_loop_writes_its_steps_fields_and_summary() {
     let o = sphere(
         &out,
         &[
-            "--poisson",
-            "0.3",
-            "--friction-coefficient",
-            "0.3",
-            "--tangential-loads",
-            "2e-3,4e-3,0,-4e-3,0,4e-3",
-            "--tangential-angle",
-            "1.5707963267948966",
-        ],
+            &COULOMB[..],
+            &[
+                "--tangential-loads",
+                "2e-3,4e-3,0,-4e-3,0,4e-3",
+                "--tangential-angle",
+                "1.5707963267948966",
+            ],
+        ]
+        .concat(),
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let rows = table(&out);
@@ -101,15 +104,10 @@ fn a_rigid_counterface_couples_the_path() {
     let o = sphere(
         &out,
         &[
-            "--poisson",
-            "0.3",
-            "--friction-coefficient",
-            "0.3",
-            "--counterface",
-            "rigid",
-            "--tangential-loads",
-            "2e-3,4e-3",
-        ],
+            &COULOMB[..],
+            &["--counterface", "rigid", "--tangential-loads", "2e-3,4e-3"],
+        ]
+        .concat(),
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let rows = table(&out);
@@ -134,14 +132,7 @@ fn more_than_the_contact_carries_is_reported_as_sliding() {
     let out = dir("slide");
     let o = sphere(
         &out,
-        &[
-            "--poisson",
-            "0.3",
-            "--friction-coefficient",
-            "0.3",
-            "--tangential-loads",
-            "1e-3,0.1,0.2",
-        ],
+        &[&COULOMB[..], &["--tangential-loads", "1e-3,0.1,0.2"]].concat(),
     );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("ended at step 2 of 3"), "{}", stderr(&o));
@@ -177,10 +168,7 @@ fn bad_tangential_input_is_refused_by_name() {
             ],
             "--shear-strength must be a finite shear stress >= 0 Pa",
         ),
-        (
-            &["--poisson", "0.3", "--friction-coefficient", "0.3"],
-            "bound a tangential path's shear",
-        ),
+        (&COULOMB, "bound a tangential path's shear"),
         (
             &["--tangential-loads", "1e-3"],
             "a tangential path needs friction",
@@ -310,14 +298,7 @@ fn killed_and_resumed(name: &str, extra: &[&str], after: usize, torn: bool) {
         .map(|k| format!("{:e}", 4e-3 * (k as f64 * std::f64::consts::PI / 12.0).sin()))
         .collect();
     let cycle = cycle.join(",");
-    let mut path = vec![
-        "--poisson",
-        "0.3",
-        "--friction-coefficient",
-        "0.3",
-        "--tangential-loads",
-        &cycle,
-    ];
+    let mut path = [&COULOMB[..], &["--tangential-loads", &cycle]].concat();
     path.extend_from_slice(extra);
     let args = |out: &Path| {
         let mut args: Vec<String> = [

@@ -159,7 +159,7 @@ impl ContactProblem {
                 })
             })
             .transpose()?;
-        let (mut shear, mut state) = match reached {
+        let (shear, state) = match reached {
             Some(Reached { shear, normal: under }) => {
                 for field in shear
                     .traction
@@ -179,28 +179,26 @@ impl ContactProblem {
             }
             None => (ShearState::unloaded(first.shape), normal.state),
         };
-        let mut reports = Vec::with_capacity(controls.len());
-        for (k, control) in controls.iter().enumerate() {
-            let (next, mut report, next_state) = match &coupled {
-                Some(coupled) => coupled.step(*control, &shear, &state, options)?,
-                None => {
-                    let (next, report) = first.solve(*control, &shear, options)?;
-                    (next, report, state)
-                }
-            };
-            next_state.describe(&mut report, cell_area);
-            let slid_away = report.gross_sliding && matches!(control, TangentialControl::Force(_));
-            let go_on = step(k, &next, &next_state, &report);
-            reports.push(report);
-            (shear, state) = (next, next_state);
-            if slid_away || !go_on {
-                break;
-            }
-        }
+        let ((shear, normal), reports) = super::follow(
+            controls,
+            (shear, state),
+            |control, (shear, under)| {
+                let (next, mut report, under) = match &coupled {
+                    Some(coupled) => coupled.step(control, &shear, &under, options)?,
+                    None => {
+                        let (next, report) = first.solve(control, &shear, options)?;
+                        (next, report, under)
+                    }
+                };
+                under.describe(&mut report, cell_area);
+                Ok(((next, under), report))
+            },
+            &mut |k, (shear, under), report| step(k, shear, under, report),
+        )?;
         Ok(TangentialPath {
             shear,
             reports,
-            normal: state,
+            normal,
         })
     }
 }

@@ -677,13 +677,16 @@ impl TangentialProblem {
         u: Option<&[Array2<f64>; 2]>,
         d: [f64; 2],
     ) -> ShearState {
-        let mut state = ShearState::unloaded(self.shape);
-        for c in 0..2 {
-            state.slip[c] = match u {
-                Some(u) => u[c].mapv(|u| d[c] - u),
-                None => previous.slip[c].clone(),
-            };
-        }
+        let slip_of = |c: usize| match u {
+            Some(u) => u[c].mapv(|u| d[c] - u),
+            None => previous.slip[c].clone(),
+        };
+        let mut state = ShearState {
+            traction: [Array2::zeros(self.shape), Array2::zeros(self.shape)],
+            slip: [slip_of(0), slip_of(1)],
+            displacement: d,
+            force: self.force(tau),
+        };
         for (i, &k) in self.cells.iter().enumerate() {
             let (j, x) = (k / self.shape.1, k % self.shape.1);
             let increment = match slip {
@@ -695,8 +698,6 @@ impl TangentialProblem {
                 state.slip[c][(j, x)] = s_prev[i][c] + increment[c];
             }
         }
-        state.displacement = d;
-        state.force = self.force(tau);
         state
     }
 }
@@ -856,18 +857,29 @@ impl TangentialProblem {
         options: &ShearOptions,
         step: &mut dyn FnMut(usize, &ShearState, &ShearReport) -> bool,
     ) -> Result<(ShearState, Vec<ShearReport>)> {
-        let mut state = start;
-        let mut reports = Vec::with_capacity(controls.len());
-        for (k, control) in controls.iter().enumerate() {
-            let (next, report) = self.solve(*control, &state, options)?;
-            let slid_away = report.gross_sliding && matches!(control, TangentialControl::Force(_));
-            let go_on = step(k, &next, &report);
-            reports.push(report);
-            state = next;
-            if slid_away || !go_on {
-                break;
-            }
-        }
-        Ok((state, reports))
+        follow(controls, start, |c, s| self.solve(c, &s, options), step)
     }
+}
+
+/// Follows `controls` from `start`, each step by `solve` from the last state, calling `step`
+/// after each; a path ends early where `step` says so or under a force the contact cannot carry.
+fn follow<S>(
+    controls: &[TangentialControl],
+    start: S,
+    mut solve: impl FnMut(TangentialControl, S) -> Result<(S, ShearReport)>,
+    step: &mut dyn FnMut(usize, &S, &ShearReport) -> bool,
+) -> Result<(S, Vec<ShearReport>)> {
+    let mut state = start;
+    let mut reports = Vec::with_capacity(controls.len());
+    for (k, &control) in controls.iter().enumerate() {
+        let (next, report) = solve(control, state)?;
+        let slid_away = report.gross_sliding && matches!(control, TangentialControl::Force(_));
+        let go_on = step(k, &next, &report);
+        reports.push(report);
+        state = next;
+        if slid_away || !go_on {
+            break;
+        }
+    }
+    Ok((state, reports))
 }
